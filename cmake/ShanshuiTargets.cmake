@@ -1,0 +1,29 @@
+# Helpers that give every shanshui target the same warnings and layout.
+
+function(shanshui_warnings target)
+  target_compile_options(${target} PRIVATE -Wall -Wextra -Wpedantic -Wshadow=local)
+  # GCC 12 reports std::string concatenation at -O3 as overlapping memcpy (GCC bug 105329).
+  if(CMAKE_CXX_COMPILER_ID STREQUAL "GNU" AND CMAKE_CXX_COMPILER_VERSION VERSION_LESS 13)
+    target_compile_options(${target} PRIVATE -Wno-restrict)
+  endif()
+  if(SHANSHUI_WERROR)
+    target_compile_options(${target} PRIVATE -Werror)
+  endif()
+endfunction()
+
+# shanshui_library(NAME SOURCES ... DEPS ...): libs/<name> with include/ as its public headers.
+function(shanshui_library name)
+  cmake_parse_arguments(ARG "" "" "SOURCES;DEPS;PRIVATE_DEPS" ${ARGN})
+  add_library(shanshui_${name} STATIC ${ARG_SOURCES})
+  add_library(shanshui::${name} ALIAS shanshui_${name})
+  target_include_directories(shanshui_${name} PUBLIC ${CMAKE_CURRENT_SOURCE_DIR}/include)
+  target_link_libraries(shanshui_${name} PUBLIC ${ARG_DEPS} PRIVATE ${ARG_PRIVATE_DEPS})
+  shanshui_warnings(shanshui_${name})
+endfunction()
+
+function(shanshui_executable name)
+  cmake_parse_arguments(ARG "" "" "SOURCES;DEPS" ${ARGN})
+  add_executable(${name} ${ARG_SOURCES})
+  target_link_libraries(${name} PRIVATE ${ARG_DEPS})
+  shanshui_warnings(${name})
+endfunction()

@@ -1,0 +1,40 @@
+// Loading and saving images through OpenImageIO (PNG, JPEG, TIFF, EXR, GIF read, ...).
+#pragma once
+
+#include <filesystem>
+#include <string>
+
+#include "shanshui/image/image.h"
+
+namespace shanshui::image {
+
+//! Sample type of a file. Integer data are normalised on load (value / max of the type:
+//! 255, 65535, 32767, ...); normalisationScale() gives the factor back to raw values.
+enum class PixelDepth { UInt8, UInt16, Int16, UInt32, Int32, Half, Float, Double };
+
+struct ImageInfo {
+  PixelDepth depth = PixelDepth::UInt8;
+  int channels = 0;
+  std::string format;  //!< OpenImageIO format name: "png", "tiff", "openexr", ...
+};
+
+//! Factor that turns a loaded (normalised) value back into the file's raw integer value;
+//! 1 for floating-point data.
+double normalisationScale(PixelDepth depth);
+
+//! The depth names accepted on command lines: "8", "16", "float".
+PixelDepth parseDepth(const std::string& text);
+const char* depthName(PixelDepth depth);
+
+//! Loads the first subimage. Throws Error naming the file for a missing, unreadable,
+//! truncated, zero-size or unsupported file.
+Image loadImage(const std::filesystem::path& path, ImageInfo* info = nullptr);
+
+//! Saves with the format given by the extension and the requested depth (8, 16 or float;
+//! formats that cannot store it, like JPEG, get their closest). Values are clamped to
+//! [0,1] for integer depths. Writes atomically: on failure nothing replaces `path`.
+//! Throws Error for an empty image, NaN/Inf pixels or an unknown extension.
+void saveImage(const Image& img, const std::filesystem::path& path,
+               PixelDepth depth = PixelDepth::UInt8);
+
+}  // namespace shanshui::image

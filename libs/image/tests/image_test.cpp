@@ -1,0 +1,191 @@
+#include <OpenImageIO/imagebuf.h>
+#include <OpenImageIO/imagebufalgo.h>
+
+#include <fstream>
+#include <random>
+
+#include "shanshui/core/error.h"
+#include "shanshui/image/convert.h"
+#include "shanshui/image/image_io.h"
+#include "shanshui/image/opencv_interop.h"
+#include "test_support.h"
+
+namespace shanshui::image {
+namespace {
+
+// Random pixels that the depth can store exactly: k / (2^bits - 1).
+Image randomImage(int w, int h, int c, PixelDepth depth, unsigned seed) {
+  std::mt19937 rng(seed);
+  Image img(w, h, c);
+  const double levels = normalisationScale(depth);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  for (float& v : img.pixels) {
+    v = u(rng);
+    if (levels > 1.0) v = static_cast<float>(std::round(v * levels) / levels);
+  }
+  return img;
+}
+
+float maxAbsDiff(const Image& a, const Image& b) {
+  float d = 0;
+  for (std::size_t i = 0; i < a.pixels.size(); ++i) d = std::max(d, std::abs(a.pixels[i] - b.pixels[i]));
+  return d;
+}
+
+struct RoundTrip {
+  const char* ext;
+  PixelDepth depth;
+  float tolerance;  // 0: exact
+};
+
+TEST(ImageIo, RoundTripsEveryFormatDepthAndChannelCount) {
+  test::TempDir dir;
+  const RoundTrip cases[] = {{".png", PixelDepth::UInt8, 0},   {".png", PixelDepth::UInt16, 0},
+                             {".tif", PixelDepth::UInt8, 0},   {".tif", PixelDepth::UInt16, 0},
+                             {".tif", PixelDepth::Float, 0},   {".exr", PixelDepth::Float, 0}};
+  for (const RoundTrip& rt : cases) {
+    for (int channels = 1; channels <= 4; ++channels) {
+      SCOPED_TRACE(std::string(rt.ext) + " depth " + depthName(rt.depth) + " channels " + std::to_string(channels));
+      const Image img = randomImage(37, 23, channels, rt.depth, 7u + channels);
+      const auto path = dir / ("img" + std::to_string(channels) + rt.ext);
+      saveImage(img, path, rt.depth);
+      ImageInfo info;
+      const Image back = loadImage(path, &info);
+      ASSERT_EQ(back.width, img.width);
+      ASSERT_EQ(back.height, img.height);
+      ASSERT_EQ(back.channels, img.channels);
+      EXPECT_EQ(info.depth, rt.depth);
+      EXPECT_LE(maxAbsDiff(img, back), rt.tolerance);
+    }
+  }
+}
+
+TEST(ImageIo, JpegIsLossyButClose) {
+  test::TempDir dir;
+  // A smooth ramp: JPEG keeps it within a few levels.
+  for (int channels : {1, 3}) {
+    Image img(64, 48, channels);
+    for (int y = 0; y < img.height; ++y)
+      for (int x = 0; x < img.width; ++x)
+        for (int c = 0; c < channels; ++c) img.at(x, y, c) = (x + 2 * y + 10 * c) / 200.0f;
+    saveImage(img, dir / "ramp.jpg");
+    const Image back = loadImage(dir / "ramp.jpg");
+    EXPECT_EQ(back.channels, channels);
+    EXPECT_LT(maxAbsDiff(img, back), 0.03f);
+  }
+  EXPECT_THROW(saveImage(Image(4, 4, 4, 0.5f), dir / "alpha.jpg"), Error);
+}
+
+TEST(ImageIo, ReadsGif) {
+  test::TempDir dir;
+  // OpenImageIO writes GIF with a palette: grey levels that a palette holds exactly.
+  Image img(16, 8, 3);
+  for (int y = 0; y < 8; ++y)
+    for (int x = 0; x < 16; ++x)
+      for (int c = 0; c < 3; ++c) img.at(x, y, c) = static_cast<float>((x / 4) * 85) / 255.0f;
+  const auto path = dir / "steps.gif";
+  try {
+    saveImage(img, path);
+  } catch (const Error& e) {
+    GTEST_SKIP() << "this OpenImageIO cannot write GIF to make the input: " << e.what();
+  }
+  const Image back = loadImage(path);
+  ASSERT_EQ(back.width, 16);
+  const Image grey = toGrey(back);
+  for (int x = 0; x < 16; ++x) EXPECT_NEAR(grey.at(x, 3), (x / 4) * 85 / 255.0f, 1.5f / 255) << x;
+}
+
+TEST(ImageIo, StraightAlphaSurvivesPng) {
+  // A fully transparent pixel keeps its colour: nothing premultiplies on the way.
+  test::TempDir dir;
+  Image img(2, 1, 4);
+  img.pixels = {1.0f, 0.0f, 0.0f, 0.0f, 0.2f, 0.4f, 0.6f, 0.4f};
+  saveImage(img, dir / "a.png");
+  const Image back = loadImage(dir / "a.png");
+  EXPECT_LE(maxAbsDiff(img, back), 0.5f / 255);
+}
+
+TEST(ImageIo, BadInputNamesTheFile) {
+  test::TempDir dir;
+  auto expectError = [](const std::filesystem::path& p, const char* what) {
+    try {
+      loadImage(p);
+      ADD_FAILURE() << "no error for " << p;
+    } catch (const Error& e) {
+      const std::string msg = e.what();
+      EXPECT_NE(msg.find(p.string()), std::string::npos) << msg;
+      EXPECT_NE(msg.find(what), std::string::npos) << msg;
+      EXPECT_EQ(msg.find('\n'), std::string::npos) << "one line: " << msg;
+    }
+  };
+  expectError(dir / "missing.png", "no such file");
+  std::ofstream(dir / "empty.png").close();
+  expectError(dir / "empty.png", "empty file");
+  std::ofstream(dir / "text.png") << "this is not a png";
+  expectError(dir / "text.png", "cannot read");
+  // A real PNG cut in half.
+  saveImage(randomImage(256, 256, 3, PixelDepth::UInt8, 3), dir / "full.png");
+  std::ifstream in(dir / "full.png", std::ios::binary);
+  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::ofstream(dir / "cut.png", std::ios::binary).write(bytes.data(), static_cast<std::streamsize>(bytes.size() / 2));
+  EXPECT_THROW(loadImage(dir / "cut.png"), Error);
+}
+
+TEST(ImageIo, FailedSaveKeepsTheExistingFile) {
+  test::TempDir dir;
+  const auto path = dir / "keep.png";
+  const Image good = randomImage(8, 8, 1, PixelDepth::UInt8, 1);
+  saveImage(good, path);
+  Image bad = good;
+  bad.pixels[5] = std::numeric_limits<float>::quiet_NaN();
+  EXPECT_THROW(saveImage(bad, path), Error);
+  EXPECT_THROW(saveImage(Image(), path), Error);
+  EXPECT_THROW(saveImage(good, dir / "x.unknownext"), Error);
+  EXPECT_EQ(maxAbsDiff(loadImage(path), good), 0.0f);
+  EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir.path()), {}), 1);
+}
+
+TEST(Convert, GreyUsesStatedLumaWeightsAfterCompositingOverWhite) {
+  Image rgb(3, 1, 3, 0.0f);
+  rgb.at(0, 0, 0) = 1;
+  rgb.at(1, 0, 1) = 1;
+  rgb.at(2, 0, 2) = 1;
+  const Image g = toGrey(rgb);
+  EXPECT_FLOAT_EQ(g.at(0, 0), 0.299f);
+  EXPECT_FLOAT_EQ(g.at(1, 0), 0.587f);
+  EXPECT_FLOAT_EQ(g.at(2, 0), 0.114f);
+  // Black at half coverage over white is mid grey; transparent anything is white.
+  Image rgba(2, 1, 4, 0.0f);
+  rgba.at(0, 0, 3) = 0.5f;
+  rgba.at(1, 0, 0) = 0.3f;
+  const Image g2 = toGrey(rgba);
+  EXPECT_FLOAT_EQ(g2.at(0, 0), 0.5f);
+  EXPECT_FLOAT_EQ(g2.at(1, 0), 1.0f);
+  // Agrees with OpenImageIO's own channel sum on an opaque random image.
+  const Image r = randomImage(19, 7, 3, PixelDepth::Float, 11);
+  OIIO::ImageBuf src(OIIO::ImageSpec(r.width, r.height, 3, OIIO::TypeDesc::FLOAT), const_cast<float*>(r.pixels.data()));
+  const float w[3] = {kLumaR, kLumaG, kLumaB};
+  OIIO::ImageBuf sum = OIIO::ImageBufAlgo::channel_sum(src, w);
+  const Image mine = toGrey(r);
+  for (int y = 0; y < r.height; ++y)
+    for (int x = 0; x < r.width; ++x) EXPECT_NEAR(mine.at(x, y), sum.getchannel(x, y, 0, 0), 1e-6);
+}
+
+TEST(OpenCvInterop, MatViewsShareMemory) {
+  Image img(5, 4, 3, 0.25f);
+  cv::Mat m = asMat(img);
+  EXPECT_EQ(m.data, reinterpret_cast<uchar*>(img.pixels.data()));
+  EXPECT_EQ(m.type(), CV_32FC3);
+  m.at<cv::Vec3f>(2, 1)[2] = 0.75f;  // row 2, column 1
+  EXPECT_FLOAT_EQ(img.at(1, 2, 2), 0.75f);
+  cv::Mat u16(3, 2, CV_16UC1, cv::Scalar(65535));
+  u16.at<uint16_t>(1, 1) = 0;
+  const Image back = imageFromMat(u16);
+  EXPECT_EQ(back.width, 2);
+  EXPECT_EQ(back.height, 3);
+  EXPECT_FLOAT_EQ(back.at(0, 0), 1.0f);
+  EXPECT_FLOAT_EQ(back.at(1, 1), 0.0f);
+}
+
+}  // namespace
+}  // namespace shanshui::image

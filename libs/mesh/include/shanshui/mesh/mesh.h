@@ -1,0 +1,54 @@
+// Triangle meshes and polygon soups: the geometry types shared by shanshui's libraries.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+namespace shanshui::mesh {
+
+//! What a file holds before repair: polygons of any size, indices not yet validated.
+//! Attributes are per vertex: empty, or one entry per position.
+struct PolygonSoup {
+  std::vector<glm::dvec3> positions;
+  std::vector<glm::vec3> normals;
+  std::vector<glm::vec2> uvs;
+  std::vector<std::vector<std::uint32_t>> faces;
+};
+
+//! An indexed triangle mesh. Positions are double so that UTM-sized coordinates survive
+//! until recentre(); normals and uvs are empty or one per vertex.
+struct Mesh {
+  std::vector<glm::dvec3> positions;
+  std::vector<glm::vec3> normals;
+  std::vector<glm::vec2> uvs;
+  std::vector<glm::uvec3> triangles;
+
+  std::size_t vertexCount() const { return positions.size(); }
+  std::size_t triangleCount() const { return triangles.size(); }
+};
+
+struct Bounds {
+  glm::dvec3 min{0.0};
+  glm::dvec3 max{0.0};
+  glm::dvec3 centre() const { return 0.5 * (min + max); }
+  glm::dvec3 size() const { return max - min; }
+};
+
+//! Axis-aligned bounds of the positions (all zero for an empty mesh).
+Bounds bounds(const std::vector<glm::dvec3>& positions);
+inline Bounds bounds(const Mesh& m) { return bounds(m.positions); }
+
+//! Moves the mesh so that its bounding-box centre is at the origin; returns the offset
+//! that was subtracted (add it back to get the original coordinates). Done in double.
+glm::dvec3 recentre(Mesh& m);
+
+//! Area-weighted per-vertex normals (unit length; +Z for a vertex whose faces have no area).
+std::vector<glm::vec3> vertexNormals(const Mesh& m);
+
+//! Splits every polygon of a soup into a triangle fan; for meshes that are known to be
+//! clean. Real inputs go through repairMesh() instead.
+Mesh triangulateFans(const PolygonSoup& soup);
+
+}  // namespace shanshui::mesh

@@ -1,0 +1,305 @@
+#include "shanshui/mesh/mesh_io.h"
+
+#include <tiny_obj_loader.h>
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <tuple>
+
+#include "shanshui/core/atomic_output.h"
+#include "shanshui/core/error.h"
+
+namespace shanshui::mesh {
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string lowerExtension(const fs::path& p) {
+  std::string ext = p.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  return ext;
+}
+
+void checkReadable(const fs::path& path) {
+  std::error_code ec;
+  if (!fs::exists(path, ec)) throw makeError(path.string(), ": no such file");
+  if (fs::is_directory(path, ec)) throw makeError(path.string(), ": is a directory, expected a mesh");
+  if (fs::file_size(path, ec) == 0) throw makeError(path.string(), ": empty file");
+}
+
+std::string firstLine(const std::string& s) {
+  const auto end = s.find('\n');
+  return s.substr(0, end);
+}
+
+// Shortest text that reads back to the same double.
+void appendNumber(std::string& out, double v) {
+  char buf[32];
+  const auto res = std::to_chars(buf, buf + sizeof buf, v);
+  out.append(buf, res.ptr);
+}
+
+void validateIndices(const PolygonSoup& soup, const fs::path& path) {
+  for (std::size_t f = 0; f < soup.faces.size(); ++f) {
+    for (std::uint32_t i : soup.faces[f]) {
+      if (i >= soup.positions.size()) {
+        throw makeError(path.string(), ": face ", f, " refers to vertex ", i, " but there are only ",
+                        soup.positions.size(), " vertices");
+      }
+    }
+  }
+}
+
+void writeObj(const Mesh& m, const fs::path& tmp) {
+  std::string text = "# written by shanshui\n";
+  text.reserve(m.positions.size() * 64 + m.triangles.size() * 32);
+  for (const auto& p : m.positions) {
+    text += "v ";
+    appendNumber(text, p.x); text += ' ';
+    appendNumber(text, p.y); text += ' ';
+    appendNumber(text, p.z); text += '\n';
+  }
+  for (const auto& t : m.uvs) {
+    text += "vt ";
+    appendNumber(text, t.x); text += ' ';
+    appendNumber(text, t.y); text += '\n';
+  }
+  for (const auto& n : m.normals) {
+    text += "vn ";
+    appendNumber(text, n.x); text += ' ';
+    appendNumber(text, n.y); text += ' ';
+    appendNumber(text, n.z); text += '\n';
+  }
+  const bool uv = !m.uvs.empty(), nrm = !m.normals.empty();
+  for (const auto& tri : m.triangles) {
+    text += 'f';
+    for (int k = 0; k < 3; ++k) {
+      const std::string i = std::to_string(tri[k] + 1);
+      text += ' ';
+      text += i;
+      if (uv || nrm) text += '/';
+      if (uv) text += i;
+      if (nrm) { text += '/'; text += i; }
+    }
+    text += '\n';
+  }
+  std::ofstream out(tmp, std::ios::binary);
+  out.write(text.data(), static_cast<std::streamsize>(text.size()));
+  if (!out.flush()) throw makeError(tmp.string(), ": write failed");
+}
+
+void writeOff(const Mesh& m, const fs::path& tmp) {
+  std::string text = "OFF\n" + std::to_string(m.positions.size()) + " " +
+                     std::to_string(m.triangles.size()) + " 0\n";
+  for (const auto& p : m.positions) {
+    appendNumber(text, p.x); text += ' ';
+    appendNumber(text, p.y); text += ' ';
+    appendNumber(text, p.z); text += '\n';
+  }
+  for (const auto& t : m.triangles) {
+    text += "3 " + std::to_string(t.x) + " " + std::to_string(t.y) + " " + std::to_string(t.z) + "\n";
+  }
+  std::ofstream out(tmp, std::ios::binary);
+  out.write(text.data(), static_cast<std::streamsize>(text.size()));
+  if (!out.flush()) throw makeError(tmp.string(), ": write failed");
+}
+
+}  // namespace
+
+void writePly(const Mesh& m, const fs::path& tmp);  // ply_io.cpp
+
+PolygonSoup readObj(const fs::path& path) {
+  checkReadable(path);
+  tinyobj::ObjReaderConfig config;
+  config.triangulate = false;
+  config.vertex_color = false;
+  tinyobj::ObjReader reader;
+  if (!reader.ParseFromFile(path.string(), config)) {
+    throw makeError(path.string(), ": cannot read OBJ: ", firstLine(reader.Error()));
+  }
+  const tinyobj::attrib_t& a = reader.GetAttrib();
+  PolygonSoup soup;
+  // One output vertex per distinct (position, uv, normal) index triple.
+  std::map<std::tuple<int, int, int>, std::uint32_t> ids;
+  bool anyUv = false, anyNormal = false;
+  for (const auto& shape : reader.GetShapes()) {
+    for (const auto& idx : shape.mesh.indices) {
+      anyUv |= idx.texcoord_index >= 0;
+      anyNormal |= idx.normal_index >= 0;
+    }
+  }
+  const std::size_t nv = a.vertices.size() / 3;
+  for (const auto& shape : reader.GetShapes()) {
+    std::size_t offset = 0;
+    for (const unsigned char count : shape.mesh.num_face_vertices) {
+      std::vector<std::uint32_t> face;
+      for (std::size_t k = 0; k < count; ++k) {
+        const tinyobj::index_t idx = shape.mesh.indices[offset + k];
+        if (idx.vertex_index < 0 || static_cast<std::size_t>(idx.vertex_index) >= nv) {
+          throw makeError(path.string(), ": face refers to vertex ", idx.vertex_index + 1,
+                          " but the file has ", nv, " vertices");
+        }
+        const int vt = anyUv ? idx.texcoord_index : -1;
+        const int vn = anyNormal ? idx.normal_index : -1;
+        if (vt >= 0 && static_cast<std::size_t>(vt) * 2 + 1 >= a.texcoords.size()) {
+          throw makeError(path.string(), ": face refers to texture coordinate ", vt + 1, " out of range");
+        }
+        if (vn >= 0 && static_cast<std::size_t>(vn) * 3 + 2 >= a.normals.size()) {
+          throw makeError(path.string(), ": face refers to normal ", vn + 1, " out of range");
+        }
+        auto [it, inserted] =
+            ids.try_emplace({idx.vertex_index, vt, vn}, static_cast<std::uint32_t>(soup.positions.size()));
+        if (inserted) {
+          const auto v = static_cast<std::size_t>(idx.vertex_index) * 3;
+          soup.positions.emplace_back(a.vertices[v], a.vertices[v + 1], a.vertices[v + 2]);
+          if (anyUv) {
+            soup.uvs.push_back(vt >= 0 ? glm::vec2(a.texcoords[vt * 2], a.texcoords[vt * 2 + 1])
+                                       : glm::vec2(0.0f));
+          }
+          if (anyNormal) {
+            soup.normals.push_back(vn >= 0 ? glm::vec3(a.normals[vn * 3], a.normals[vn * 3 + 1],
+                                                       a.normals[vn * 3 + 2])
+                                           : glm::vec3(0.0f));
+          }
+        }
+        face.push_back(it->second);
+      }
+      offset += count;
+      soup.faces.push_back(std::move(face));
+    }
+  }
+  if (soup.faces.empty()) throw makeError(path.string(), ": OBJ has no faces");
+  return soup;
+}
+
+PolygonSoup readOff(const fs::path& path) {
+  checkReadable(path);
+  std::ifstream in(path);
+  if (!in) throw makeError(path.string(), ": cannot open");
+  // Tokens with their line numbers, '#' comments removed. Records are read token by token
+  // (OFF allows free layout) but anything left on a vertex or face line after the fields
+  // we need (colours, COFF alpha) is skipped.
+  struct Token {
+    std::string text;
+    int line;
+  };
+  std::vector<Token> tokens;
+  std::string text;
+  for (int lineNo = 1; std::getline(in, text); ++lineNo) {
+    if (const auto hash = text.find('#'); hash != std::string::npos) text.resize(hash);
+    std::istringstream ls(text);
+    std::string t;
+    while (ls >> t) tokens.push_back({t, lineNo});
+  }
+  std::size_t pos = 0;
+  auto fail = [&](const std::string& what) -> Error {
+    const int line = pos < tokens.size() ? tokens[pos].line : (tokens.empty() ? 0 : tokens.back().line);
+    return makeError(path.string(), ": line ", line, ": malformed OFF: ", what);
+  };
+  if (tokens.empty()) throw fail("no content");
+  const std::string header = tokens[0].text;
+  bool hasNormals = false, hasUv = false;
+  if (header.size() >= 3 && header.substr(header.size() - 3) == "OFF") {
+    const std::string prefix = header.substr(0, header.size() - 3);
+    hasUv = prefix.find("ST") != std::string::npos;
+    hasNormals = prefix.find('N') != std::string::npos;
+    if (prefix.find('4') != std::string::npos || prefix.find('n') != std::string::npos) {
+      throw fail("header '" + header + "': only 3D OFF is supported");
+    }
+    ++pos;
+  }
+  auto number = [&](const char* what) -> double {
+    if (pos >= tokens.size()) throw fail(std::string("file ends early, expected ") + what + " (truncated?)");
+    const std::string& t = tokens[pos].text;
+    double v = 0;
+    const auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), v);
+    if (ec != std::errc() || end != t.data() + t.size()) {
+      throw fail(std::string("expected ") + what + ", found '" + t + "'");
+    }
+    ++pos;
+    return v;
+  };
+  auto skipRestOfLine = [&](int line) {
+    while (pos < tokens.size() && tokens[pos].line == line) ++pos;
+  };
+  const double nvD = number("vertex count"), nfD = number("face count");
+  if (pos < tokens.size() && tokens[pos].line == tokens[pos - 1].line) number("edge count");
+  if (nvD < 0 || nfD < 0 || nvD != std::floor(nvD) || nfD != std::floor(nfD) || nvD > 1e9 || nfD > 1e9) {
+    throw fail("bad vertex/face counts");
+  }
+  const auto nv = static_cast<std::size_t>(nvD), nf = static_cast<std::size_t>(nfD);
+  PolygonSoup soup;
+  soup.positions.reserve(nv);
+  for (std::size_t i = 0; i < nv; ++i) {
+    const int line = pos < tokens.size() ? tokens[pos].line : 0;
+    glm::dvec3 p;
+    p.x = number("vertex x");
+    p.y = number("vertex y");
+    p.z = number("vertex z");
+    soup.positions.push_back(p);
+    if (hasNormals) {
+      glm::vec3 n;
+      for (int k = 0; k < 3; ++k) n[k] = static_cast<float>(number("vertex normal"));
+      soup.normals.push_back(n);
+    }
+    if (hasUv) {
+      glm::vec2 t;
+      for (int k = 0; k < 2; ++k) t[k] = static_cast<float>(number("texture coordinate"));
+      soup.uvs.push_back(t);
+    }
+    skipRestOfLine(line);
+  }
+  for (std::size_t f = 0; f < nf; ++f) {
+    const int line = pos < tokens.size() ? tokens[pos].line : 0;
+    const double k = number("face size");
+    if (k < 0 || k != std::floor(k) || k > 1e6) throw fail("bad size of face " + std::to_string(f));
+    std::vector<std::uint32_t> face(static_cast<std::size_t>(k));
+    for (auto& i : face) {
+      const double v = number("vertex index");
+      if (v < 0 || v != std::floor(v) || v >= static_cast<double>(nv)) {
+        throw makeError(path.string(), ": line ", line, ": face ", f, " refers to vertex ", v,
+                        " but there are ", nv, " vertices");
+      }
+      i = static_cast<std::uint32_t>(v);
+    }
+    soup.faces.push_back(std::move(face));
+    skipRestOfLine(line);
+  }
+  if (soup.faces.empty()) throw makeError(path.string(), ": OFF has no faces");
+  validateIndices(soup, path);
+  return soup;
+}
+
+PolygonSoup readPolygonSoup(const fs::path& path) {
+  const std::string ext = lowerExtension(path);
+  if (ext == ".obj") return readObj(path);
+  if (ext == ".off") return readOff(path);
+  if (ext == ".ply") return readPly(path);
+  throw makeError(path.string(), ": unknown mesh format '", ext, "' (expected .obj, .ply or .off)");
+}
+
+void writeMesh(const Mesh& mesh, const fs::path& path) {
+  const std::string ext = lowerExtension(path);
+  if (ext != ".obj" && ext != ".off" && ext != ".ply") {
+    throw makeError(path.string(), ": unknown mesh format '", ext, "' (expected .obj, .ply or .off)");
+  }
+  if (mesh.triangles.empty()) throw makeError(path.string(), ": refusing to write a mesh with no faces");
+  if (!mesh.uvs.empty() && mesh.uvs.size() != mesh.positions.size()) {
+    throw makeError(path.string(), ": mesh has ", mesh.uvs.size(), " UVs for ", mesh.positions.size(), " vertices");
+  }
+  if (!mesh.normals.empty() && mesh.normals.size() != mesh.positions.size()) {
+    throw makeError(path.string(), ": mesh has ", mesh.normals.size(), " normals for ",
+                    mesh.positions.size(), " vertices");
+  }
+  writeAtomically(path, [&](const fs::path& tmp) {
+    if (ext == ".obj") writeObj(mesh, tmp);
+    else if (ext == ".off") writeOff(mesh, tmp);
+    else writePly(mesh, tmp);
+  });
+}
+
+}  // namespace shanshui::mesh

@@ -1,0 +1,293 @@
+// The mesh repair pipeline on CGAL's Polygon Mesh Processing. This is the only file of
+// libs/mesh that includes CGAL: the interface (repair.h) speaks shanshui types only.
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Polygon_mesh_processing/connected_components.h>
+#include <CGAL/Polygon_mesh_processing/manifoldness.h>
+#include <CGAL/Polygon_mesh_processing/orient_polygon_soup.h>
+#include <CGAL/Polygon_mesh_processing/orientation.h>
+#include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
+#include <CGAL/Polygon_mesh_processing/repair.h>
+#include <CGAL/Polygon_mesh_processing/repair_degeneracies.h>
+#include <CGAL/Polygon_mesh_processing/repair_polygon_soup.h>
+#include <CGAL/Polygon_mesh_processing/triangulate_faces.h>
+#include <CGAL/Polygon_mesh_processing/triangulate_hole.h>
+#include <CGAL/Surface_mesh.h>
+
+#include <cmath>
+#include <sstream>
+#include <unordered_set>
+
+#include "shanshui/core/error.h"
+#include "shanshui/mesh/repair.h"
+
+namespace shanshui::mesh {
+
+namespace {
+
+using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Point = Kernel::Point_3;
+using SurfaceMesh = CGAL::Surface_mesh<Point>;
+using Halfedge = SurfaceMesh::Halfedge_index;
+namespace PMP = CGAL::Polygon_mesh_processing;
+using Polygon = std::vector<std::size_t>;
+
+// Removes repeated consecutive (cyclic) indices; false if fewer than three remain.
+bool simplifyPolygon(Polygon& p) {
+  Polygon out;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    if (out.empty() || out.back() != p[i]) out.push_back(p[i]);
+  }
+  while (out.size() > 1 && out.front() == out.back()) out.pop_back();
+  p = std::move(out);
+  std::unordered_set<std::size_t> distinct(p.begin(), p.end());
+  return distinct.size() >= 3;
+}
+
+std::size_t simplifyPolygons(std::vector<Polygon>& polygons) {
+  std::size_t removed = 0;
+  std::vector<Polygon> kept;
+  kept.reserve(polygons.size());
+  for (Polygon& p : polygons) {
+    if (simplifyPolygon(p)) kept.push_back(std::move(p));
+    else ++removed;
+  }
+  polygons = std::move(kept);
+  return removed;
+}
+
+struct BorderLoop {
+  Halfedge start;
+  std::size_t edges = 0;
+  double length = 0.0;
+};
+
+std::vector<BorderLoop> borderLoops(const SurfaceMesh& sm) {
+  std::vector<BorderLoop> loops;
+  std::unordered_set<std::size_t> seen;
+  for (Halfedge h : sm.halfedges()) {
+    if (!sm.is_border(h) || seen.count(h.idx())) continue;
+    BorderLoop loop{h, 0, 0.0};
+    Halfedge c = h;
+    do {
+      seen.insert(c.idx());
+      ++loop.edges;
+      loop.length += std::sqrt(CGAL::to_double(
+          CGAL::squared_distance(sm.point(sm.source(c)), sm.point(sm.target(c)))));
+      c = sm.next(c);
+    } while (c != h);
+    loops.push_back(loop);
+  }
+  return loops;
+}
+
+}  // namespace
+
+bool RepairReport::changed() const {
+  for (const auto& [name, value] : counters()) {
+    if (name != "boundary_loops" && value != 0.0) return true;
+  }
+  return false;
+}
+
+std::vector<std::pair<std::string, double>> RepairReport::counters() const {
+  auto d = [](auto v) { return static_cast<double>(v); };
+  return {{"non_finite_vertices", d(non_finite_vertices)},
+          {"invalid_faces_removed", d(invalid_faces_removed)},
+          {"duplicate_points_merged", d(duplicate_points_merged)},
+          {"duplicate_faces_removed", d(duplicate_faces_removed)},
+          {"isolated_vertices_removed", d(isolated_vertices_removed)},
+          {"non_manifold_vertices_split", d(non_manifold_vertices_split)},
+          {"orientation_fixed", d(orientation_fixed)},
+          {"faces_triangulated", d(faces_triangulated)},
+          {"degenerate_faces_removed", d(degenerate_faces_removed)},
+          {"components_removed", d(components_removed)},
+          {"holes_filled", d(holes_filled)},
+          {"hole_faces_added", d(hole_faces_added)},
+          {"holes_left_open", d(holes_left_open)},
+          {"boundary_loops", d(boundary_loops)}};
+}
+
+std::string RepairReport::summary() const {
+  std::ostringstream s;
+  s << input_vertices << " vertices / " << input_faces << " faces in, " << output_vertices
+    << " / " << output_faces << " out";
+  bool any = false;
+  for (const auto& [name, value] : counters()) {
+    if (value == 0.0 || name == "boundary_loops") continue;
+    s << (any ? ", " : "; ") << name << "=" << value;
+    any = true;
+  }
+  if (!any) s << "; nothing to repair";
+  s << "; " << (boundary_loops == 0 ? std::string("closed")
+                                    : std::to_string(boundary_loops) + " boundary loop(s)");
+  if (attributes_dropped) s << "; UVs/normals dropped";
+  return s.str();
+}
+
+Mesh repairMesh(const PolygonSoup& soup, const RepairOptions& options, RepairReport* reportOut,
+                const std::string& name) {
+  if (options.max_hole_edges < 3) {
+    throw makeError(name, ": max_hole_edges = ", options.max_hole_edges, " (expected >= 3)");
+  }
+  RepairReport r;
+  r.input_vertices = soup.positions.size();
+  r.input_faces = soup.faces.size();
+
+  // 1. Non-finite vertices go, with every face that uses them.
+  std::vector<std::size_t> remap(soup.positions.size(), SIZE_MAX);
+  std::vector<Point> points;
+  points.reserve(soup.positions.size());
+  for (std::size_t i = 0; i < soup.positions.size(); ++i) {
+    const glm::dvec3& p = soup.positions[i];
+    if (std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z)) {
+      remap[i] = points.size();
+      points.emplace_back(p.x, p.y, p.z);
+    } else {
+      ++r.non_finite_vertices;
+    }
+  }
+  std::vector<Polygon> polygons;
+  polygons.reserve(soup.faces.size());
+  for (const auto& f : soup.faces) {
+    Polygon p;
+    bool ok = true;
+    for (std::uint32_t i : f) {
+      if (i >= remap.size() || remap[i] == SIZE_MAX) { ok = false; break; }
+      p.push_back(remap[i]);
+    }
+    if (ok) polygons.push_back(std::move(p));
+    else ++r.invalid_faces_removed;
+  }
+  r.invalid_faces_removed += simplifyPolygons(polygons);
+
+  // 2. Soup clean-up: merge coincident points, drop faces that collapse, duplicates, strays.
+  r.duplicate_points_merged = PMP::merge_duplicate_points_in_polygon_soup(points, polygons);
+  r.invalid_faces_removed += simplifyPolygons(polygons);
+  r.duplicate_faces_removed = PMP::merge_duplicate_polygons_in_polygon_soup(points, polygons);
+  r.isolated_vertices_removed = PMP::remove_isolated_points_in_polygon_soup(points, polygons);
+  if (polygons.empty()) {
+    throw makeError(name, ": no valid faces (", soup.faces.size(), " faces read, ",
+                    r.invalid_faces_removed, " invalid or degenerate, ", r.non_finite_vertices,
+                    " non-finite vertices)");
+  }
+  const bool attributesFollow =
+      r.non_finite_vertices == 0 && r.invalid_faces_removed == 0 && r.duplicate_points_merged == 0 &&
+      r.duplicate_faces_removed == 0 && r.isolated_vertices_removed == 0;
+
+  // 3. Consistent orientation; points shared by incompatible fans are duplicated.
+  const std::vector<Polygon> before = polygons;
+  const std::size_t pointsBefore = points.size();
+  PMP::orient_polygon_soup(points, polygons);
+  r.non_manifold_vertices_split = points.size() - pointsBefore;
+  for (std::size_t i = 0; i < polygons.size(); ++i) {
+    // Duplicated points keep their coordinates, so compare positions, not indices.
+    for (std::size_t k = 0; k < polygons[i].size(); ++k) {
+      if (points[polygons[i][k]] != points[before[i][k]]) { r.orientation_fixed = true; break; }
+    }
+  }
+  if (!PMP::is_polygon_soup_a_polygon_mesh(polygons)) {
+    throw makeError(name, ": cannot be made into a manifold surface after orientation");
+  }
+  SurfaceMesh sm;
+  PMP::polygon_soup_to_polygon_mesh(points, polygons, sm);
+  r.non_manifold_vertices_split += PMP::duplicate_non_manifold_vertices(sm);
+
+  // 4. Triangles only.
+  for (auto f : sm.faces()) {
+    if (sm.degree(f) > 3) ++r.faces_triangulated;
+  }
+  if (r.faces_triangulated > 0 && !PMP::triangulate_faces(sm)) {
+    r.warnings.push_back("some polygons could not be triangulated");
+  }
+
+  // 5. Zero-area triangles.
+  const std::size_t facesBefore = sm.number_of_faces();
+  PMP::remove_degenerate_faces(sm);
+  sm.collect_garbage();
+  r.degenerate_faces_removed = facesBefore - sm.number_of_faces();
+  if (sm.number_of_faces() == 0) throw makeError(name, ": every face is degenerate (zero area)");
+
+  // 6. Connected components.
+  auto faceComponent = sm.add_property_map<SurfaceMesh::Face_index, std::size_t>("f:cc").first;
+  const std::size_t components = PMP::connected_components(sm, faceComponent);
+  if (components > 1) {
+    if (options.components == ComponentPolicy::Fail) {
+      throw makeError(name, ": has ", components, " connected components (expected one)");
+    }
+    if (options.components == ComponentPolicy::KeepLargest) {
+      r.components_removed = PMP::keep_largest_connected_components(sm, 1);
+      sm.collect_garbage();
+      r.warnings.push_back("dropped " + std::to_string(r.components_removed) +
+                           " smaller connected component(s)");
+    }
+  }
+  sm.remove_property_map(faceComponent);
+
+  // 7. Holes: every border loop but the longest (the outer border) when asked.
+  if (options.fill_holes) {
+    std::vector<BorderLoop> loops = borderLoops(sm);
+    std::size_t outer = SIZE_MAX;
+    if (options.keep_outer_boundary && !loops.empty()) {
+      outer = 0;
+      for (std::size_t i = 1; i < loops.size(); ++i) {
+        if (loops[i].length > loops[outer].length) outer = i;
+      }
+    }
+    for (std::size_t i = 0; i < loops.size(); ++i) {
+      if (i == outer) continue;
+      if (loops[i].edges > static_cast<std::size_t>(options.max_hole_edges)) {
+        ++r.holes_left_open;
+        continue;
+      }
+      std::vector<SurfaceMesh::Face_index> added;
+      PMP::triangulate_hole(sm, loops[i].start, std::back_inserter(added));
+      if (added.empty()) {
+        ++r.holes_left_open;
+      } else {
+        ++r.holes_filled;
+        r.hole_faces_added += added.size();
+      }
+    }
+    if (r.holes_left_open > 0) {
+      r.warnings.push_back(std::to_string(r.holes_left_open) + " hole(s) left open");
+    }
+  }
+  sm.collect_garbage();
+
+  // A closed surface should face outwards.
+  if (CGAL::is_closed(sm) && !PMP::is_outward_oriented(sm)) {
+    PMP::reverse_face_orientations(sm);
+    r.orientation_fixed = true;
+  }
+
+  // 8. Back to shanshui's types.
+  Mesh out;
+  out.positions.reserve(sm.number_of_vertices());
+  for (auto v : sm.vertices()) {
+    const Point& p = sm.point(v);
+    out.positions.emplace_back(p.x(), p.y(), p.z());
+  }
+  for (auto f : sm.faces()) {
+    glm::uvec3 t;
+    int k = 0;
+    for (auto v : CGAL::vertices_around_face(sm.halfedge(f), sm)) t[k++] = static_cast<unsigned>(v.idx());
+    SHANSHUI_CHECK_EQ(k, 3);
+    out.triangles.push_back(t);
+  }
+  r.boundary_loops = borderLoops(sm).size();
+  r.output_vertices = out.positions.size();
+  r.output_faces = out.triangles.size();
+  const bool sameVertices = attributesFollow && out.positions.size() == soup.positions.size() &&
+                            r.non_manifold_vertices_split == 0 && r.components_removed == 0;
+  if (sameVertices) {
+    out.uvs = soup.uvs;
+    out.normals = soup.normals;
+  } else {
+    r.attributes_dropped = !soup.uvs.empty() || !soup.normals.empty();
+  }
+  if (out.normals.empty()) out.normals = vertexNormals(out);
+  if (reportOut) *reportOut = r;
+  return out;
+}
+
+}  // namespace shanshui::mesh

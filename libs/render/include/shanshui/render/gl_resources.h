@@ -1,0 +1,67 @@
+// RAII wrappers for GL textures and framebuffers (OpenGL 4.5 direct state access).
+#pragma once
+
+#include <epoxy/gl.h>
+
+#include <vector>
+
+#include "shanshui/image/image.h"
+
+namespace shanshui::render {
+
+class Texture2D {
+ public:
+  Texture2D() = default;
+  //! Immutable storage, one mip level. internal_format e.g. GL_RGBA8, GL_RGBA32F, GL_R32F.
+  Texture2D(int width, int height, GLenum internal_format);
+  //! Uploads an Image (1-4 channels, float) into a texture of the given format.
+  static Texture2D fromImage(const image::Image& img, GLenum internal_format = GL_RGBA8);
+  ~Texture2D();
+  Texture2D(Texture2D&& other) noexcept;
+  Texture2D& operator=(Texture2D&& other) noexcept;
+  Texture2D(const Texture2D&) = delete;
+  Texture2D& operator=(const Texture2D&) = delete;
+
+  GLuint id() const { return id_; }
+  int width() const { return width_; }
+  int height() const { return height_; }
+  GLenum format() const { return format_; }
+  //! Reads level 0 back as an Image with `channels` channels, row 0 at the top.
+  image::Image download(int channels = 4) const;
+
+ private:
+  GLuint id_ = 0;
+  int width_ = 0;
+  int height_ = 0;
+  GLenum format_ = 0;
+};
+
+//! A framebuffer with colour textures and an optional depth texture.
+class Framebuffer {
+ public:
+  Framebuffer() = default;
+  //! Throws Error if the combination is incomplete on this driver.
+  Framebuffer(int width, int height, const std::vector<GLenum>& colour_formats, bool depth = true);
+  ~Framebuffer();
+  Framebuffer(Framebuffer&& other) noexcept;
+  Framebuffer& operator=(Framebuffer&& other) noexcept;
+  Framebuffer(const Framebuffer&) = delete;
+  Framebuffer& operator=(const Framebuffer&) = delete;
+
+  GLuint id() const { return id_; }
+  int width() const { return width_; }
+  int height() const { return height_; }
+  const Texture2D& colour(int i = 0) const { return colours_.at(static_cast<std::size_t>(i)); }
+  const Texture2D& depth() const { return depth_; }
+  //! Binds for drawing and sets the viewport to the whole framebuffer.
+  void bind() const;
+
+ private:
+  GLuint id_ = 0;
+  int width_ = 0;
+  int height_ = 0;
+  std::vector<Texture2D> colours_;
+  Texture2D depth_;
+};
+
+}  // namespace shanshui::render

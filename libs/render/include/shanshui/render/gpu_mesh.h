@@ -1,0 +1,33 @@
+// A triangle mesh uploaded to the GPU (positions and normals as float, relative to a centre).
+#pragma once
+
+#include <epoxy/gl.h>
+
+#include "shanshui/mesh/mesh.h"
+
+namespace shanshui::render {
+
+class GpuMesh {
+ public:
+  GpuMesh() = default;
+  //! Positions are uploaded relative to `centre` (subtracted in double first), so meshes
+  //! in UTM metres keep their precision. Normals are computed when the mesh has none.
+  GpuMesh(const mesh::Mesh& m, const glm::dvec3& centre);
+  ~GpuMesh();
+  GpuMesh(GpuMesh&& other) noexcept;
+  GpuMesh& operator=(GpuMesh&& other) noexcept;
+  GpuMesh(const GpuMesh&) = delete;
+  GpuMesh& operator=(const GpuMesh&) = delete;
+
+  //! Attribute 0: position (vec3), 1: normal (vec3).
+  void draw() const;
+  std::size_t triangleCount() const { return static_cast<std::size_t>(indexCount_ / 3); }
+
+ private:
+  void release();
+  GLuint vao_ = 0;
+  GLuint buffers_[3] = {0, 0, 0};
+  GLsizei indexCount_ = 0;
+};
+
+}  // namespace shanshui::render

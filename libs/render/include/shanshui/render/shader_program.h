@@ -1,0 +1,56 @@
+// Compiling and linking GLSL programs from shaders/ with compile-time variants.
+#pragma once
+
+#include <epoxy/gl.h>
+
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+namespace shanshui::render {
+
+//! GLSL after include expansion: `#include "file.glsl"` is inlined and `#line` directives
+//! are inserted so that the driver's line numbers can be mapped back to files. Source
+//! number k in a driver message refers to files[k].
+struct PreprocessedShader {
+  std::string text;
+  std::vector<std::string> files;
+};
+
+//! Expands includes and inserts `#define NAME` (or `NAME VALUE`) lines after `#version`.
+//! Files come from the embedded library (shaders/).
+PreprocessedShader preprocessShader(const std::string& file, const std::vector<std::string>& defines);
+
+//! Rewrites a driver info log ("0:12(5): error: ..." from Mesa, "0(12) : error ..." from
+//! NVIDIA) into "file.frag:12: error: ..." lines.
+std::string mapShaderLog(const std::string& log, const std::vector<std::string>& files);
+
+//! A linked program. Stages come from the file extensions (.vert .frag .geom .comp).
+//! Defines select compile-time variants: code a scene does not use is not compiled.
+class Program {
+ public:
+  Program() = default;
+  //! Throws Error with mapped file:line messages when compiling or linking fails.
+  Program(const std::vector<std::string>& files, const std::vector<std::string>& defines = {});
+  ~Program();
+  Program(Program&& other) noexcept;
+  Program& operator=(Program&& other) noexcept;
+  Program(const Program&) = delete;
+  Program& operator=(const Program&) = delete;
+
+  GLuint id() const { return id_; }
+  void use() const;
+  void set(const char* name, int v) const;
+  void set(const char* name, float v) const;
+  void set(const char* name, const glm::vec3& v) const;
+  void set(const char* name, const glm::vec4& v) const;
+  void set(const char* name, const glm::mat3& v) const;
+  void set(const char* name, const glm::mat4& v) const;
+
+ private:
+  GLint location(const char* name) const;
+  GLuint id_ = 0;
+};
+
+}  // namespace shanshui::render

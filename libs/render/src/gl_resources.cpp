@@ -1,0 +1,123 @@
+#include "shanshui/render/gl_resources.h"
+
+#include <algorithm>
+#include <utility>
+
+#include "shanshui/core/error.h"
+#include "shanshui/image/convert.h"
+#include "shanshui/render/gl_check.h"
+
+namespace shanshui::render {
+
+Texture2D::Texture2D(int width, int height, GLenum internal_format)
+    : width_(width), height_(height), format_(internal_format) {
+  if (width <= 0 || height <= 0 || width > 16384 || height > 16384) {
+    throw makeError("texture size ", width, "x", height, " is out of range (1..16384)");
+  }
+  glCreateTextures(GL_TEXTURE_2D, 1, &id_);
+  glTextureStorage2D(id_, 1, internal_format, width, height);
+  glTextureParameteri(id_, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+  glTextureParameteri(id_, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  glTextureParameteri(id_, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  glTextureParameteri(id_, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  SHANSHUI_GL_CHECK("Texture2D create");
+}
+
+Texture2D Texture2D::fromImage(const image::Image& img, GLenum internal_format) {
+  if (img.empty()) throw makeError("cannot upload an empty image");
+  Texture2D t(img.width, img.height, internal_format);
+  const image::Image rgba = image::toRgba(img);
+  // GL's first row is the bottom one.
+  std::vector<float> flipped(rgba.pixels.size());
+  const std::size_t row = static_cast<std::size_t>(rgba.width) * 4;
+  for (int y = 0; y < rgba.height; ++y) {
+    std::copy_n(&rgba.pixels[static_cast<std::size_t>(y) * row], row,
+                &flipped[static_cast<std::size_t>(rgba.height - 1 - y) * row]);
+  }
+  glTextureSubImage2D(t.id_, 0, 0, 0, img.width, img.height, GL_RGBA, GL_FLOAT, flipped.data());
+  SHANSHUI_GL_CHECK("Texture2D upload");
+  return t;
+}
+
+Texture2D::~Texture2D() {
+  if (id_) glDeleteTextures(1, &id_);
+}
+
+Texture2D::Texture2D(Texture2D&& o) noexcept
+    : id_(std::exchange(o.id_, 0)), width_(o.width_), height_(o.height_), format_(o.format_) {}
+
+Texture2D& Texture2D::operator=(Texture2D&& o) noexcept {
+  if (this != &o) {
+    if (id_) glDeleteTextures(1, &id_);
+    id_ = std::exchange(o.id_, 0);
+    width_ = o.width_;
+    height_ = o.height_;
+    format_ = o.format_;
+  }
+  return *this;
+}
+
+image::Image Texture2D::download(int channels) const {
+  static const GLenum formats[] = {GL_RED, GL_RG, GL_RGB, GL_RGBA};
+  if (channels < 1 || channels > 4) throw makeError("download: ", channels, " channels (expected 1-4)");
+  image::Image img(width_, height_, channels);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glGetTextureImage(id_, 0, formats[channels - 1], GL_FLOAT,
+                    static_cast<GLsizei>(img.pixels.size() * sizeof(float)), img.pixels.data());
+  SHANSHUI_GL_CHECK("Texture2D download");
+  const std::size_t row = static_cast<std::size_t>(width_) * channels;
+  for (int y = 0; y < height_ / 2; ++y) {
+    std::swap_ranges(img.pixels.begin() + static_cast<std::ptrdiff_t>(y * row),
+                     img.pixels.begin() + static_cast<std::ptrdiff_t>((y + 1) * row),
+                     img.pixels.begin() + static_cast<std::ptrdiff_t>((height_ - 1 - y) * row));
+  }
+  return img;
+}
+
+Framebuffer::Framebuffer(int width, int height, const std::vector<GLenum>& colour_formats, bool depth)
+    : width_(width), height_(height) {
+  glCreateFramebuffers(1, &id_);
+  std::vector<GLenum> buffers;
+  for (std::size_t i = 0; i < colour_formats.size(); ++i) {
+    colours_.emplace_back(width, height, colour_formats[i]);
+    glNamedFramebufferTexture(id_, static_cast<GLenum>(GL_COLOR_ATTACHMENT0 + i), colours_.back().id(), 0);
+    buffers.push_back(static_cast<GLenum>(GL_COLOR_ATTACHMENT0 + i));
+  }
+  glNamedFramebufferDrawBuffers(id_, static_cast<GLsizei>(buffers.size()), buffers.data());
+  if (depth) {
+    depth_ = Texture2D(width, height, GL_DEPTH_COMPONENT32F);
+    glNamedFramebufferTexture(id_, GL_DEPTH_ATTACHMENT, depth_.id(), 0);
+  }
+  const GLenum status = glCheckNamedFramebufferStatus(id_, GL_FRAMEBUFFER);
+  if (status != GL_FRAMEBUFFER_COMPLETE) {
+    throw makeError("framebuffer ", width, "x", height, " is incomplete (status 0x", std::hex, status, ")");
+  }
+  SHANSHUI_GL_CHECK("Framebuffer create");
+}
+
+Framebuffer::~Framebuffer() {
+  if (id_) glDeleteFramebuffers(1, &id_);
+}
+
+Framebuffer::Framebuffer(Framebuffer&& o) noexcept
+    : id_(std::exchange(o.id_, 0)), width_(o.width_), height_(o.height_),
+      colours_(std::move(o.colours_)), depth_(std::move(o.depth_)) {}
+
+Framebuffer& Framebuffer::operator=(Framebuffer&& o) noexcept {
+  if (this != &o) {
+    if (id_) glDeleteFramebuffers(1, &id_);
+    id_ = std::exchange(o.id_, 0);
+    width_ = o.width_;
+    height_ = o.height_;
+    colours_ = std::move(o.colours_);
+    depth_ = std::move(o.depth_);
+  }
+  return *this;
+}
+
+void Framebuffer::bind() const {
+  glBindFramebuffer(GL_FRAMEBUFFER, id_);
+  glViewport(0, 0, width_, height_);
+}
+
+}  // namespace shanshui::render

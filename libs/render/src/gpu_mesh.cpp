@@ -1,0 +1,63 @@
+#include "shanshui/render/gpu_mesh.h"
+
+#include <utility>
+#include <vector>
+
+#include "shanshui/core/error.h"
+#include "shanshui/render/gl_check.h"
+
+namespace shanshui::render {
+
+GpuMesh::GpuMesh(const mesh::Mesh& m, const glm::dvec3& centre) {
+  if (m.triangles.empty()) throw makeError("cannot draw a mesh without triangles");
+  std::vector<glm::vec3> positions(m.positions.size());
+  for (std::size_t i = 0; i < positions.size(); ++i) positions[i] = glm::vec3(m.positions[i] - centre);
+  const std::vector<glm::vec3> normals =
+      m.normals.size() == m.positions.size() ? m.normals : mesh::vertexNormals(m);
+  glCreateBuffers(3, buffers_);
+  glNamedBufferStorage(buffers_[0], static_cast<GLsizeiptr>(positions.size() * sizeof(glm::vec3)), positions.data(), 0);
+  glNamedBufferStorage(buffers_[1], static_cast<GLsizeiptr>(normals.size() * sizeof(glm::vec3)), normals.data(), 0);
+  glNamedBufferStorage(buffers_[2], static_cast<GLsizeiptr>(m.triangles.size() * sizeof(glm::uvec3)),
+                       m.triangles.data(), 0);
+  glCreateVertexArrays(1, &vao_);
+  for (GLuint a = 0; a < 2; ++a) {
+    glVertexArrayVertexBuffer(vao_, a, buffers_[a], 0, sizeof(glm::vec3));
+    glVertexArrayAttribFormat(vao_, a, 3, GL_FLOAT, GL_FALSE, 0);
+    glVertexArrayAttribBinding(vao_, a, a);
+    glEnableVertexArrayAttrib(vao_, a);
+  }
+  glVertexArrayElementBuffer(vao_, buffers_[2]);
+  indexCount_ = static_cast<GLsizei>(m.triangles.size() * 3);
+  SHANSHUI_GL_CHECK("GpuMesh upload");
+}
+
+void GpuMesh::release() {
+  if (vao_) glDeleteVertexArrays(1, &vao_);
+  if (buffers_[0]) glDeleteBuffers(3, buffers_);
+  vao_ = 0;
+  buffers_[0] = buffers_[1] = buffers_[2] = 0;
+}
+
+GpuMesh::~GpuMesh() { release(); }
+
+GpuMesh::GpuMesh(GpuMesh&& o) noexcept
+    : vao_(std::exchange(o.vao_, 0)), indexCount_(std::exchange(o.indexCount_, 0)) {
+  for (int i = 0; i < 3; ++i) buffers_[i] = std::exchange(o.buffers_[i], 0);
+}
+
+GpuMesh& GpuMesh::operator=(GpuMesh&& o) noexcept {
+  if (this != &o) {
+    release();
+    vao_ = std::exchange(o.vao_, 0);
+    indexCount_ = std::exchange(o.indexCount_, 0);
+    for (int i = 0; i < 3; ++i) buffers_[i] = std::exchange(o.buffers_[i], 0);
+  }
+  return *this;
+}
+
+void GpuMesh::draw() const {
+  glBindVertexArray(vao_);
+  glDrawElements(GL_TRIANGLES, indexCount_, GL_UNSIGNED_INT, nullptr);
+}
+
+}  // namespace shanshui::render

@@ -1,0 +1,67 @@
+#include "shanshui/render/mesh_preview.h"
+
+#include <cmath>
+
+#include "shanshui/core/error.h"
+#include "shanshui/render/gl_check.h"
+
+namespace shanshui::render {
+
+void validate(const PreviewOptions& o) {
+  if (o.width < 1 || o.width > 16384 || o.height < 1 || o.height > 16384) {
+    throw makeError("--size: ", o.width, "x", o.height, " is out of range; expected 1..16384 per side");
+  }
+  if (!(o.elevation_deg > -90 && o.elevation_deg < 90)) {
+    throw makeError("--elevation: ", o.elevation_deg, " is out of range; expected (-90, 90) degrees");
+  }
+  if (!std::isfinite(o.azimuth_deg)) throw makeError("--azimuth: must be finite");
+  if (!(o.fov_y_deg > 0 && o.fov_y_deg < 180)) {
+    throw makeError("--fov: ", o.fov_y_deg, " is out of range; expected (0, 180) degrees");
+  }
+  if (!(o.zoom > 0 && o.zoom <= 1000)) throw makeError("zoom: ", o.zoom, " is out of range; expected (0, 1000]");
+  if (!(glm::length(o.light_dir) > 0)) throw makeError("light direction must be non-zero");
+}
+
+MeshPreview::MeshPreview(const mesh::Mesh& m)
+    : bounds_(mesh::bounds(m)),
+      program_({"mesh_preview.vert", "mesh_preview.frag"}),
+      gpu_(m, bounds_.centre()) {}
+
+void MeshPreview::render(const Framebuffer& target, const PreviewOptions& o) const {
+  validate(o);
+  camera_ = frameBounds(bounds_, o.azimuth_deg, o.elevation_deg, o.fov_y_deg);
+  const double aspect = static_cast<double>(target.width()) / target.height();
+  if (aspect < 1.0) camera_.distance /= aspect;  // keep the whole sphere in a tall frame
+  camera_.distance /= o.zoom;
+  const double radius = 0.5 * glm::length(bounds_.size()) * 1.01 + 1e-9;
+  camera_.near_plane = std::max(camera_.distance - radius, camera_.distance * 1e-3);
+  camera_.far_plane = camera_.distance + radius;
+  target.bind();
+  glClearColor(o.paper.r, o.paper.g, o.paper.b, 1.0f);
+  glClearDepth(1.0);
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  glDisable(GL_CULL_FACE);
+  program_.use();
+  program_.set("u_view_projection", camera_.projection(aspect) * camera_.view());
+  program_.set("u_eye", glm::vec3(camera_.eye()));
+  program_.set("u_light_dir", glm::normalize(o.light_dir));
+  program_.set("u_paper", o.paper);
+  program_.set("u_ink", o.ink);
+  program_.set("u_rim_width", o.rim_width);
+  gpu_.draw();
+  SHANSHUI_GL_CHECK("mesh preview");
+}
+
+image::Image renderPreview(const mesh::Mesh& m, const PreviewOptions& options) {
+  validate(options);
+  const MeshPreview preview(m);
+  const Framebuffer fb(options.width, options.height, {GL_RGBA8}, true);
+  preview.render(fb, options);
+  glFinish();
+  image::Image rgba = fb.colour(0).download(3);
+  return rgba;
+}
+
+}  // namespace shanshui::render

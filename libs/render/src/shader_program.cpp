@@ -1,0 +1,164 @@
+#include "shanshui/render/shader_program.h"
+
+#include <glm/gtc/type_ptr.hpp>
+#include <regex>
+#include <sstream>
+
+#include "shanshui/core/error.h"
+#include "shanshui/render/shader_library.h"
+
+namespace shanshui::render {
+
+namespace {
+
+void expand(const std::string& file, PreprocessedShader& out, std::string& text, int depth,
+            const std::vector<std::string>* defines) {
+  if (depth > 16) throw makeError(file, ": #include nested more than 16 deep (a cycle?)");
+  const int sourceId = static_cast<int>(out.files.size());
+  out.files.push_back(file);
+  std::istringstream in{std::string(shaderSource(file))};
+  std::string line;
+  static const std::regex includeRe(R"(^\s*#\s*include\s+"([^"]+)\"\s*$)");
+  int lineNo = 0;
+  bool sawVersion = false;
+  while (std::getline(in, line)) {
+    ++lineNo;
+    std::smatch m;
+    if (std::regex_match(line, m, includeRe)) {
+      text += "#line 1 " + std::to_string(out.files.size()) + "\n";
+      expand(m[1].str(), out, text, depth + 1, nullptr);
+      text += "#line " + std::to_string(lineNo + 1) + " " + std::to_string(sourceId) + "\n";
+      continue;
+    }
+    text += line + "\n";
+    if (defines && !sawVersion && line.rfind("#version", 0) == 0) {
+      sawVersion = true;
+      for (const std::string& d : *defines) {
+        const auto eq = d.find('=');
+        text += "#define " + (eq == std::string::npos ? d : d.substr(0, eq) + " " + d.substr(eq + 1)) + "\n";
+      }
+      text += "#line " + std::to_string(lineNo + 1) + " " + std::to_string(sourceId) + "\n";
+    }
+  }
+  if (defines && !sawVersion) throw makeError(file, ": no #version line");
+}
+
+GLenum stageOf(const std::string& file) {
+  const auto dot = file.rfind('.');
+  const std::string ext = dot == std::string::npos ? "" : file.substr(dot);
+  if (ext == ".vert") return GL_VERTEX_SHADER;
+  if (ext == ".frag") return GL_FRAGMENT_SHADER;
+  if (ext == ".geom") return GL_GEOMETRY_SHADER;
+  if (ext == ".comp") return GL_COMPUTE_SHADER;
+  if (ext == ".tesc") return GL_TESS_CONTROL_SHADER;
+  if (ext == ".tese") return GL_TESS_EVALUATION_SHADER;
+  throw makeError(file, ": unknown shader stage (expected .vert .frag .geom .comp .tesc .tese)");
+}
+
+}  // namespace
+
+PreprocessedShader preprocessShader(const std::string& file, const std::vector<std::string>& defines) {
+  PreprocessedShader out;
+  expand(file, out, out.text, 0, &defines);
+  return out;
+}
+
+std::string mapShaderLog(const std::string& log, const std::vector<std::string>& files) {
+  static const std::regex mesa(R"(^(\d+):(\d+)\((\d+)\):\s*(.*)$)");
+  static const std::regex nvidia(R"(^(\d+)\((\d+)\)\s*:\s*(.*)$)");
+  std::istringstream in(log);
+  std::string line, out;
+  while (std::getline(in, line)) {
+    if (line.empty()) continue;
+    std::smatch m;
+    std::string mapped = line;
+    auto name = [&](const std::string& id) {
+      const std::size_t k = std::stoul(id);
+      return k < files.size() ? files[k] : "source " + id;
+    };
+    if (std::regex_match(line, m, mesa)) {
+      mapped = name(m[1]) + ":" + m[2].str() + ":" + m[3].str() + ": " + m[4].str();
+    } else if (std::regex_match(line, m, nvidia)) {
+      mapped = name(m[1]) + ":" + m[2].str() + ": " + m[3].str();
+    }
+    if (!out.empty()) out += "; ";
+    out += mapped;
+  }
+  return out;
+}
+
+Program::Program(const std::vector<std::string>& files, const std::vector<std::string>& defines) {
+  std::vector<GLuint> shaders;
+  auto cleanup = [&] {
+    for (GLuint s : shaders) glDeleteShader(s);
+  };
+  for (const std::string& file : files) {
+    const PreprocessedShader pre = preprocessShader(file, defines);
+    const GLuint s = glCreateShader(stageOf(file));
+    shaders.push_back(s);
+    const char* src = pre.text.c_str();
+    glShaderSource(s, 1, &src, nullptr);
+    glCompileShader(s);
+    GLint ok = 0;
+    glGetShaderiv(s, GL_COMPILE_STATUS, &ok);
+    if (!ok) {
+      GLint len = 0;
+      glGetShaderiv(s, GL_INFO_LOG_LENGTH, &len);
+      std::string log(static_cast<std::size_t>(std::max(len, 1)), '\0');
+      glGetShaderInfoLog(s, len, nullptr, log.data());
+      cleanup();
+      throw makeError("shader compile failed: ", mapShaderLog(log.c_str(), pre.files));
+    }
+  }
+  id_ = glCreateProgram();
+  for (GLuint s : shaders) glAttachShader(id_, s);
+  glLinkProgram(id_);
+  cleanup();
+  GLint ok = 0;
+  glGetProgramiv(id_, GL_LINK_STATUS, &ok);
+  if (!ok) {
+    GLint len = 0;
+    glGetProgramiv(id_, GL_INFO_LOG_LENGTH, &len);
+    std::string log(static_cast<std::size_t>(std::max(len, 1)), '\0');
+    glGetProgramInfoLog(id_, len, nullptr, log.data());
+    glDeleteProgram(id_);
+    id_ = 0;
+    std::string names;
+    for (const auto& f : files) names += (names.empty() ? "" : " + ") + f;
+    throw makeError("shader link failed (", names, "): ", mapShaderLog(log.c_str(), files));
+  }
+}
+
+Program::~Program() {
+  if (id_) glDeleteProgram(id_);
+}
+
+Program::Program(Program&& other) noexcept : id_(other.id_) { other.id_ = 0; }
+
+Program& Program::operator=(Program&& other) noexcept {
+  if (this != &other) {
+    if (id_) glDeleteProgram(id_);
+    id_ = other.id_;
+    other.id_ = 0;
+  }
+  return *this;
+}
+
+void Program::use() const { glUseProgram(id_); }
+GLint Program::location(const char* name) const { return glGetUniformLocation(id_, name); }
+void Program::set(const char* name, int v) const { glProgramUniform1i(id_, location(name), v); }
+void Program::set(const char* name, float v) const { glProgramUniform1f(id_, location(name), v); }
+void Program::set(const char* name, const glm::vec3& v) const {
+  glProgramUniform3fv(id_, location(name), 1, glm::value_ptr(v));
+}
+void Program::set(const char* name, const glm::vec4& v) const {
+  glProgramUniform4fv(id_, location(name), 1, glm::value_ptr(v));
+}
+void Program::set(const char* name, const glm::mat3& v) const {
+  glProgramUniformMatrix3fv(id_, location(name), 1, GL_FALSE, glm::value_ptr(v));
+}
+void Program::set(const char* name, const glm::mat4& v) const {
+  glProgramUniformMatrix4fv(id_, location(name), 1, GL_FALSE, glm::value_ptr(v));
+}
+
+}  // namespace shanshui::render

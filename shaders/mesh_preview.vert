@@ -1,0 +1,16 @@
+#version 450 core
+// Preview pass: positions relative to the mesh centre, normals in model space.
+layout(location = 0) in vec3 a_position;
+layout(location = 1) in vec3 a_normal;
+
+uniform mat4 u_view_projection;
+uniform vec3 u_eye;  // camera position in the same space as a_position
+
+out vec3 v_normal;
+out vec3 v_to_eye;
+
+void main() {
+  v_normal = a_normal;
+  v_to_eye = u_eye - a_position;
+  gl_Position = u_view_projection * vec4(a_position, 1.0);
+}

@@ -1,0 +1,40 @@
+// Meshes with known geometry for tests.
+#pragma once
+
+#include <cmath>
+#include <numbers>
+
+#include "shanshui/mesh/mesh.h"
+
+namespace shanshui::test {
+
+//! A UV sphere of the given radius and centre, outward-facing triangles.
+inline mesh::Mesh uvSphere(double radius, int stacks = 48, int slices = 96,
+                           glm::dvec3 centre = glm::dvec3(0.0)) {
+  mesh::Mesh m;
+  const double pi = std::numbers::pi;
+  m.positions.push_back(centre + glm::dvec3(0, 0, radius));
+  for (int i = 1; i < stacks; ++i) {
+    const double theta = pi * i / stacks;
+    for (int j = 0; j < slices; ++j) {
+      const double phi = 2 * pi * j / slices;
+      m.positions.push_back(centre + radius * glm::dvec3(std::sin(theta) * std::cos(phi),
+                                                         std::sin(theta) * std::sin(phi), std::cos(theta)));
+    }
+  }
+  m.positions.push_back(centre + glm::dvec3(0, 0, -radius));
+  const auto ring = [&](int i, int j) { return 1u + static_cast<unsigned>((i - 1) * slices + (j % slices)); };
+  const unsigned south = static_cast<unsigned>(m.positions.size() - 1);
+  for (int j = 0; j < slices; ++j) {
+    m.triangles.emplace_back(0u, ring(1, j), ring(1, j + 1));
+    for (int i = 1; i + 1 < stacks; ++i) {
+      m.triangles.emplace_back(ring(i, j), ring(i + 1, j), ring(i + 1, j + 1));
+      m.triangles.emplace_back(ring(i, j), ring(i + 1, j + 1), ring(i, j + 1));
+    }
+    m.triangles.emplace_back(ring(stacks - 1, j), south, ring(stacks - 1, j + 1));
+  }
+  m.normals = mesh::vertexNormals(m);
+  return m;
+}
+
+}  // namespace shanshui::test

@@ -1,0 +1,71 @@
+// Shared helpers for shanshui's tests: where the inputs are, scratch directories,
+// running a program, and meshes with known geometry.
+#pragma once
+
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+#include <random>
+#include <string>
+
+
+namespace shanshui::test {
+
+namespace fs = std::filesystem;
+
+inline fs::path sourceDir() { return SHANSHUI_SOURCE_DIR; }
+inline fs::path binDir() { return SHANSHUI_BIN_DIR; }
+inline fs::path sharedData() { return SHANSHUI_DATA_DIR; }
+inline fs::path cgalMeshes() { return SHANSHUI_TEST_MESH_DIR; }
+
+//! Skips the calling test when an input is missing, saying which.
+#define SHANSHUI_REQUIRE_FILE(path)                                               \
+  do {                                                                            \
+    if (!std::filesystem::exists(path)) GTEST_SKIP() << "missing input " << (path); \
+  } while (false)
+
+//! A fresh directory per test, removed at the end.
+class TempDir {
+ public:
+  TempDir() {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    path_ = fs::temp_directory_path() /
+            ("shanshui_" + std::string(info ? info->test_suite_name() : "t") + "_" +
+             std::string(info ? info->name() : "t") + "_" + std::to_string(::getpid()));
+    fs::remove_all(path_);
+    fs::create_directories(path_);
+  }
+  ~TempDir() { fs::remove_all(path_); }
+  const fs::path& path() const { return path_; }
+  fs::path operator/(const std::string& name) const { return path_ / name; }
+
+ private:
+  fs::path path_;
+};
+
+struct CommandResult {
+  int exit_code = -1;
+  std::string output;  //!< stdout and stderr together
+};
+
+//! Runs a shell command, capturing its output.
+inline CommandResult run(const std::string& command) {
+  CommandResult r;
+  FILE* pipe = popen((command + " 2>&1").c_str(), "r");
+  if (!pipe) return r;
+  char buf[4096];
+  std::size_t n;
+  while ((n = fread(buf, 1, sizeof buf, pipe)) > 0) r.output.append(buf, n);
+  const int status = pclose(pipe);
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return r;
+}
+
+inline std::string quote(const fs::path& p) { return "'" + p.string() + "'"; }
+
+}  // namespace shanshui::test
