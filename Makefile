@@ -32,7 +32,7 @@ test-asan:
 demo: build
 	@mkdir -p out
 	$(BUILD)/bin/shanshui-terrain $(SAMPLE_DEM) -o out/mount_st_helens.obj --max-vertices 200000
-	$(BUILD)/bin/shanshui-render out/mount_st_helens.obj -o out/mount_st_helens.png --size 1280x800 --elevation 30
+	$(BUILD)/bin/shanshui-render out/mount_st_helens.obj -o out/mount_st_helens.png --size 1280x800 --elevation 30 --zoom 1.6
 	@echo
 	@echo "demo results in $(CURDIR)/out/:"
 	@echo "  out/mount_st_helens.obj   mountain mesh from the USGS DEM"

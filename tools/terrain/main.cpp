@@ -26,6 +26,7 @@ int main(int argc, char** argv) {
     if (field.cell_size < 0 || (app.count("--cell-size") && field.cell_size == 0)) {
       throw makeError("--cell-size: ", field.cell_size, " is out of range; expected (0, 1e6] metres");
     }
+    terrain::validate(meshOptions);
     const terrain::Heightfield h = terrain::loadHeightfield(input, field);
     const auto [lo, hi] = h.elevationRange();
     std::fprintf(stderr, "%s; cells %.3f x %.3f m; elevations %.1f to %.1f m; %zu of %zu samples valid\n",

@@ -123,8 +123,6 @@ PolygonSoup readObj(const fs::path& path) {
   }
   const tinyobj::attrib_t& a = reader.GetAttrib();
   PolygonSoup soup;
-  // One output vertex per distinct (position, uv, normal) index triple.
-  std::map<std::tuple<int, int, int>, std::uint32_t> ids;
   bool anyUv = false, anyNormal = false;
   for (const auto& shape : reader.GetShapes()) {
     for (const auto& idx : shape.mesh.indices) {
@@ -132,7 +130,16 @@ PolygonSoup readObj(const fs::path& path) {
       anyNormal |= idx.normal_index >= 0;
     }
   }
+  // Vertex i of the file stays vertex i with the attributes of its first use; a later use
+  // with other UV/normal indices gets a copy appended, so attributes stay per vertex.
   const std::size_t nv = a.vertices.size() / 3;
+  for (std::size_t v = 0; v < nv; ++v) {
+    soup.positions.emplace_back(a.vertices[3 * v], a.vertices[3 * v + 1], a.vertices[3 * v + 2]);
+  }
+  if (anyUv) soup.uvs.assign(nv, glm::vec2(0.0f));
+  if (anyNormal) soup.normals.assign(nv, glm::vec3(0.0f));
+  std::vector<std::pair<int, int>> firstUse(nv, {-2, -2});
+  std::map<std::tuple<int, int, int>, std::uint32_t> copies;
   for (const auto& shape : reader.GetShapes()) {
     std::size_t offset = 0;
     for (const unsigned char count : shape.mesh.num_face_vertices) {
@@ -151,22 +158,29 @@ PolygonSoup readObj(const fs::path& path) {
         if (vn >= 0 && static_cast<std::size_t>(vn) * 3 + 2 >= a.normals.size()) {
           throw makeError(path.string(), ": face refers to normal ", vn + 1, " out of range");
         }
-        auto [it, inserted] =
-            ids.try_emplace({idx.vertex_index, vt, vn}, static_cast<std::uint32_t>(soup.positions.size()));
-        if (inserted) {
-          const auto v = static_cast<std::size_t>(idx.vertex_index) * 3;
-          soup.positions.emplace_back(a.vertices[v], a.vertices[v + 1], a.vertices[v + 2]);
-          if (anyUv) {
-            soup.uvs.push_back(vt >= 0 ? glm::vec2(a.texcoords[vt * 2], a.texcoords[vt * 2 + 1])
-                                       : glm::vec2(0.0f));
+        const auto v = static_cast<std::size_t>(idx.vertex_index);
+        auto setAttributes = [&](std::size_t target) {
+          if (anyUv && vt >= 0) soup.uvs[target] = {a.texcoords[2 * vt], a.texcoords[2 * vt + 1]};
+          if (anyNormal && vn >= 0) {
+            soup.normals[target] = {a.normals[3 * vn], a.normals[3 * vn + 1], a.normals[3 * vn + 2]};
           }
-          if (anyNormal) {
-            soup.normals.push_back(vn >= 0 ? glm::vec3(a.normals[vn * 3], a.normals[vn * 3 + 1],
-                                                       a.normals[vn * 3 + 2])
-                                           : glm::vec3(0.0f));
+        };
+        std::uint32_t id = static_cast<std::uint32_t>(v);
+        if (firstUse[v].first == -2) {
+          firstUse[v] = {vt, vn};
+          setAttributes(v);
+        } else if (firstUse[v] != std::make_pair(vt, vn)) {
+          auto [it, inserted] = copies.try_emplace({idx.vertex_index, vt, vn},
+                                                   static_cast<std::uint32_t>(soup.positions.size()));
+          if (inserted) {
+            soup.positions.push_back(soup.positions[v]);
+            if (anyUv) soup.uvs.emplace_back(0.0f);
+            if (anyNormal) soup.normals.emplace_back(0.0f);
+            setAttributes(it->second);
           }
+          id = it->second;
         }
-        face.push_back(it->second);
+        face.push_back(id);
       }
       offset += count;
       soup.faces.push_back(std::move(face));

@@ -14,6 +14,7 @@
 #include <CGAL/Surface_mesh.h>
 
 #include <cmath>
+#include <map>
 #include <sstream>
 #include <unordered_set>
 
@@ -223,18 +224,25 @@ Mesh repairMesh(const PolygonSoup& soup, const RepairOptions& options, RepairRep
   }
   sm.remove_property_map(faceComponent);
 
-  // 7. Holes: every border loop but the longest (the outer border) when asked.
+  // 7. Holes: every border loop but, per connected component, the longest one (that
+  //    component's outer border) when asked.
   if (options.fill_holes) {
-    std::vector<BorderLoop> loops = borderLoops(sm);
-    std::size_t outer = SIZE_MAX;
-    if (options.keep_outer_boundary && !loops.empty()) {
-      outer = 0;
-      for (std::size_t i = 1; i < loops.size(); ++i) {
-        if (loops[i].length > loops[outer].length) outer = i;
+    const std::vector<BorderLoop> loops = borderLoops(sm);
+    std::vector<bool> isOuter(loops.size(), false);
+    if (options.keep_outer_boundary) {
+      auto component = sm.add_property_map<SurfaceMesh::Face_index, std::size_t>("f:cc2").first;
+      PMP::connected_components(sm, component);
+      std::map<std::size_t, std::size_t> longest;  // component -> loop index
+      for (std::size_t i = 0; i < loops.size(); ++i) {
+        const std::size_t c = component[sm.face(sm.opposite(loops[i].start))];
+        const auto it = longest.find(c);
+        if (it == longest.end() || loops[i].length > loops[it->second].length) longest[c] = i;
       }
+      for (const auto& [c, i] : longest) isOuter[i] = true;
+      sm.remove_property_map(component);
     }
     for (std::size_t i = 0; i < loops.size(); ++i) {
-      if (i == outer) continue;
+      if (isOuter[i]) continue;
       if (loops[i].edges > static_cast<std::size_t>(options.max_hole_edges)) {
         ++r.holes_left_open;
         continue;

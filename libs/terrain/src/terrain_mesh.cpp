@@ -6,17 +6,21 @@
 
 namespace shanshui::terrain {
 
-mesh::Mesh heightfieldToMesh(const Heightfield& field, const TerrainMeshOptions& options,
-                             TerrainMeshInfo* info, const std::string& name) {
+void validate(const TerrainMeshOptions& options) {
   if (!(options.z_scale > 0.0 && options.z_scale <= 1000.0)) {
-    throw makeError(name, ": --z-scale ", options.z_scale, " is out of range; expected (0, 1000]");
+    throw makeError("--z-scale: ", options.z_scale, " is out of range; expected (0, 1000]");
   }
   if (options.step < 1 || options.step > 4096) {
-    throw makeError(name, ": --step ", options.step, " is out of range; expected [1, 4096]");
+    throw makeError("--step: ", options.step, " is out of range; expected [1, 4096]");
   }
   if (options.max_vertices != 0 && options.max_vertices < 4) {
-    throw makeError(name, ": --max-vertices ", options.max_vertices, " is too small; expected 0 (no limit) or >= 4");
+    throw makeError("--max-vertices: ", options.max_vertices, " is too small; expected 0 (no limit) or >= 4");
   }
+}
+
+mesh::Mesh heightfieldToMesh(const Heightfield& field, const TerrainMeshOptions& options,
+                             TerrainMeshInfo* info, const std::string& name) {
+  validate(options);
   int step = options.step;
   auto gridVertices = [&](int s) {
     return static_cast<std::size_t>((field.columns - 1) / s + 1) * static_cast<std::size_t>((field.rows - 1) / s + 1);

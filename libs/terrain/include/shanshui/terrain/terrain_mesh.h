@@ -18,6 +18,9 @@ struct TerrainMeshInfo {
   std::size_t skipped_cells = 0; //!< cells with a missing corner (no or one triangle)
 };
 
+//! Checks the option ranges; throws Error naming the flag, the value and the range.
+void validate(const TerrainMeshOptions& options);
+
 //! A Z-up mesh: x east, y north, z = elevation · z_scale, in metres, recentred in x and y
 //! (in double) so large projected coordinates survive conversion to float. Each full cell
 //! becomes two counter-clockwise triangles split along the diagonal with the smaller

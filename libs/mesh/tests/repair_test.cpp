@@ -1,0 +1,137 @@
+#include "mesh_checks.h"
+#include "shanshui/core/error.h"
+#include "shanshui/mesh/mesh_io.h"
+#include "shanshui/mesh/repair.h"
+#include "test_meshes.h"
+#include "test_support.h"
+
+namespace shanshui::mesh {
+namespace {
+
+RepairReport repairFile(const char* name, Mesh* out = nullptr, RepairOptions options = {}) {
+  const auto path = test::cgalMeshes() / name;
+  RepairReport r;
+  const Mesh m = repairMesh(readPolygonSoup(path), options, &r, path.string());
+  test::expectCleanMesh(m, name);
+  EXPECT_EQ(r.output_faces, m.triangles.size());
+  if (out) *out = m;
+  return r;
+}
+
+#define REQUIRE_CGAL_MESH(name) SHANSHUI_REQUIRE_FILE(test::cgalMeshes() / name)
+
+TEST(Repair, EveryCgalTestMeshComesOutClean) {
+  REQUIRE_CGAL_MESH("bear.off");
+  for (const auto& entry : std::filesystem::directory_iterator(test::cgalMeshes())) {
+    repairFile(entry.path().filename().c_str());
+  }
+}
+
+TEST(Repair, CleanMeshesAreLeftAlone) {
+  REQUIRE_CGAL_MESH("three_peaks.off");
+  for (const char* name : {"three_peaks.off", "triceratops.off", "anchor.off"}) {
+    const RepairReport r = repairFile(name);
+    EXPECT_FALSE(r.changed()) << name << ": " << r.summary();
+  }
+  EXPECT_EQ(repairFile("three_peaks.off").boundary_loops, 1u);  // a terrain disc
+}
+
+TEST(Repair, ClosedMeshStaysClosedAndFacesOutwards) {
+  REQUIRE_CGAL_MESH("bear.off");
+  Mesh m;
+  const RepairReport r = repairFile("bear.off", &m);
+  EXPECT_EQ(r.boundary_loops, 0u);
+  EXPECT_EQ(test::meshFacts(m).boundary_edges, 0u);
+  EXPECT_GT(test::meshFacts(m).signed_volume, 0.0);
+}
+
+TEST(Repair, HolesAreFilledButTheOuterBorderIsKept) {
+  REQUIRE_CGAL_MESH("holes.off");
+  for (const char* name : {"holes.off", "lion.off", "elephant-with-holes.off"}) {
+    const RepairReport r = repairFile(name);
+    EXPECT_GT(r.holes_filled, 0u) << name;
+    EXPECT_EQ(r.boundary_loops, 1u) << name;
+  }
+  RepairOptions noFill;
+  noFill.fill_holes = false;
+  EXPECT_GT(repairFile("holes.off", nullptr, noFill).boundary_loops, 1u);
+}
+
+TEST(Repair, ExtraComponentsFollowThePolicy) {
+  REQUIRE_CGAL_MESH("blobby_3cc.off");
+  EXPECT_EQ(repairFile("blobby_3cc.off").components_removed, 2u);
+  RepairOptions fail;
+  fail.components = ComponentPolicy::Fail;
+  const auto path = test::cgalMeshes() / "blobby_3cc.off";
+  try {
+    repairMesh(readPolygonSoup(path), fail, nullptr, path.string());
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("3 connected components"), std::string::npos) << e.what();
+  }
+  RepairOptions all;
+  all.components = ComponentPolicy::KeepAll;
+  EXPECT_EQ(repairFile("blobby_3cc.off", nullptr, all).components_removed, 0u);
+}
+
+TEST(Repair, DegenerateQuadShuffledAndStrayInputsAreFixed) {
+  REQUIRE_CGAL_MESH("degtri_sliding.off");
+  EXPECT_GT(repairFile("degtri_sliding.off").degenerate_faces_removed, 0u);
+  EXPECT_TRUE(repairFile("oblong-shuffled.off").orientation_fixed);
+  EXPECT_EQ(repairFile("cube-ouvert.off").isolated_vertices_removed, 1u);
+  const RepairReport quads = repairFile("cube_quad.off");
+  EXPECT_EQ(quads.faces_triangulated, 6u);
+  EXPECT_EQ(quads.output_faces, 12u);
+}
+
+TEST(Repair, NanVerticesBowTiesAndDuplicatesInASoup) {
+  PolygonSoup s;
+  // Two triangles touching only at vertex 0 (a pinched, non-manifold vertex), a NaN
+  // vertex with its face, a duplicate face and a face that repeats a vertex.
+  s.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {-1, 0, 0}, {0, -1, 0}, {NAN, 0, 0}};
+  s.faces = {{0, 1, 2}, {0, 3, 4}, {0, 1, 5}, {0, 1, 2}, {1, 1, 2}};
+  RepairOptions keepAll;
+  keepAll.components = ComponentPolicy::KeepAll;
+  RepairReport r;
+  const Mesh m = repairMesh(s, keepAll, &r);
+  test::expectCleanMesh(m, "bow-tie");
+  EXPECT_EQ(r.non_finite_vertices, 1u);
+  EXPECT_EQ(r.invalid_faces_removed, 2u);  // the NaN face and {1,1,2}
+  EXPECT_EQ(r.duplicate_faces_removed, 1u);
+  EXPECT_EQ(r.non_manifold_vertices_split, 1u);
+  EXPECT_EQ(r.holes_filled, 0u);  // each component keeps its own outer border
+  EXPECT_EQ(r.boundary_loops, 2u);
+  EXPECT_EQ(m.triangles.size(), 2u);
+}
+
+TEST(Repair, NothingUsableIsAClearError) {
+  PolygonSoup s;
+  s.positions = {{0, 0, 0}, {1, 0, 0}, {2, 0, 0}};
+  s.faces = {{0, 1, 2}};  // collinear: zero area
+  EXPECT_THROW(repairMesh(s, {}, nullptr, "line.obj"), Error);
+  s.faces.clear();
+  try {
+    repairMesh(s, {}, nullptr, "nofaces.obj");
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("nofaces.obj: no valid faces"), std::string::npos) << e.what();
+  }
+}
+
+TEST(Repair, SingleTriangleAndHugeCoordinatesSurvive) {
+  PolygonSoup s;
+  s.positions = {{557945.011821133, 5107991.33901730, 682.0},
+                 {557975.011821133, 5107991.33901730, 690.0},
+                 {557945.011821133, 5108021.33901730, 700.0}};
+  s.faces = {{0, 1, 2}};
+  s.uvs = {{0, 0}, {1, 0}, {0, 1}};
+  RepairReport r;
+  const Mesh m = repairMesh(s, {}, &r);
+  test::expectCleanMesh(m, "one triangle");
+  EXPECT_FALSE(r.changed());
+  EXPECT_EQ(m.positions, s.positions);  // untouched, so attributes follow
+  EXPECT_EQ(m.uvs, s.uvs);
+}
+
+}  // namespace
+}  // namespace shanshui::mesh

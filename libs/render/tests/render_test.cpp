@@ -1,0 +1,117 @@
+#include <cmath>
+#include <memory>
+
+#include "shanshui/core/error.h"
+#include "shanshui/render/gl_context.h"
+#include "shanshui/render/mesh_preview.h"
+#include "shanshui/render/shader_library.h"
+#include "shanshui/render/shader_program.h"
+#include "test_meshes.h"
+#include "test_support.h"
+
+namespace shanshui::render {
+namespace {
+
+class Headless : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() { context_ = GlContext::create({.kind = ContextKind::Headless}); }
+  static void TearDownTestSuite() { context_.reset(); }
+  static std::unique_ptr<GlContext> context_;
+};
+std::unique_ptr<GlContext> Headless::context_;
+
+bool isPaper(const image::Image& img, int x, int y, const glm::vec3& paper) {
+  for (int c = 0; c < 3; ++c) {
+    if (std::abs(img.at(x, y, c) - paper[c]) > 1.5f / 255) return false;
+  }
+  return true;
+}
+
+TEST_F(Headless, ContextIsOpenGl45Core) {
+  EXPECT_GE(epoxy_gl_version(), 45);
+  EXPECT_NE(context_->description().find("EGL headless"), std::string::npos);
+}
+
+TEST_F(Headless, SphereCoversItsAnalyticDiscAndIsLitFromAbove) {
+  for (double radius : {0.01, 1.0, 3000.0}) {
+    SCOPED_TRACE(radius);
+    const mesh::Mesh sphere = test::uvSphere(radius, 64, 128, glm::dvec3(5e5, 4e6, 100.0));
+    PreviewOptions o;
+    o.width = o.height = 256;
+    o.elevation_deg = 25;
+    const image::Image img = renderPreview(sphere, o);
+    // The camera frames the bounding box's sphere (radius r*sqrt(3)); the sphere itself
+    // then subtends asin(r/d) and covers a disc of known radius in pixels.
+    const double pi = std::numbers::pi, halfFov = o.fov_y_deg * pi / 360;
+    const double d = std::sqrt(3.0) * radius / std::sin(halfFov);
+    const double rPixels = std::tan(std::asin(radius / d)) / std::tan(halfFov) * o.height / 2;
+    std::size_t covered = 0;
+    double top = 0, bottom = 0;
+    std::size_t nTop = 0, nBottom = 0;
+    for (int y = 0; y < img.height; ++y) {
+      for (int x = 0; x < img.width; ++x) {
+        if (isPaper(img, x, y, o.paper)) continue;
+        ++covered;
+        const double l = img.at(x, y, 0) + img.at(x, y, 1) + img.at(x, y, 2);
+        if (y < img.height / 2) { top += l; ++nTop; } else { bottom += l; ++nBottom; }
+      }
+    }
+    EXPECT_NEAR(covered / (pi * rPixels * rPixels), 1.0, 0.03);
+    ASSERT_GT(nTop, 0u);
+    ASSERT_GT(nBottom, 0u);
+    EXPECT_GT(top / nTop, bottom / nBottom + 0.1);  // the light is above: the top is lighter
+    EXPECT_TRUE(isPaper(img, 0, 0, o.paper));
+  }
+}
+
+TEST_F(Headless, FloatTextureRoundTripsExactly) {
+  image::Image img(13, 7, 4);
+  for (std::size_t i = 0; i < img.pixels.size(); ++i) img.pixels[i] = static_cast<float>(i) * 0.37f - 5.0f;
+  const Texture2D t = Texture2D::fromImage(img, GL_RGBA32F);
+  const image::Image back = t.download(4);
+  EXPECT_EQ(back.pixels, img.pixels);  // including row order
+}
+
+TEST_F(Headless, DriverErrorsAreMappedToFileAndLine) {
+  // Preprocess a real shader, then break it at a known line of a known file.
+  PreprocessedShader pre = preprocessShader("mesh_preview.frag", {"SOME_VARIANT", "LEVEL=3"});
+  EXPECT_NE(pre.text.find("#define SOME_VARIANT\n"), std::string::npos);
+  EXPECT_NE(pre.text.find("#define LEVEL 3\n"), std::string::npos);
+  pre.text += "#line 42 0\nthis is not glsl;\n";
+  const GLuint s = glCreateShader(GL_FRAGMENT_SHADER);
+  const char* src = pre.text.c_str();
+  glShaderSource(s, 1, &src, nullptr);
+  glCompileShader(s);
+  GLint ok = 1;
+  glGetShaderiv(s, GL_COMPILE_STATUS, &ok);
+  char log[4096] = {};
+  glGetShaderInfoLog(s, sizeof log, nullptr, log);
+  glDeleteShader(s);
+  ASSERT_FALSE(ok);
+  const std::string mapped = mapShaderLog(log, pre.files);
+  EXPECT_NE(mapped.find("mesh_preview.frag:42"), std::string::npos) << mapped << " from " << log;
+  // The variant defines do not shift line numbers of the real code either.
+  EXPECT_NE(mapShaderLog("0:7(3): error: x", pre.files).find("mesh_preview.frag:7:3: error: x"), std::string::npos);
+  EXPECT_NE(mapShaderLog("0(7) : error C0000: x", pre.files).find("mesh_preview.frag:7: error C0000: x"),
+            std::string::npos);
+}
+
+TEST_F(Headless, EveryEmbeddedShaderProgramLinks) {
+  EXPECT_NO_THROW(Program({"mesh_preview.vert", "mesh_preview.frag"}));
+  EXPECT_THROW(shaderSource("no_such_shader.frag"), Error);
+  EXPECT_GE(shaderNames().size(), 2u);
+}
+
+TEST_F(Headless, BadPreviewOptionsAreRefused) {
+  const mesh::Mesh sphere = test::uvSphere(1.0, 8, 16);
+  PreviewOptions o;
+  o.width = 0;
+  EXPECT_THROW(renderPreview(sphere, o), Error);
+  o = {};
+  o.elevation_deg = 90;
+  EXPECT_THROW(renderPreview(sphere, o), Error);
+  EXPECT_THROW(renderPreview(mesh::Mesh{}, {}), Error);
+}
+
+}  // namespace
+}  // namespace shanshui::render

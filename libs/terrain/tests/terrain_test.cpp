@@ -1,0 +1,200 @@
+#include <fstream>
+
+#include "mesh_checks.h"
+#include "shanshui/core/error.h"
+#include "shanshui/image/image_io.h"
+#include "shanshui/terrain/heightfield.h"
+#include "shanshui/terrain/terrain_mesh.h"
+#include "test_support.h"
+
+namespace shanshui::terrain {
+namespace {
+
+const std::filesystem::path kStHelens = test::sourceDir() / "samples/terrain/mount_st_helens.dem";
+std::filesystem::path shared(const char* name) { return test::sharedData() / "terrain" / name; }
+
+// Great-circle distance on a sphere of mean Earth radius: an oracle independent of the
+// ellipsoid series the importer uses (they agree to about 0.5 %).
+double haversine(double lat1, double lon1, double lat2, double lon2) {
+  const double r = 6371008.8, d = M_PI / 180;
+  const double a = std::pow(std::sin((lat2 - lat1) * d / 2), 2) +
+                   std::cos(lat1 * d) * std::cos(lat2 * d) * std::pow(std::sin((lon2 - lon1) * d / 2), 2);
+  return 2 * r * std::asin(std::sqrt(a));
+}
+
+TEST(UsgsDem, MountStHelensHeaderAndExtentsAgree) {
+  const Heightfield h = loadHeightfield(kStHelens);
+  EXPECT_EQ(h.columns, 327);  // profiles in the type A record
+  EXPECT_DOUBLE_EQ(h.cell_x, 30.0);
+  EXPECT_DOUBLE_EQ(h.cell_y, 30.0);
+  const auto [lo, hi] = h.elevationRange();
+  EXPECT_DOUBLE_EQ(lo, 682.0);  // the header's minimum and maximum elevations
+  EXPECT_DOUBLE_EQ(hi, 2543.0);
+  // The quadrangle's corners (header) span 557813..567602 E and 5107990..5121979 N; the
+  // grid of 30 m posts lies inside them.
+  EXPECT_GE(h.origin_x, 557813.0 - 30);
+  EXPECT_LE(h.origin_x + (h.columns - 1) * h.cell_x, 567602.0 + 30);
+  EXPECT_LE(h.origin_y, 5121979.0 + 30);
+  EXPECT_GE(h.origin_y - (h.rows - 1) * h.cell_y, 5107990.0 - 30);
+  EXPECT_GT(h.rows * h.cell_y, 13000.0);
+  // Profiles follow the quadrangle's slanted edges: corners of the grid are void.
+  EXPECT_LT(h.validCount(), h.elevation.size());
+  EXPECT_TRUE(std::isnan(h.at(0, 0)));
+  // First profile: x 557820, first sample at y 5121240 is 909 m (read off the file).
+  EXPECT_DOUBLE_EQ(h.origin_x, 557820.0);
+  const int row = static_cast<int>(std::lround((h.origin_y - 5121240.0) / 30.0));
+  EXPECT_DOUBLE_EQ(h.at(0, row), 909.0);
+}
+
+TEST(HeightmapImage, Jacksboro16BitPngIsInMetres) {
+  SHANSHUI_REQUIRE_FILE(shared("jacksboro_fault_dem_u16.png"));
+  HeightfieldOptions o;
+  o.cell_size = 90;
+  const Heightfield h = loadHeightfield(shared("jacksboro_fault_dem_u16.png"), o);
+  EXPECT_EQ(h.columns, 403);
+  EXPECT_EQ(h.rows, 344);
+  const auto [lo, hi] = h.elevationRange();
+  EXPECT_DOUBLE_EQ(lo, 236.0);
+  EXPECT_DOUBLE_EQ(hi, 1076.0);
+  EXPECT_DOUBLE_EQ(h.cell_x, 90.0);
+}
+
+TEST(EsriAscii, GeographicBcCoastIsConvertedToMetres) {
+  SHANSHUI_REQUIRE_FILE(shared("bc_coast_topobathy.asc"));
+  const Heightfield h = loadHeightfield(shared("bc_coast_topobathy.asc"));
+  EXPECT_EQ(h.columns, 120);
+  EXPECT_EQ(h.rows, 91);
+  const auto [lo, hi] = h.elevationRange();
+  EXPECT_DOUBLE_EQ(lo, -1437.0);
+  EXPECT_DOUBLE_EQ(hi, 2205.0);
+  // One cell of 0.033310 degrees at the centre latitude, measured on the sphere.
+  const double latMid = 48.016369 + 91 * 0.033310 / 2;
+  EXPECT_NEAR(h.cell_x / haversine(latMid, 0, latMid, 0.033310), 1.0, 0.005);
+  EXPECT_NEAR(h.cell_y / haversine(latMid, 0, latMid + 0.033310, 0), 1.0, 0.01);
+  ASSERT_FALSE(h.notes.empty());
+  EXPECT_NE(h.notes[0].find("degrees"), std::string::npos);
+}
+
+TEST(EsriAscii, TooTallGeographicGridIsRefused) {
+  test::TempDir dir;
+  std::ofstream f(dir / "tall.asc");
+  f << "ncols 2\nnrows 100\nxllcorner 10\nyllcorner 20\ncellsize 0.4\nNODATA_value -9999\n";
+  for (int i = 0; i < 200; ++i) f << "1 ";
+  f.close();
+  try {
+    loadHeightfield(dir / "tall.asc");
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("degrees"), std::string::npos) << e.what();
+  }
+  HeightfieldOptions o;
+  o.cell_size = 100;  // the user says what a cell is: accepted
+  EXPECT_EQ(loadHeightfield(dir / "tall.asc", o).cell_x, 100.0);
+}
+
+TEST(Terrain, BadInputIsNamedClearly) {
+  test::TempDir dir;
+  std::ofstream(dir / "nodata.asc") << "ncols 2\nnrows 2\nxllcorner 0\nyllcorner 0\ncellsize 10\n"
+                                       "NODATA_value -9999\n-9999 -9999\n-9999 -9999\n";
+  std::ofstream(dir / "short.asc") << "ncols 3\nnrows 2\nxllcorner 0\nyllcorner 0\ncellsize 10\n1 2 3\n4 5\n";
+  std::ofstream(dir / "nohead.asc") << "1 2 3\n";
+  {
+    std::ifstream in(kStHelens, std::ios::binary);
+    std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    std::ofstream(dir / "cut.dem", std::ios::binary).write(bytes.data(), 5000);
+    std::ofstream(dir / "header.dem", std::ios::binary).write(bytes.data(), 600);
+  }
+  std::ofstream(dir / "text.dem") << std::string(2048, 'x');
+  image::saveImage(image::Image(4, 4, 3, 0.5f), dir / "rgb.png");
+  const std::pair<const char*, const char*> cases[] = {
+      {"nodata.asc", "no valid elevations"}, {"short.asc", "expected 6 values"},
+      {"nohead.asc", "lacks 'ncols'"},       {"cut.dem", "truncated"},
+      {"header.dem", "shorter than a DEM header"}, {"text.dem", "not a number"},
+      {"rgb.png", "3 channels"},             {"missing.dem", "no such file"},
+      {"dem.xyz", "unknown terrain format"}};
+  for (const auto& [file, what] : cases) {
+    try {
+      loadHeightfield(dir / file);
+      ADD_FAILURE() << "no error for " << file;
+    } catch (const Error& e) {
+      const std::string msg = e.what();
+      EXPECT_NE(msg.find(file), std::string::npos) << msg;
+      EXPECT_NE(msg.find(what), std::string::npos) << msg;
+    }
+  }
+}
+
+Heightfield ramp(int cols, int rows) {
+  Heightfield h;
+  h.columns = cols;
+  h.rows = rows;
+  h.cell_x = 2.0;
+  h.cell_y = 3.0;
+  h.origin_x = 500000;
+  h.origin_y = 4000000;
+  for (int r = 0; r < rows; ++r)
+    for (int c = 0; c < cols; ++c) h.elevation.push_back(10.0 * c + 0.5 * r * r);
+  return h;
+}
+
+TEST(TerrainMesh, GridMeshMatchesTheSamplesAndFacesUp) {
+  const Heightfield h = ramp(7, 5);
+  TerrainMeshInfo info;
+  TerrainMeshOptions o;
+  o.z_scale = 2.0;
+  const mesh::Mesh m = heightfieldToMesh(h, o, &info);
+  test::expectCleanMesh(m, "ramp");
+  EXPECT_EQ(m.vertexCount(), 35u);
+  EXPECT_EQ(m.triangleCount(), 2u * 6 * 4);
+  for (const auto& t : m.triangles) {
+    const auto a = m.positions[t.x], b = m.positions[t.y], c = m.positions[t.z];
+    EXPECT_GT(glm::cross(b - a, c - a).z, 0.0);  // counter-clockwise seen from above
+  }
+  // Every vertex sits on its sample: x, y back on the grid, z = elevation * z_scale.
+  for (const auto& p : m.positions) {
+    const double c = (p.x + info.offset.x - h.origin_x) / h.cell_x;
+    const double r = (h.origin_y - p.y - info.offset.y) / h.cell_y;
+    ASSERT_NEAR(c, std::round(c), 1e-9);
+    ASSERT_NEAR(r, std::round(r), 1e-9);
+    EXPECT_DOUBLE_EQ(p.z, 2.0 * h.at(static_cast<int>(std::round(c)), static_cast<int>(std::round(r))));
+  }
+  const mesh::Bounds b = mesh::bounds(m);
+  EXPECT_NEAR(b.centre().x, 0.0, 1e-9);  // recentred in x and y only
+  EXPECT_NEAR(b.size().x, 12.0, 1e-9);
+  EXPECT_NEAR(b.size().y, 12.0, 1e-9);
+}
+
+TEST(TerrainMesh, MissingSamplesAndDecimation) {
+  Heightfield h = ramp(5, 5);
+  h.elevation[0] = kNoData;  // one corner of the first cell gone: that cell keeps one triangle
+  const mesh::Mesh m = heightfieldToMesh(h, {});
+  EXPECT_EQ(m.vertexCount(), 24u);
+  EXPECT_EQ(m.triangleCount(), 2u * 16 - 1);
+  TerrainMeshOptions o;
+  o.max_vertices = 9;
+  TerrainMeshInfo info;
+  const mesh::Mesh small = heightfieldToMesh(ramp(9, 9), o, &info);
+  EXPECT_EQ(info.step, 3);  // the smallest step that fits: 3x3 samples
+  EXPECT_EQ(small.vertexCount(), 9u);
+  Heightfield line = ramp(5, 1);
+  EXPECT_THROW(heightfieldToMesh(line, {}), Error);
+  o = {};
+  o.z_scale = 0;
+  EXPECT_THROW(heightfieldToMesh(h, o), Error);
+}
+
+TEST(TerrainMesh, StHelensMeshIsCleanAndKeepsElevations) {
+  const Heightfield h = loadHeightfield(kStHelens);
+  TerrainMeshOptions o;
+  o.max_vertices = 40000;
+  const mesh::Mesh m = heightfieldToMesh(h, o);
+  test::expectCleanMesh(m, "st helens");
+  EXPECT_LE(m.vertexCount(), 40000u);
+  const mesh::Bounds b = mesh::bounds(m);
+  EXPECT_GE(b.min.z, 682.0);
+  EXPECT_LE(b.max.z, 2543.0);
+  EXPECT_GT(b.size().x, 9000.0);
+}
+
+}  // namespace
+}  // namespace shanshui::terrain
