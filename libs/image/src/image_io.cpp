@@ -154,6 +154,7 @@ void saveImage(const Image& img, const fs::path& path, PixelDepth depth) {
     if (!out) throw makeError(name, ": cannot create writer: ", oneLine(OIIO::geterror()));
     OIIO::TypeDesc type = typeOf(depth);
     OIIO::ImageSpec spec(img.width, img.height, img.channels, type);
+    if (img.channels == 2) spec.channelnames = {"Y", "A"};  // so readers see grey + alpha
     if (img.hasAlpha()) {
       spec.alpha_channel = img.channels - 1;
       spec.attribute("oiio:UnassociatedAlpha", 1);
@@ -166,7 +167,15 @@ void saveImage(const Image& img, const fs::path& path, PixelDepth depth) {
       throw makeError(name, ": cannot open for writing: ", oneLine(out->geterror()));
     }
     bool ok = false;
-    if (type.is_floating_point()) {
+    if (img.hasAlpha() && std::string(out->format_name()) == "openexr") {
+      // OpenEXR stores premultiplied colour by definition (its writer ignores the
+      // unassociated hint); loadImage divides it back out.
+      std::vector<float> premultiplied(img.pixels);
+      for (std::size_t p = 0; p < premultiplied.size(); p += img.channels) {
+        for (int c = 0; c + 1 < img.channels; ++c) premultiplied[p + c] *= premultiplied[p + img.channels - 1];
+      }
+      ok = out->write_image(OIIO::TypeDesc::FLOAT, premultiplied.data());
+    } else if (type.is_floating_point()) {
       ok = out->write_image(OIIO::TypeDesc::FLOAT, img.pixels.data());
     } else {
       std::vector<float> clamped(img.pixels.size());
