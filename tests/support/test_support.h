@@ -68,4 +68,19 @@ inline CommandResult run(const std::string& command) {
 
 inline std::string quote(const fs::path& p) { return "'" + p.string() + "'"; }
 
+//! Expects `call` to throw an exception whose one-line message contains both `file` and
+//! `what`.
+template <typename Call>
+void expectErrorNaming(Call&& call, const std::string& file, const std::string& what) {
+  try {
+    call();
+    ADD_FAILURE() << "no error for " << file;
+  } catch (const std::exception& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find(file), std::string::npos) << msg;
+    EXPECT_NE(msg.find(what), std::string::npos) << msg;
+    EXPECT_EQ(msg.find('\n'), std::string::npos) << "not one line: " << msg;
+  }
+}
+
 }  // namespace shanshui::test
