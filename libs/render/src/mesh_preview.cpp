@@ -60,8 +60,7 @@ image::Image renderPreview(const mesh::Mesh& m, const PreviewOptions& options) {
   const Framebuffer fb(options.width, options.height, {GL_RGBA8}, true);
   preview.render(fb, options);
   glFinish();
-  image::Image rgba = fb.colour(0).download(3);
-  return rgba;
+  return fb.colour(0).download(3);
 }
 
 }  // namespace shanshui::render

@@ -9,15 +9,15 @@ namespace shanshui::mesh {
 
 //! Reads the file as a polygon soup, choosing the format from the extension (.obj, .ply,
 //! .off). OBJ vertices that carry different UV/normal indices are split so attributes stay
-//! per vertex. Throws Error naming the file for unreadable, truncated or malformed input,
-//! out-of-range indices, non-finite coordinates are kept (repair removes them).
+//! per vertex. Throws Error naming the file for unreadable, truncated or malformed input
+//! and out-of-range indices. Non-finite coordinates are kept: repairMesh() removes them.
 PolygonSoup readPolygonSoup(const std::filesystem::path& path);
 
 //! Writes the mesh (format from the extension) atomically: nothing replaces `path` on
 //! failure. Positions keep full double precision. Throws Error for a mesh without faces.
 void writeMesh(const Mesh& mesh, const std::filesystem::path& path);
 
-//! Readers by format, used by readPolygonSoup; `name` is used in error messages.
+//! Readers by format, used by readPolygonSoup.
 PolygonSoup readObj(const std::filesystem::path& path);
 PolygonSoup readOff(const std::filesystem::path& path);
 PolygonSoup readPly(const std::filesystem::path& path);
