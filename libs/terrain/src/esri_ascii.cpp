@@ -133,10 +133,7 @@ Heightfield loadEsriAscii(const fs::path& path, const HeightfieldOptions& option
   } else if (looksGeographic(path, xll, yllCorner, cellX, rows, why)) {
     const double latLo = yllCorner, latHi = yllCorner + rows * cellY;
     const double latMid = 0.5 * (latLo + latHi);
-    const auto ratio = [&](double lat) {
-      return std::cos(lat * M_PI / 180) / std::cos(latMid * M_PI / 180);
-    };
-    const double error = std::max(std::abs(ratio(latLo) - 1), std::abs(ratio(latHi) - 1));
+    const double error = eastWestScaleError(latLo, latHi);
     if (error > options.max_geographic_scale_error || std::abs(latMid) > 85) {
       throw makeError(path.string(), ": cell size is in degrees (", why, ") and the grid spans latitudes ",
                       latLo, " to ", latHi, "; a local projection would distort east-west distances by ",

@@ -36,6 +36,12 @@ double metresPerDegreeLongitude(double lat_deg) {
   return 111412.84 * std::cos(phi) - 93.5 * std::cos(3 * phi) + 0.118 * std::cos(5 * phi);
 }
 
+double eastWestScaleError(double lat_lo_deg, double lat_hi_deg) {
+  const double d = std::numbers::pi / 180.0;
+  const double mid = std::cos(0.5 * (lat_lo_deg + lat_hi_deg) * d);
+  return std::max(std::abs(std::cos(lat_lo_deg * d) / mid - 1), std::abs(std::cos(lat_hi_deg * d) / mid - 1));
+}
+
 Heightfield loadHeightmapImage(const fs::path& path, const HeightfieldOptions& options) {
   image::ImageInfo info;
   const image::Image img = image::loadImage(path, &info);

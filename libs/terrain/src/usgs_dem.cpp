@@ -179,8 +179,7 @@ Heightfield loadUsgsDem(const fs::path& path, const HeightfieldOptions& options)
   if (geographic) {
     const double latMid = 0.5 * (yMin + yMax) * xyUnit;
     const double latLo = yMin * xyUnit, latHi = yMax * xyUnit;
-    const double error = std::max(std::abs(std::cos(latLo * M_PI / 180) / std::cos(latMid * M_PI / 180) - 1),
-                                  std::abs(std::cos(latHi * M_PI / 180) / std::cos(latMid * M_PI / 180) - 1));
+    const double error = eastWestScaleError(latLo, latHi);
     if (error > options.max_geographic_scale_error && options.cell_size <= 0) {
       throw makeError(path.string(), ": geographic DEM spans latitudes ", latLo, " to ", latHi,
                       "; one local projection would distort east-west distances by ", error * 100,

@@ -49,6 +49,10 @@ Heightfield loadHeightmapImage(const std::filesystem::path& path, const Heightfi
 Heightfield loadUsgsDem(const std::filesystem::path& path, const HeightfieldOptions& options);
 Heightfield loadEsriAscii(const std::filesystem::path& path, const HeightfieldOptions& options);
 
+//! Largest relative east-west scale error at the north or south edge when a grid spanning
+//! latitudes [lat_lo, lat_hi] is projected with one standard parallel at its centre.
+double eastWestScaleError(double lat_lo_deg, double lat_hi_deg);
+
 //! Metres per degree of latitude and of longitude at latitude `lat_deg` (WGS84 ellipsoid).
 double metresPerDegreeLatitude(double lat_deg);
 double metresPerDegreeLongitude(double lat_deg);
