@@ -43,17 +43,6 @@ void appendNumber(std::string& out, double v) {
   out.append(buf, res.ptr);
 }
 
-void validateIndices(const PolygonSoup& soup, const fs::path& path) {
-  for (std::size_t f = 0; f < soup.faces.size(); ++f) {
-    for (std::uint32_t i : soup.faces[f]) {
-      if (i >= soup.positions.size()) {
-        throw makeError(path.string(), ": face ", f, " refers to vertex ", i, " but there are only ",
-                        soup.positions.size(), " vertices");
-      }
-    }
-  }
-}
-
 void writeObj(const Mesh& m, const fs::path& tmp) {
   std::string text = "# written by shanshui\n";
   text.reserve(m.positions.size() * 64 + m.triangles.size() * 32);
@@ -284,7 +273,6 @@ PolygonSoup readOff(const fs::path& path) {
     skipRestOfLine(line);
   }
   if (soup.faces.empty()) throw makeError(path.string(), ": OFF has no faces");
-  validateIndices(soup, path);
   return soup;
 }
 
