@@ -25,7 +25,8 @@ glm::mat4 OrbitCamera::projection(double aspect) const {
   return glm::mat4(glm::perspective(radians(fov_y_deg), aspect, near_plane, far_plane));
 }
 
-OrbitCamera frameBounds(const mesh::Bounds& b, double azimuth_deg, double elevation_deg, double fov_y_deg) {
+OrbitCamera frameBounds(const mesh::Bounds& b, double azimuth_deg, double elevation_deg, double fov_y_deg,
+                        double aspect, double zoom) {
   OrbitCamera cam;
   const double radius = std::max(0.5 * glm::length(b.size()), 1e-6);
   cam.target = glm::dvec3(0.0);
@@ -33,6 +34,8 @@ OrbitCamera frameBounds(const mesh::Bounds& b, double azimuth_deg, double elevat
   cam.elevation_deg = elevation_deg;
   cam.fov_y_deg = fov_y_deg;
   cam.distance = radius / std::sin(radians(fov_y_deg) * 0.5);
+  if (aspect < 1.0) cam.distance /= aspect;  // keep the whole sphere in a tall frame
+  cam.distance /= zoom;
   cam.near_plane = std::max(cam.distance - radius * 1.01, cam.distance * 1e-3);
   cam.far_plane = cam.distance + radius * 1.01;
   return cam;

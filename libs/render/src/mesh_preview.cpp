@@ -29,13 +29,8 @@ MeshPreview::MeshPreview(const mesh::Mesh& m)
 
 void MeshPreview::render(const Framebuffer& target, const PreviewOptions& o) const {
   validate(o);
-  camera_ = frameBounds(bounds_, o.azimuth_deg, o.elevation_deg, o.fov_y_deg);
   const double aspect = static_cast<double>(target.width()) / target.height();
-  if (aspect < 1.0) camera_.distance /= aspect;  // keep the whole sphere in a tall frame
-  camera_.distance /= o.zoom;
-  const double radius = 0.5 * glm::length(bounds_.size()) * 1.01 + 1e-9;
-  camera_.near_plane = std::max(camera_.distance - radius, camera_.distance * 1e-3);
-  camera_.far_plane = camera_.distance + radius;
+  camera_ = frameBounds(bounds_, o.azimuth_deg, o.elevation_deg, o.fov_y_deg, aspect, o.zoom);
   target.bind();
   glClearColor(o.paper.r, o.paper.g, o.paper.b, 1.0f);
   glClearDepth(1.0);
