@@ -38,15 +38,4 @@ std::vector<glm::vec3> vertexNormals(const Mesh& m) {
   return normals;
 }
 
-Mesh triangulateFans(const PolygonSoup& soup) {
-  Mesh m;
-  m.positions = soup.positions;
-  m.normals = soup.normals;
-  m.uvs = soup.uvs;
-  for (const auto& f : soup.faces) {
-    for (std::size_t i = 2; i < f.size(); ++i) m.triangles.emplace_back(f[0], f[i - 1], f[i]);
-  }
-  return m;
-}
-
 }  // namespace shanshui::mesh

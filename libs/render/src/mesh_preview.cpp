@@ -30,7 +30,7 @@ MeshPreview::MeshPreview(const mesh::Mesh& m)
 void MeshPreview::render(const Framebuffer& target, const PreviewOptions& o) const {
   validate(o);
   const double aspect = static_cast<double>(target.width()) / target.height();
-  camera_ = frameBounds(bounds_, o.azimuth_deg, o.elevation_deg, o.fov_y_deg, aspect, o.zoom);
+  const OrbitCamera camera = frameBounds(bounds_, o.azimuth_deg, o.elevation_deg, o.fov_y_deg, aspect, o.zoom);
   target.bind();
   glClearColor(o.paper.r, o.paper.g, o.paper.b, 1.0f);
   glClearDepth(1.0);
@@ -39,8 +39,8 @@ void MeshPreview::render(const Framebuffer& target, const PreviewOptions& o) con
   glDepthFunc(GL_LESS);
   glDisable(GL_CULL_FACE);
   program_.use();
-  program_.set("u_view_projection", camera_.projection(aspect) * camera_.view());
-  program_.set("u_eye", glm::vec3(camera_.eye()));
+  program_.set("u_view_projection", camera.projection(aspect) * camera.view());
+  program_.set("u_eye", glm::vec3(camera.eye()));
   program_.set("u_light_dir", glm::normalize(o.light_dir));
   program_.set("u_paper", o.paper);
   program_.set("u_ink", o.ink);

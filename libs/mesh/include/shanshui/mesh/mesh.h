@@ -47,8 +47,4 @@ glm::dvec3 recentre(Mesh& m);
 //! Area-weighted per-vertex normals (unit length; +Z for a vertex whose faces have no area).
 std::vector<glm::vec3> vertexNormals(const Mesh& m);
 
-//! Splits every polygon of a soup into a triangle fan; for meshes that are known to be
-//! clean. Real inputs go through repairMesh() instead.
-Mesh triangulateFans(const PolygonSoup& soup);
-
 }  // namespace shanshui::mesh

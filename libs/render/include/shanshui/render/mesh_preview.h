@@ -33,14 +33,12 @@ class MeshPreview {
   explicit MeshPreview(const mesh::Mesh& m);
   //! Draws into `target` (bound by the call) with the camera framing the mesh.
   void render(const Framebuffer& target, const PreviewOptions& options) const;
-  const OrbitCamera& lastCamera() const { return camera_; }
   const mesh::Bounds& bounds() const { return bounds_; }
 
  private:
   mesh::Bounds bounds_;
   Program program_;
   GpuMesh gpu_;
-  mutable OrbitCamera camera_;
 };
 
 //! Renders one image offscreen with the current context (RGB, row 0 at the top).
