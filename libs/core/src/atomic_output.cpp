@@ -10,7 +10,7 @@
 namespace shanshui {
 namespace fs = std::filesystem;
 
-void writeAtomically(const fs::path& target, const std::function<void(const fs::path&)>& write) {
+void checkOutputPath(const fs::path& target) {
   const fs::path dir = target.has_parent_path() ? target.parent_path() : fs::path(".");
   std::error_code ec;
   if (!fs::is_directory(dir, ec)) {
@@ -19,6 +19,12 @@ void writeAtomically(const fs::path& target, const std::function<void(const fs::
   if (fs::is_directory(target, ec)) {
     throw makeError(target.string(), ": is a directory, expected a file name");
   }
+}
+
+void writeAtomically(const fs::path& target, const std::function<void(const fs::path&)>& write) {
+  checkOutputPath(target);
+  const fs::path dir = target.has_parent_path() ? target.parent_path() : fs::path(".");
+  std::error_code ec;
   static std::atomic<unsigned> counter{0};
   const fs::path tmp = dir / ("." + target.stem().string() + ".tmp" + std::to_string(getpid()) +
                               "_" + std::to_string(counter++) + target.extension().string());

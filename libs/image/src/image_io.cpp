@@ -111,6 +111,7 @@ Image loadImage(const fs::path& path, ImageInfo* info) {
   const bool associated =
       img.hasAlpha() && spec.alpha_channel == channels - 1 &&
       spec.get_int_attribute("oiio:UnassociatedAlpha", 0) == 0;
+  const bool alphaOnly = channels == 1 && spec.alpha_channel == 0;
   in->close();
   for (float& v : img.pixels) {
     if (!std::isfinite(v)) throw makeError(name, ": contains NaN or infinite pixel values");
@@ -129,6 +130,7 @@ Image loadImage(const fs::path& path, ImageInfo* info) {
     info->depth = depthOf(spec.format);
     info->channels = channels;
     info->format = in->format_name();
+    info->alpha_only = alphaOnly;
   }
   return img;
 }

@@ -13,4 +13,8 @@ namespace shanshui {
 void writeAtomically(const std::filesystem::path& target,
                      const std::function<void(const std::filesystem::path& tmp)>& write);
 
+//! Throws the Error writeAtomically() would throw for `target` (missing directory, target is
+//! a directory), so a tool can refuse before a long computation rather than after it.
+void checkOutputPath(const std::filesystem::path& target);
+
 }  // namespace shanshui

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <string_view>
+#include <utility>
 
 namespace shanshui {
 
@@ -15,5 +16,8 @@ Size2 parseSize(std::string_view text, std::string_view what);
 
 //! Parses a finite double; the whole string must be consumed.
 double parseDouble(std::string_view text, std::string_view what);
+
+//! Parses "A:B" with two finite numbers (no order implied).
+std::pair<double, double> parsePair(std::string_view text, std::string_view what);
 
 }  // namespace shanshui

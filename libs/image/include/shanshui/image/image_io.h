@@ -16,6 +16,7 @@ struct ImageInfo {
   PixelDepth depth = PixelDepth::UInt8;
   int channels = 0;
   std::string format;  //!< OpenImageIO format name: "png", "tiff", "openexr", ...
+  bool alpha_only = false;  //!< the file's only channel is alpha (a mask, not an image)
 };
 
 //! Factor that turns a loaded (normalised) value back into the file's raw integer value;

@@ -1,0 +1,133 @@
+#include "shanshui/texsynth/enhance.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <vector>
+
+#include "shanshui/core/error.h"
+#include "shanshui/image/convert.h"
+
+namespace shanshui::texsynth {
+namespace {
+
+constexpr int kBins = 65536;  // one bin per 16-bit level; 8-bit levels land on bins exactly
+
+int colourChannels(const image::Image& img) { return img.hasAlpha() ? img.channels - 1 : img.channels; }
+
+// Counts values per 1/65535 bin; also rejects NaN and values outside [0, 1].
+std::vector<std::uint64_t> histogram(const image::Image& img, const std::string& what) {
+  std::vector<std::uint64_t> bins(kBins, 0);
+  const int colour = colourChannels(img);
+  const std::size_t n = static_cast<std::size_t>(img.width) * img.height;
+  std::size_t outside = 0;
+  float lo = 0.0f, hi = 1.0f;
+  for (std::size_t p = 0; p < n; ++p) {
+    const float* px = &img.pixels[p * img.channels];
+    for (int c = 0; c < colour; ++c) {
+      const float v = px[c];
+      if (!(v >= 0.0f && v <= 1.0f)) {  // also catches NaN
+        if (std::isnan(v)) throw makeError(what, ": contains NaN values");
+        ++outside;
+        lo = std::min(lo, v);
+        hi = std::max(hi, v);
+        continue;
+      }
+      ++bins[static_cast<std::size_t>(std::lround(v * (kBins - 1)))];
+    }
+  }
+  if (outside > 0) {
+    throw makeError(what, ": ", outside, " values outside [0, 1] (min ", lo, ", max ", hi,
+                    "); contrast enhancement expects values in [0, 1]");
+  }
+  return bins;
+}
+
+double binPercentile(const std::vector<std::uint64_t>& bins, std::uint64_t total, double p) {
+  // Smallest bin whose cumulative count reaches ceil(p% of total), at least one value.
+  const auto need = std::max<std::uint64_t>(1, static_cast<std::uint64_t>(std::ceil(p / 100.0 * total)));
+  std::uint64_t sum = 0;
+  for (int b = 0; b < kBins; ++b) {
+    sum += bins[b];
+    if (sum >= need) return static_cast<double>(b) / (kBins - 1);
+  }
+  return 1.0;
+}
+
+void checkUnit(double v, const char* name) {
+  if (!(v >= 0.0 && v <= 1.0)) throw makeError("enhance: ", name, " = ", v, "; expected a value in [0, 1]");
+}
+
+}  // namespace
+
+ValueRange percentileRange(const image::Image& img, double low_percent, double high_percent) {
+  const std::vector<std::uint64_t> bins = histogram(img, "image");
+  const std::uint64_t total = static_cast<std::uint64_t>(img.width) * img.height * colourChannels(img);
+  return {binPercentile(bins, total, low_percent), binPercentile(bins, total, high_percent)};
+}
+
+image::Image enhanceContrast(const image::Image& input, const EnhanceOptions& opts,
+                             EnhanceReport* report, const std::string& what) {
+  if (input.empty()) throw makeError(what, ": empty image");
+  checkUnit(opts.output_range.low, "output range c");
+  checkUnit(opts.output_range.high, "output range d");
+  if (opts.output_range.low == opts.output_range.high) {
+    throw makeError("enhance: output range c:d = ", opts.output_range.low, ":", opts.output_range.high,
+                    "; c and d must differ");
+  }
+  if (opts.input_range) {
+    checkUnit(opts.input_range->low, "input range a");
+    checkUnit(opts.input_range->high, "input range b");
+    if (!(opts.input_range->high > opts.input_range->low)) {
+      throw makeError("enhance: input range a:b = ", opts.input_range->low, ":", opts.input_range->high,
+                      "; b must be greater than a");
+    }
+  } else if (!(opts.low_percentile >= 0.0 && opts.low_percentile < opts.high_percentile &&
+               opts.high_percentile <= 100.0)) {
+    throw makeError("enhance: percentiles ", opts.low_percentile, ":", opts.high_percentile,
+                    "; expected 0 <= low < high <= 100");
+  }
+
+  image::Image img = opts.colour ? input : image::toGrey(input);
+  const std::vector<std::uint64_t> bins = histogram(img, what);
+  const std::uint64_t total = static_cast<std::uint64_t>(img.width) * img.height * colourChannels(img);
+
+  ValueRange range;
+  if (opts.input_range) {
+    range = *opts.input_range;
+  } else {
+    range = {binPercentile(bins, total, opts.low_percentile), binPercentile(bins, total, opts.high_percentile)};
+    if (!(range.high > range.low)) {
+      throw makeError(what, ": no contrast: the ", opts.low_percentile, "% and ", opts.high_percentile,
+                      "% percentiles are both ", range.low, "; give --range A:B or use another sample");
+    }
+  }
+
+  // The same arithmetic as OpenImageIO's contrast_remap + clamp (the test oracle):
+  // t = (f - a) / (b - a) as a product with the float reciprocal, g = c (1 - t) + d t.
+  const float a = static_cast<float>(range.low);
+  const float inv = 1.0f / (static_cast<float>(range.high) - a);
+  const float c = static_cast<float>(opts.output_range.low);
+  const float d = static_cast<float>(opts.output_range.high);
+  const float lo = std::min(c, d), hi = std::max(c, d);
+  const int colour = colourChannels(img);
+  const std::size_t n = static_cast<std::size_t>(img.width) * img.height;
+  std::uint64_t below = 0, above = 0;
+  for (std::size_t p = 0; p < n; ++p) {
+    float* px = &img.pixels[p * img.channels];
+    for (int ch = 0; ch < colour; ++ch) {
+      const float t = (px[ch] - a) * inv;
+      below += t <= 0.0f;
+      above += t > 1.0f;
+      px[ch] = std::clamp(c * (1.0f - t) + d * t, lo, hi);
+    }
+  }
+  if (report) {
+    report->input_range = range;
+    report->clipped_low = static_cast<double>(below) / static_cast<double>(total);
+    report->clipped_high = static_cast<double>(above) / static_cast<double>(total);
+  }
+  return img;
+}
+
+}  // namespace shanshui::texsynth
