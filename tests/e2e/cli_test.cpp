@@ -1,5 +1,8 @@
 // End-to-end: the real programs on real files, and what they write.
+#include <OpenImageIO/imageio.h>
+
 #include <fstream>
+#include <nlohmann/json.hpp>
 
 #include "shanshui/image/image_io.h"
 #include "shanshui/mesh/mesh_io.h"
@@ -21,7 +24,8 @@ int lines(const std::string& s) {
 }
 
 TEST(Cli, EveryProgramHasHelpWithAnExample) {
-  for (const char* p : {"shanshui-terrain", "shanshui-repair", "shanshui-render", "shanshui-view"}) {
+  for (const char* p : {"shanshui-terrain", "shanshui-repair", "shanshui-render", "shanshui-view",
+                        "shanshui-enhance", "shanshui-quilt"}) {
     const auto r = run(bin(p) + " --help");
     EXPECT_EQ(r.exit_code, 0) << p;
     EXPECT_NE(r.output.find("Example"), std::string::npos) << p << ": " << r.output;
@@ -111,6 +115,103 @@ TEST(Cli, BadInputGivesOneLineNamingTheFileAndWritesNothing) {
     }
   }
   // Nothing half-written lies around either.
+  for (const auto& e : std::filesystem::directory_iterator(dir.path())) {
+    EXPECT_EQ(e.path().filename().string().find(".tmp"), std::string::npos) << e.path();
+  }
+}
+
+std::string readBytes(const std::filesystem::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+TEST(Cli, EnhanceThenQuiltATileableTexture) {
+  const std::filesystem::path scan = test::sharedData() / "textures/ink_hemp_fiber.png";
+  SHANSHUI_REQUIRE_FILE(scan);
+  test::TempDir dir;
+  auto r = run(bin("shanshui-enhance") + " " + quote(scan) + " -o " + quote(dir / "sample.png"));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("(percentiles)"), std::string::npos) << r.output;
+  image::ImageInfo info;
+  const image::Image sample = image::loadImage(dir / "sample.png", &info);
+  EXPECT_EQ(info.depth, image::PixelDepth::UInt8) << "the input's depth by default";
+  const auto [lo, hi] = std::minmax_element(sample.pixels.begin(), sample.pixels.end());
+  EXPECT_EQ(*lo, 0.0f);
+  EXPECT_EQ(*hi, 1.0f);
+
+  const std::string quilt = bin("shanshui-quilt") + " " + quote(dir / "sample.png") +
+                            " --size 300x200 --block 40 --tileable --seed 9";
+  r = run(quilt + " -o " + quote(dir / "a.png") + " --threads 1 --report " + quote(dir / "a.json"));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  r = run(quilt + " -o " + quote(dir / "b.png") + " --threads 2");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_EQ(readBytes(dir / "a.png"), readBytes(dir / "b.png")) << "output depends on the thread count";
+  const image::Image texture = image::loadImage(dir / "a.png");
+  EXPECT_EQ(texture.width, 300);
+  EXPECT_EQ(texture.height, 200);
+
+  const auto report = nlohmann::json::parse(readBytes(dir / "a.json"));
+  for (const char* key : {"seconds", "blocks", "mean_seam_error_per_overlap_pixel", "coherence", "source_usage",
+                          "verbatim_copy_ratio", "wrap_seam_error", "options"}) {
+    EXPECT_TRUE(report.contains(key)) << key;
+  }
+  EXPECT_EQ(report["options"]["threads"], 1);
+  EXPECT_EQ(report["options"]["tileable"], true);
+  EXPECT_GT(report["blocks"].get<int>(), 20);
+  EXPECT_GE(report["coherence"]["mean"].get<double>(), 0.0);
+}
+
+TEST(Cli, TextureToolsRefuseBadInputAndWriteNothing) {
+  const std::filesystem::path scan = test::sharedData() / "textures/ink_dabs.png";  // 180x128
+  SHANSHUI_REQUIRE_FILE(scan);
+  test::TempDir dir;
+  image::saveImage(image::Image(32, 32, 1, 0.4f), dir / "flat.png");
+  {  // An image whose only channel is alpha.
+    auto out = OIIO::ImageOutput::create((dir / "mask.exr").string());
+    OIIO::ImageSpec spec(16, 16, 1, OIIO::TypeDesc::FLOAT);
+    spec.channelnames = {"A"};
+    spec.alpha_channel = 0;
+    std::vector<float> zeros(256, 0.5f);
+    ASSERT_TRUE(out && out->open((dir / "mask.exr").string(), spec));
+    out->write_image(OIIO::TypeDesc::FLOAT, zeros.data());
+    out->close();
+  }
+  std::ofstream(dir / "keep.png") << "precious";
+  std::ofstream(dir / "broken.png") << "not a png";
+  const std::string enhance = bin("shanshui-enhance") + " ";
+  const std::string quilt = bin("shanshui-quilt") + " " + quote(scan) + " --size 200x200 ";
+  struct Case {
+    std::string command;
+    std::string names;  // what the message must say
+  };
+  const std::string keep = " -o " + quote(dir / "keep.png");
+  const Case cases[] = {
+      {enhance + quote(scan) + keep + " --range 0.6:0.4", "0.6:0.4; b must be greater than a"},
+      {enhance + quote(scan) + keep + " --range 0.2", "--range: '0.2' is not a pair"},
+      {enhance + quote(scan) + keep + " --to 0.5:0.5", "c and d must differ"},
+      {enhance + quote(scan) + keep + " --auto 90:10", "percentiles 90:10"},
+      {enhance + quote(dir / "flat.png") + keep, "flat.png: no contrast"},
+      {enhance + quote(dir / "mask.exr") + keep, "mask.exr: the image has only an alpha channel"},
+      {enhance + quote(dir / "broken.png") + keep, "broken.png"},
+      {enhance + quote(dir / "missing.png") + keep, "missing.png: no such file"},
+      {quilt + keep + " --block 2", "block 2; expected at least 3"},
+      {quilt + keep + " --block 129", "smaller than block 129"},
+      {quilt + keep + " --block 24 --overlap 24", "overlap 24; expected 1 <= overlap < block"},
+      {quilt + keep + " --block 24 --overlap 0", "overlap 0"},
+      {bin("shanshui-quilt") + " " + quote(scan) + keep + " --size 20x300", "output size 20x300 is smaller than block 48"},
+      {quilt + keep + " --tolerance -1", "tolerance -1"},
+      {bin("shanshui-quilt") + " " + quote(dir / "mask.exr") + keep + " --size 64x64 --block 8", "only an alpha channel"},
+      {bin("shanshui-quilt") + " " + quote(dir / "broken.png") + keep + " --size 64x64", "broken.png"},
+      {quilt + keep + " --report " + quote(dir / "no/such/dir/r.json"), "output directory does not exist"},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.command);
+    const auto r = run(c.command);
+    EXPECT_NE(r.exit_code, 0);
+    EXPECT_EQ(lines(r.output), 1) << r.output;
+    EXPECT_NE(r.output.find(c.names), std::string::npos) << r.output;
+    EXPECT_EQ(readBytes(dir / "keep.png"), "precious");
+  }
   for (const auto& e : std::filesystem::directory_iterator(dir.path())) {
     EXPECT_EQ(e.path().filename().string().find(".tmp"), std::string::npos) << e.path();
   }

@@ -45,7 +45,7 @@ nlohmann::json reportJson(const std::string& input, const std::string& output, c
   j["largest_copy_blocks"] = m.largest_copy_blocks;
   j["mean_region_pixels"] = m.mean_region_pixels;
   j["wrap_seam_error"] = m.wrap_seam_error;
-  j["neighbour_error"] = m.neighbour_error;
+  j["wrap_seam_edges"] = m.wrap_seam_edges;
   return j;
 }
 

@@ -40,24 +40,40 @@ OverlapSearch::OverlapSearch(const image::Image& sample, int block) : sample_(sa
 }
 
 cv::Mat OverlapSearch::errors(const image::Image& patch, const cv::Mat& mask, SearchMode mode) const {
+  cv::Mat out;
+  errors(patch, mask, mode, out);
+  return out;
+}
+
+void OverlapSearch::errors(const image::Image& patch, const cv::Mat& mask, SearchMode mode, cv::Mat& out) const {
   SHANSHUI_CHECK_EQ(patch.width, block_);
   SHANSHUI_CHECK_EQ(patch.height, block_);
   SHANSHUI_CHECK_EQ(patch.channels, sample_.channels);
   SHANSHUI_CHECK(mask.type() == CV_8U && mask.rows == block_ && mask.cols == block_);
   switch (mode) {
-    case SearchMode::Fft: return fftErrors(patch, mask);
-    case SearchMode::Exhaustive: return exhaustiveErrors(patch, mask);
+    case SearchMode::Fft: return fftErrors(patch, mask, out);
+    case SearchMode::Exhaustive: return exhaustiveErrors(patch, mask, out);
     case SearchMode::Random: break;
   }
   throw makeError("overlap search: mode '", searchModeName(mode), "' computes no errors");
 }
 
-cv::Mat OverlapSearch::fftErrors(const image::Image& patch, const cv::Mat& mask) const {
+namespace {
+// Per-thread FFT buffers; create() keeps the memory when the size does not change.
+struct FftScratch {
+  cv::Mat maskPlane, plane, spectrum, accum, product, correlation;
+};
+thread_local FftScratch scratch;
+}  // namespace
+
+void OverlapSearch::fftErrors(const image::Image& patch, const cv::Mat& mask, cv::Mat& out) const {
   // E(p) = sum M T² − 2 sum_c corr(I_c, M T_c)(p) + corr(sum_c I_c², M)(p); the two
   // correlations are summed in the frequency domain and transformed back once.
   const int b = block_;
   double templateEnergy = 0.0;
-  cv::Mat maskPlane = cv::Mat::zeros(dftSize_, CV_64F);
+  cv::Mat& maskPlane = scratch.maskPlane;
+  maskPlane.create(dftSize_, CV_64F);
+  maskPlane.setTo(0.0);
   for (int y = 0; y < b; ++y) {
     for (int x = 0; x < b; ++x) {
       if (!mask.at<std::uint8_t>(y, x)) continue;
@@ -68,10 +84,14 @@ cv::Mat OverlapSearch::fftErrors(const image::Image& patch, const cv::Mat& mask)
       }
     }
   }
-  cv::Mat spectrum, accum, product;
+  cv::Mat& spectrum = scratch.spectrum;
+  cv::Mat& accum = scratch.accum;
+  cv::Mat& product = scratch.product;
   cv::dft(maskPlane, spectrum, 0, b);
   cv::mulSpectrums(squareSpectrum_, spectrum, accum, 0, /*conjB=*/true);
-  cv::Mat plane = cv::Mat::zeros(dftSize_, CV_64F);
+  cv::Mat& plane = scratch.plane;
+  plane.create(dftSize_, CV_64F);
+  plane.setTo(0.0);
   for (int c = 0; c < patch.channels; ++c) {
     for (int y = 0; y < b; ++y) {
       for (int x = 0; x < b; ++x) {
@@ -82,14 +102,18 @@ cv::Mat OverlapSearch::fftErrors(const image::Image& patch, const cv::Mat& mask)
     cv::mulSpectrums(channelSpectra_[c], spectrum, product, 0, /*conjB=*/true);
     cv::scaleAdd(product, -2.0, accum, accum);
   }
-  cv::Mat correlation;
+  cv::Mat& correlation = scratch.correlation;
   cv::dft(accum, correlation, cv::DFT_INVERSE | cv::DFT_REAL_OUTPUT | cv::DFT_SCALE, positionsY());
-  cv::Mat out = correlation(cv::Rect(0, 0, positionsX(), positionsY())) + templateEnergy;
-  // Rounding can leave tiny negative values where the true error is 0.
-  return cv::max(out, 0.0);
+  out.create(positionsY(), positionsX(), CV_64F);
+  for (int y = 0; y < positionsY(); ++y) {
+    const double* in = correlation.ptr<double>(y);
+    double* row = out.ptr<double>(y);
+    // Rounding can leave tiny negative values where the true error is 0.
+    for (int x = 0; x < positionsX(); ++x) row[x] = std::max(in[x] + templateEnergy, 0.0);
+  }
 }
 
-cv::Mat OverlapSearch::exhaustiveErrors(const image::Image& patch, const cv::Mat& mask) const {
+void OverlapSearch::exhaustiveErrors(const image::Image& patch, const cv::Mat& mask, cv::Mat& out) const {
   struct Tap {
     int offset;  // index of the first channel in the sample, relative to the window origin
     int patchIndex;
@@ -103,7 +127,7 @@ cv::Mat OverlapSearch::exhaustiveErrors(const image::Image& patch, const cv::Mat
     }
   }
   const int channels = sample_.channels;
-  cv::Mat out(positionsY(), positionsX(), CV_64F);
+  out.create(positionsY(), positionsX(), CV_64F);
   for (int py = 0; py < positionsY(); ++py) {
     for (int px = 0; px < positionsX(); ++px) {
       const float* origin = &sample_.pixels[sample_.index(px, py)];
@@ -117,7 +141,6 @@ cv::Mat OverlapSearch::exhaustiveErrors(const image::Image& patch, const cv::Mat
       out.at<double>(py, px) = sum;
     }
   }
-  return out;
 }
 
 double OverlapSearch::errorAt(const image::Image& patch, const cv::Mat& mask, int x, int y) const {

@@ -50,20 +50,16 @@ QuiltMetrics measureQuilt(const image::Image& sample, const QuiltResult& result,
   QuiltMetrics m;
   auto src = [&](int x, int y) { return result.source[static_cast<std::size_t>(y) * w + x]; };
 
-  // Seams, verbatim regions and neighbour differences in one pass over neighbour pairs.
+  // Seams and verbatim regions in one pass over neighbour pairs. A pair (p, q = p + d) is
+  // continuous when q shows the sample pixel next to p's; otherwise it is a seam with cost
+  // ‖out(q) − sample(src(p) + d)‖² + ‖out(p) − sample(src(q) − d)‖² (terms outside the sample
+  // are left out and the rest scaled up).
   DisjointSets regions(static_cast<std::size_t>(w) * h);
-  double seamSum = 0.0, neighbourSum = 0.0;
-  long long neighbourPairs = 0;
-  auto visitPair = [&](int x0, int y0, int x1, int y1) {
-    const int dx = x1 - x0, dy = y1 - y0;
+  auto seamCost = [&](int x0, int y0, int x1, int y1, int dx, int dy, bool* continuous) {
     const int s0 = src(x0, y0), s1 = src(x1, y1);
     const int sx0 = s0 % sw, sy0 = s0 / sw, sx1 = s1 % sw, sy1 = s1 / sw;
-    neighbourSum += squaredDistance(&out.pixels[out.index(x0, y0)], &out.pixels[out.index(x1, y1)], ch);
-    ++neighbourPairs;
-    if (sx1 == sx0 + dx && sy1 == sy0 + dy) {
-      regions.join(y0 * w + x0, y1 * w + x1);
-      return;
-    }
+    *continuous = sx1 == sx0 + dx && sy1 == sy0 + dy;
+    if (*continuous) return 0.0;
     double cost = 0.0;
     int terms = 0;
     auto term = [&](int sx, int sy, int ox, int oy) {
@@ -73,9 +69,18 @@ QuiltMetrics measureQuilt(const image::Image& sample, const QuiltResult& result,
     };
     term(sx0 + dx, sy0 + dy, x1, y1);
     term(sx1 - dx, sy1 - dy, x0, y0);
-    if (terms == 0) return;
-    seamSum += cost * 2.0 / terms;
-    ++m.seam_edges;
+    return terms > 0 ? cost * 2.0 / terms : 0.0;
+  };
+  double seamSum = 0.0;
+  auto visitPair = [&](int x0, int y0, int x1, int y1) {
+    bool continuous = false;
+    const double cost = seamCost(x0, y0, x1, y1, x1 - x0, y1 - y0, &continuous);
+    if (continuous) {
+      regions.join(y0 * w + x0, y1 * w + x1);
+    } else {
+      seamSum += cost;
+      ++m.seam_edges;
+    }
   };
   for (int y = 0; y < h; ++y) {
     for (int x = 0; x < w; ++x) {
@@ -86,15 +91,19 @@ QuiltMetrics measureQuilt(const image::Image& sample, const QuiltResult& result,
   m.seam_error_per_edge = m.seam_edges > 0 ? seamSum / static_cast<double>(m.seam_edges) : 0.0;
   m.seam_error_per_overlap_pixel =
       result.stats.overlap_pixels > 0 ? seamSum / static_cast<double>(result.stats.overlap_pixels) : 0.0;
-  m.neighbour_error = neighbourPairs > 0 ? neighbourSum / static_cast<double>(neighbourPairs) : 0.0;
 
+  // The same across the wrap: last column next to the first, last row next to the first.
   double wrapSum = 0.0;
-  for (int y = 0; y < h; ++y) {
-    wrapSum += squaredDistance(&out.pixels[out.index(w - 1, y)], &out.pixels[out.index(0, y)], ch);
-  }
-  for (int x = 0; x < w; ++x) {
-    wrapSum += squaredDistance(&out.pixels[out.index(x, h - 1)], &out.pixels[out.index(x, 0)], ch);
-  }
+  long long wrapSeams = 0;
+  auto visitWrap = [&](int x0, int y0, int x1, int y1, int dx, int dy) {
+    bool continuous = false;
+    const double cost = seamCost(x0, y0, x1, y1, dx, dy, &continuous);
+    wrapSum += cost;
+    wrapSeams += !continuous;
+  };
+  for (int y = 0; y < h; ++y) visitWrap(w - 1, y, 0, y, 1, 0);
+  for (int x = 0; x < w; ++x) visitWrap(x, h - 1, x, 0, 0, 1);
+  m.wrap_seam_edges = wrapSeams;
   m.wrap_seam_error = wrapSum / static_cast<double>(w + h);
 
   std::vector<int> regionSize(static_cast<std::size_t>(w) * h, 0);

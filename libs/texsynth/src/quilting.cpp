@@ -117,7 +117,8 @@ class Quilter {
       rec.candidates = positionsX * positionsY;
       chosen = static_cast<int>(random % static_cast<std::uint64_t>(rec.candidates));
     } else {
-      const cv::Mat errors = search_.errors(old, filled, opts_.search);
+      thread_local cv::Mat errors;
+      search_.errors(old, filled, opts_.search, errors);
       double minError = 0.0;
       cv::minMaxLoc(errors, &minError);
       const double threshold = (1.0 + opts_.tolerance) * std::max(minError, floor);

@@ -34,12 +34,17 @@ class OverlapSearch {
   //! channels; `mask` is B×B CV_8U. Mode Random is not a search and is refused.
   cv::Mat errors(const image::Image& patch, const cv::Mat& mask, SearchMode mode) const;
 
+  //! The same into `out`, reusing its memory when it already has the right size: the FFT
+  //! buffers are per thread and reused too, so repeated queries allocate nothing (large
+  //! allocations are mmap calls, which serialise threads in the kernel).
+  void errors(const image::Image& patch, const cv::Mat& mask, SearchMode mode, cv::Mat& out) const;
+
   //! The same sum for one window, computed directly.
   double errorAt(const image::Image& patch, const cv::Mat& mask, int x, int y) const;
 
  private:
-  cv::Mat fftErrors(const image::Image& patch, const cv::Mat& mask) const;
-  cv::Mat exhaustiveErrors(const image::Image& patch, const cv::Mat& mask) const;
+  void fftErrors(const image::Image& patch, const cv::Mat& mask, cv::Mat& out) const;
+  void exhaustiveErrors(const image::Image& patch, const cv::Mat& mask, cv::Mat& out) const;
 
   image::Image sample_;
   int block_;

@@ -34,10 +34,12 @@ struct QuiltMetrics {
   double verbatim_copy_ratio = 0.0;  //!< largest region / output area
   double largest_copy_blocks = 0.0;  //!< largest region / block area
   double mean_region_pixels = 0.0;
-  //! Squared difference of neighbouring pixels across the wrap (last column to first, last
-  //! row to first) and, for comparison, between all neighbours inside the image.
+  //! Seams across the wrap (last column next to the first, last row next to the first) and
+  //! their summed error per wrap pair (continuous pairs count 0). A tileable texture has few
+  //! such seams, cut like the others; otherwise the wrap is one long seam between unrelated
+  //! pixels.
+  long long wrap_seam_edges = 0;
   double wrap_seam_error = 0.0;
-  double neighbour_error = 0.0;
 };
 
 QuiltMetrics measureQuilt(const image::Image& sample, const QuiltResult& result, int block,
