@@ -121,7 +121,7 @@ class Quilter {
       search_.errors(old, filled, opts_.search, errors);
       double minError = 0.0;
       cv::minMaxLoc(errors, &minError);
-      const double threshold = (1.0 + opts_.tolerance) * std::max(minError, floor);
+      const double threshold = candidateThreshold(minError, overlapPixels * sample_.channels, opts_);
       std::vector<int> candidates;
       for (int y = 0; y < positionsY; ++y) {
         const double* row = errors.ptr<double>(y);
@@ -198,6 +198,11 @@ class Quilter {
 };
 
 }  // namespace
+
+double candidateThreshold(double minError, long long values, const QuiltOptions& opts) {
+  const double threshold = (1.0 + opts.tolerance) * std::max(minError, opts.error_floor * static_cast<double>(values));
+  return threshold + 1e-9 * (threshold + static_cast<double>(values));
+}
 
 int QuiltOptions::resolvedOverlap() const {
   return overlap >= 0 ? overlap : std::max(1, static_cast<int>(std::lround(block / 6.0)));

@@ -60,6 +60,12 @@ struct QuiltResult {
   QuiltStats stats;
 };
 
+//! The candidate rule (SPEC.md section 3, step 3): windows with overlap error at most
+//! (1 + tolerance)·max(min_error, error_floor·values), where `values` = overlap pixels ×
+//! channels, plus a slack of 1e-9 of the error scale so that exact ties (two-level samples
+//! have integer errors) are kept by the FFT search as by the exhaustive one.
+double candidateThreshold(double min_error, long long values, const QuiltOptions& opts);
+
 //! Synthesises `opts.width × opts.height` from `sample`. `what` names the sample in errors.
 //! Throws Error for bad options (naming the parameter, the value and the range) or a sample
 //! smaller than a block.

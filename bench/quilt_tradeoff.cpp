@@ -1,0 +1,124 @@
+// Error against run time for image quilting (SPEC.md sections 3 and 12): every sample
+// texture, each search mode and seam mode; the search error is the chosen block's overlap
+// error relative to the exhaustive search's minimum. Writes quilt_tradeoff.csv (one row
+// per texture and configuration) and quilt_tradeoff.md (means over textures).
+//   bench_quilt_tradeoff [--out DIR] [--size N] [--block B]
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "shanshui/core/error.h"
+#include "shanshui/image/image_io.h"
+#include "shanshui/texsynth/quilt_metrics.h"
+#include "shanshui/texsynth/quilting.h"
+
+namespace {
+
+using namespace shanshui;
+namespace fs = std::filesystem;
+
+struct Config {
+  std::string name;
+  texsynth::SearchMode search;
+  texsynth::SeamMode seam;
+  bool tileable;
+};
+
+struct Row {
+  double seconds, ratio, overlapError, seamError, coherence, verbatim, coverage, wrapError;
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  fs::path out = ".";
+  int size = 256, block = 32;
+  for (int i = 1; i + 1 < argc; i += 2) {
+    const std::string flag = argv[i];
+    if (flag == "--out") out = argv[i + 1];
+    else if (flag == "--size") size = std::stoi(argv[i + 1]);
+    else if (flag == "--block") block = std::stoi(argv[i + 1]);
+    else {
+      std::fprintf(stderr, "usage: bench_quilt_tradeoff [--out DIR] [--size N] [--block B]\n");
+      return 2;
+    }
+  }
+  const fs::path dir = fs::path(SHANSHUI_DATA_DIR) / "textures";
+  if (!fs::is_directory(dir)) {
+    std::fprintf(stderr, "bench_quilt_tradeoff: no textures in %s\n", dir.c_str());
+    return 1;
+  }
+  std::vector<fs::path> files;
+  for (const auto& e : fs::directory_iterator(dir)) files.push_back(e.path());
+  std::sort(files.begin(), files.end());
+  fs::create_directories(out);
+
+  using texsynth::SearchMode;
+  using texsynth::SeamMode;
+  const std::vector<Config> configs = {
+      {"fft + cut", SearchMode::Fft, SeamMode::Cut, false},
+      {"exhaustive + cut", SearchMode::Exhaustive, SeamMode::Cut, false},
+      {"random + cut", SearchMode::Random, SeamMode::Cut, false},
+      {"fft + graphcut", SearchMode::Fft, SeamMode::GraphCut, false},
+      {"fft + none", SearchMode::Fft, SeamMode::None, false},
+      {"fft + cut, tileable", SearchMode::Fft, SeamMode::Cut, true},
+  };
+  std::ofstream csv(out / "quilt_tradeoff.csv");
+  csv << "texture,config,seconds,search_error_ratio,overlap_error_per_pixel,seam_error_per_edge,"
+         "coherence_mean,verbatim_copy_ratio,sample_coverage,wrap_seam_error\n";
+  std::map<std::string, std::vector<Row>> rows;
+  for (const fs::path& f : files) {
+    const image::Image sample = image::loadImage(f);
+    for (const Config& c : configs) {
+      texsynth::QuiltOptions o;
+      o.width = o.height = size;
+      o.block = std::min({block, sample.width, sample.height});
+      o.search = c.search;
+      o.seam = c.seam;
+      o.tileable = c.tileable;
+      o.threads = 1;
+      const texsynth::QuiltResult timed = texsynth::quilt(sample, o);
+      o.audit = true;
+      const texsynth::QuiltResult audited = texsynth::quilt(sample, o);
+      SHANSHUI_CHECK(audited.source == timed.source);  // the audit must not change the result
+      const texsynth::QuiltMetrics m = texsynth::measureQuilt(sample, timed, o.block);
+      const Row r{timed.stats.seconds, audited.stats.search_error_ratio, timed.stats.overlap_error_per_pixel,
+                  m.seam_error_per_edge, m.coherence_mean, m.verbatim_copy_ratio, m.sample_coverage,
+                  m.wrap_seam_error};
+      rows[c.name].push_back(r);
+      csv << f.filename().string() << "," << c.name << "," << r.seconds << "," << r.ratio << "," << r.overlapError
+          << "," << r.seamError << "," << r.coherence << "," << r.verbatim << "," << r.coverage << ","
+          << r.wrapError << "\n";
+      std::fprintf(stderr, "%-24s %-22s %7.3f s  ratio %.3f\n", f.filename().c_str(), c.name.c_str(), r.seconds,
+                   r.ratio);
+    }
+  }
+
+  std::ofstream md(out / "quilt_tradeoff.md");
+  md << "Image quilting, " << size << "x" << size << " output, block " << block << " (or the sample size), "
+     << "overlap B/6, tolerance 0.1, one thread; means over " << files.size() << " textures.\n\n"
+     << "| configuration | seconds | time / fft | search error (chosen / exhaustive min) | overlap error per px "
+        "| seam error per edge | coherence (nearest-patch SSD per px) | verbatim copy ratio | sample coverage "
+        "| wrap seam error |\n"
+     << "|---|---|---|---|---|---|---|---|---|---|\n";
+  auto mean = [](const std::vector<Row>& v, double Row::*field) {
+    double s = 0;
+    for (const Row& r : v) s += r.*field;
+    return s / static_cast<double>(v.size());
+  };
+  const double fftSeconds = mean(rows["fft + cut"], &Row::seconds);
+  char line[512];
+  for (const Config& c : configs) {
+    const auto& v = rows[c.name];
+    std::snprintf(line, sizeof line, "| %s | %.3f | %.1f | %.3f | %.4f | %.4f | %.4f | %.4f | %.3f | %.4f |\n",
+                  c.name.c_str(), mean(v, &Row::seconds), mean(v, &Row::seconds) / fftSeconds, mean(v, &Row::ratio),
+                  mean(v, &Row::overlapError), mean(v, &Row::seamError), mean(v, &Row::coherence),
+                  mean(v, &Row::verbatim), mean(v, &Row::coverage), mean(v, &Row::wrapError));
+    md << line;
+  }
+  std::fprintf(stderr, "wrote %s and %s\n", (out / "quilt_tradeoff.csv").c_str(), (out / "quilt_tradeoff.md").c_str());
+  return 0;
+}
