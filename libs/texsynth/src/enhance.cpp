@@ -112,17 +112,22 @@ image::Image enhanceContrast(const image::Image& input, const EnhanceOptions& op
   const float lo = std::min(c, d), hi = std::max(c, d);
   const int colour = colourChannels(img);
   const std::size_t n = static_cast<std::size_t>(img.width) * img.height;
-  std::uint64_t below = 0, above = 0;
   for (std::size_t p = 0; p < n; ++p) {
     float* px = &img.pixels[p * img.channels];
     for (int ch = 0; ch < colour; ++ch) {
       const float t = (px[ch] - a) * inv;
-      below += t <= 0.0f;
-      above += t > 1.0f;
       px[ch] = std::clamp(c * (1.0f - t) + d * t, lo, hi);
     }
   }
   if (report) {
+    // Counted on the histogram grid, like the percentiles: a value equal to b is not above b
+    // even where float rounding puts it a hair over.
+    const auto binOf = [](double v) { return static_cast<std::size_t>(std::lround(v * (kBins - 1))); };
+    std::uint64_t below = 0, above = 0;
+    for (std::size_t b = 0; b < bins.size(); ++b) {
+      below += b <= binOf(range.low) ? bins[b] : 0;
+      above += b > binOf(range.high) ? bins[b] : 0;
+    }
     report->input_range = range;
     report->clipped_low = static_cast<double>(below) / static_cast<double>(total);
     report->clipped_high = static_cast<double>(above) / static_cast<double>(total);

@@ -80,6 +80,7 @@ struct BlockRecord {
   long long overlapPixels = 0;
   double chosenError = 0.0;
   double auditRatio = 0.0;  // chosen / floored exhaustive minimum
+  bool auditViolation = false;  // chosen error above the exhaustive search's threshold
   double auditSeconds = 0.0;
 };
 
@@ -141,6 +142,7 @@ class Quilter {
         double exactMin = 0.0;
         cv::minMaxLoc(search_.errors(old, filled, SearchMode::Exhaustive), &exactMin);
         rec.auditRatio = rec.chosenError / std::max(exactMin, floor);
+        rec.auditViolation = rec.chosenError > candidateThreshold(exactMin, overlapPixels * sample_.channels, opts_);
         rec.auditSeconds = secondsSince(start);
       }
     }
@@ -267,7 +269,7 @@ QuiltResult quilt(const image::Image& sample, const QuiltOptions& opts, const st
   s.waves = static_cast<int>(groups.size());
   s.threads = threads;
   double errorSum = 0.0, ratioSum = 0.0;
-  long long candidateSum = 0;
+  long long candidateSum = 0, violations = 0;
   int searched = 0;
   for (const BlockRecord& r : records) {  // summed in block order: the same for any thread count
     s.overlap_pixels += r.overlapPixels;
@@ -277,11 +279,15 @@ QuiltResult quilt(const image::Image& sample, const QuiltOptions& opts, const st
       ++searched;
       candidateSum += r.candidates;
       ratioSum += r.auditRatio;
+      violations += r.auditViolation;
     }
   }
   s.overlap_error_per_pixel = s.overlap_pixels > 0 ? errorSum / static_cast<double>(s.overlap_pixels) : 0.0;
   s.mean_candidates = searched > 0 ? static_cast<double>(candidateSum) / searched : 0.0;
-  if (opts.audit) s.search_error_ratio = searched > 0 ? ratioSum / searched : 1.0;
+  if (opts.audit) {
+    s.search_error_ratio = searched > 0 ? ratioSum / searched : 1.0;
+    s.search_rule_violations = searched > 0 ? static_cast<double>(violations) / searched : 0.0;
+  }
   s.seconds = secondsSince(start);
   return result;
 }

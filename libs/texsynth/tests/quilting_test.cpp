@@ -225,6 +225,7 @@ TEST(Quilt, FftAndExhaustiveSearchesGiveTheSameTexture) {
     // below 1 where that minimum is under the absolute floor).
     EXPECT_GT(fft.stats.search_error_ratio, 0.0);
     EXPECT_LE(fft.stats.search_error_ratio, 1.0 + o.tolerance + 1e-6);
+    EXPECT_EQ(fft.stats.search_rule_violations, 0.0);
   }
 }
 

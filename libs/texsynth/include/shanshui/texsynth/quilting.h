@@ -50,6 +50,9 @@ struct QuiltStats {
   //! With audit: mean over blocks of chosen error / exhaustive minimum (floored as in the
   //! candidate rule); 1 is the best any search can do. −1 without audit.
   double search_error_ratio = -1.0;
+  //! With audit: fraction of blocks whose choice the exhaustive search would not have
+  //! allowed (error above its candidate threshold); 0 for an exact search. −1 without audit.
+  double search_rule_violations = -1.0;
   double audit_seconds = 0.0;           //!< CPU time spent in the audit (part of `seconds`)
 };
 
