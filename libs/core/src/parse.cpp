@@ -43,10 +43,13 @@ double parseDouble(std::string_view text, std::string_view what) {
 
 std::pair<double, double> parsePair(std::string_view text, std::string_view what) {
   const auto colon = text.find(':');
-  if (colon == std::string_view::npos) {
-    throw makeError(what, ": '", text, "' is not a pair; expected A:B, e.g. 0.1:0.9");
+  try {
+    if (colon != std::string_view::npos) {
+      return {parseDouble(text.substr(0, colon), what), parseDouble(text.substr(colon + 1), what)};
+    }
+  } catch (const Error&) {
   }
-  return {parseDouble(text.substr(0, colon), what), parseDouble(text.substr(colon + 1), what)};
+  throw makeError(what, ": '", text, "' is not a pair; expected A:B with two finite numbers, e.g. 0.1:0.9");
 }
 
 }  // namespace shanshui
