@@ -37,4 +37,22 @@ inline mesh::Mesh uvSphere(double radius, int stacks = 48, int slices = 96,
   return m;
 }
 
+//! A regular grid of nx × ny vertices with spacing `cell`, z = height(x, y), CCW seen from +z.
+template <typename Height>
+mesh::Mesh heightGrid(int nx, int ny, double cell, Height height, glm::dvec3 offset = glm::dvec3(0.0)) {
+  mesh::Mesh m;
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i) {
+      const double x = i * cell, y = j * cell;
+      m.positions.push_back(offset + glm::dvec3(x, y, height(x, y)));
+    }
+  const auto at = [&](int i, int j) { return static_cast<unsigned>(j * nx + i); };
+  for (int j = 0; j + 1 < ny; ++j)
+    for (int i = 0; i + 1 < nx; ++i) {
+      m.triangles.emplace_back(at(i, j), at(i + 1, j), at(i + 1, j + 1));
+      m.triangles.emplace_back(at(i, j), at(i + 1, j + 1), at(i, j + 1));
+    }
+  return m;
+}
+
 }  // namespace shanshui::test

@@ -14,7 +14,7 @@ GpuMesh::GpuMesh(const mesh::Mesh& m, const glm::dvec3& centre) {
   for (std::size_t i = 0; i < positions.size(); ++i) positions[i] = glm::vec3(m.positions[i] - centre);
   const std::vector<glm::vec3> normals =
       m.normals.size() == m.positions.size() ? m.normals : mesh::vertexNormals(m);
-  glCreateBuffers(3, buffers_);
+  glCreateBuffers(4, buffers_);
   glNamedBufferStorage(buffers_[0], static_cast<GLsizeiptr>(positions.size() * sizeof(glm::vec3)), positions.data(), 0);
   glNamedBufferStorage(buffers_[1], static_cast<GLsizeiptr>(normals.size() * sizeof(glm::vec3)), normals.data(), 0);
   glNamedBufferStorage(buffers_[2], static_cast<GLsizeiptr>(m.triangles.size() * sizeof(glm::uvec3)),
@@ -26,6 +26,13 @@ GpuMesh::GpuMesh(const mesh::Mesh& m, const glm::dvec3& centre) {
     glVertexArrayAttribBinding(vao_, a, a);
     glEnableVertexArrayAttrib(vao_, a);
   }
+  if (m.uvs.size() == m.positions.size()) {
+    glNamedBufferStorage(buffers_[3], static_cast<GLsizeiptr>(m.uvs.size() * sizeof(glm::vec2)), m.uvs.data(), 0);
+    glVertexArrayVertexBuffer(vao_, 2, buffers_[3], 0, sizeof(glm::vec2));
+    glVertexArrayAttribFormat(vao_, 2, 2, GL_FLOAT, GL_FALSE, 0);
+    glVertexArrayAttribBinding(vao_, 2, 2);
+    glEnableVertexArrayAttrib(vao_, 2);
+  }
   glVertexArrayElementBuffer(vao_, buffers_[2]);
   indexCount_ = static_cast<GLsizei>(m.triangles.size() * 3);
   SHANSHUI_GL_CHECK("GpuMesh upload");
@@ -33,16 +40,16 @@ GpuMesh::GpuMesh(const mesh::Mesh& m, const glm::dvec3& centre) {
 
 void GpuMesh::release() {
   if (vao_) glDeleteVertexArrays(1, &vao_);
-  if (buffers_[0]) glDeleteBuffers(3, buffers_);
+  if (buffers_[0]) glDeleteBuffers(4, buffers_);
   vao_ = 0;
-  buffers_[0] = buffers_[1] = buffers_[2] = 0;
+  buffers_[0] = buffers_[1] = buffers_[2] = buffers_[3] = 0;
 }
 
 GpuMesh::~GpuMesh() { release(); }
 
 GpuMesh::GpuMesh(GpuMesh&& o) noexcept
     : vao_(std::exchange(o.vao_, 0)), indexCount_(std::exchange(o.indexCount_, 0)) {
-  for (int i = 0; i < 3; ++i) buffers_[i] = std::exchange(o.buffers_[i], 0);
+  for (int i = 0; i < 4; ++i) buffers_[i] = std::exchange(o.buffers_[i], 0);
 }
 
 GpuMesh& GpuMesh::operator=(GpuMesh&& o) noexcept {
@@ -50,7 +57,7 @@ GpuMesh& GpuMesh::operator=(GpuMesh&& o) noexcept {
     release();
     vao_ = std::exchange(o.vao_, 0);
     indexCount_ = std::exchange(o.indexCount_, 0);
-    for (int i = 0; i < 3; ++i) buffers_[i] = std::exchange(o.buffers_[i], 0);
+    for (int i = 0; i < 4; ++i) buffers_[i] = std::exchange(o.buffers_[i], 0);
   }
   return *this;
 }

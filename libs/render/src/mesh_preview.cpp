@@ -1,6 +1,8 @@
 #include "shanshui/render/mesh_preview.h"
 
 #include <cmath>
+#include <string>
+#include <vector>
 
 #include "shanshui/core/error.h"
 #include "shanshui/render/gl_check.h"
@@ -20,12 +22,19 @@ void validate(const PreviewOptions& o) {
   }
   if (!(o.zoom > 0 && o.zoom <= 1000)) throw makeError("zoom: ", o.zoom, " is out of range; expected (0, 1000]");
   if (!(glm::length(o.light_dir) > 0)) throw makeError("light direction must be non-zero");
+  if (!(o.checker_squares >= 0 && o.checker_squares <= 1e6)) {
+    throw makeError("checker squares: ", o.checker_squares, " is out of range; expected [0, 1e6]");
+  }
 }
 
-MeshPreview::MeshPreview(const mesh::Mesh& m)
+MeshPreview::MeshPreview(const mesh::Mesh& m, bool checker)
     : bounds_(mesh::bounds(m)),
-      program_({"mesh_preview.vert", "mesh_preview.frag"}),
-      gpu_(m, bounds_.centre()) {}
+      checker_(checker),
+      program_({"mesh_preview.vert", "mesh_preview.frag"}, checker ? std::vector<std::string>{"CHECKER"}
+                                                                    : std::vector<std::string>{}),
+      gpu_(m, bounds_.centre()) {
+  if (checker && m.uvs.size() != m.positions.size()) throw makeError("checker view: the mesh has no UVs");
+}
 
 void MeshPreview::render(const Framebuffer& target, const PreviewOptions& o) const {
   validate(o);
@@ -45,13 +54,14 @@ void MeshPreview::render(const Framebuffer& target, const PreviewOptions& o) con
   program_.set("u_paper", o.paper);
   program_.set("u_ink", o.ink);
   program_.set("u_rim_width", o.rim_width);
+  if (checker_) program_.set("u_checker_squares", o.checker_squares);
   gpu_.draw();
   SHANSHUI_GL_CHECK("mesh preview");
 }
 
 image::Image renderPreview(const mesh::Mesh& m, const PreviewOptions& options) {
   validate(options);
-  const MeshPreview preview(m);
+  const MeshPreview preview(m, options.checker_squares > 0.0f);
   const Framebuffer fb(options.width, options.height, {GL_RGBA8}, true);
   preview.render(fb, options);
   glFinish();

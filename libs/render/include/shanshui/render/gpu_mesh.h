@@ -12,6 +12,7 @@ class GpuMesh {
   GpuMesh() = default;
   //! Positions are uploaded relative to `centre` (subtracted in double first), so meshes
   //! in UTM metres keep their precision. Normals are computed when the mesh has none.
+  //! UVs, when the mesh has them, go to attribute 2.
   GpuMesh(const mesh::Mesh& m, const glm::dvec3& centre);
   ~GpuMesh();
   GpuMesh(GpuMesh&& other) noexcept;
@@ -26,7 +27,7 @@ class GpuMesh {
  private:
   void release();
   GLuint vao_ = 0;
-  GLuint buffers_[3] = {0, 0, 0};
+  GLuint buffers_[4] = {0, 0, 0};
   GLsizei indexCount_ = 0;
 };
 

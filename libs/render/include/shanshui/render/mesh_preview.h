@@ -25,18 +25,23 @@ struct PreviewOptions {
   glm::vec3 paper{0.95f, 0.93f, 0.87f};         //!< background and lightest tone
   glm::vec3 ink{0.08f, 0.08f, 0.09f};           //!< darkest tone
   float rim_width = 0.3f;                       //!< N·V where the silhouette rim fades out
+  //! Checkerboard squares per UV unit over the shading (paper Fig. 5), [0, 1e6]; 0 = none.
+  //! Needs a mesh with UVs; the program is built with the CHECKER variant only then.
+  float checker_squares = 0.0f;
 };
 
 //! Compiled program plus an uploaded mesh; render() can be called for many views.
 class MeshPreview {
  public:
-  explicit MeshPreview(const mesh::Mesh& m);
+  //! `checker`: build the checkerboard variant (the mesh must have UVs).
+  explicit MeshPreview(const mesh::Mesh& m, bool checker = false);
   //! Draws into `target` (bound by the call) with the camera framing the mesh.
   void render(const Framebuffer& target, const PreviewOptions& options) const;
   const mesh::Bounds& bounds() const { return bounds_; }
 
  private:
   mesh::Bounds bounds_;
+  bool checker_;
   Program program_;
   GpuMesh gpu_;
 };

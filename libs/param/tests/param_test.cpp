@@ -1,0 +1,239 @@
+// Parameterization (SPEC.md section 5): distortion metrics against analytic answers, every
+// method on a synthetic mountain, auto on the real DEMs, and the refusals.
+#include <cmath>
+
+#include "shanshui/core/error.h"
+#include "shanshui/mesh/mesh_io.h"
+#include "shanshui/mesh/repair.h"
+#include "shanshui/param/distortion.h"
+#include "shanshui/param/parameterize.h"
+#include "shanshui/param/uv_adjust.h"
+#include "shanshui/terrain/heightfield.h"
+#include "shanshui/terrain/terrain_mesh.h"
+#include "test_meshes.h"
+#include "test_support.h"
+
+namespace shanshui::param {
+namespace {
+
+mesh::Mesh flatGrid(int n = 12) {
+  return test::heightGrid(n, n, 1.0, [](double, double) { return 0.0; });
+}
+
+// A mountain: a Gaussian bump with a ridge, 40×40 vertices, 25 m cells.
+mesh::Mesh mountain() {
+  return test::heightGrid(40, 40, 25.0, [](double x, double y) {
+    const double dx = x - 500, dy = y - 450;
+    return 350.0 * std::exp(-(dx * dx + dy * dy) / (2 * 220.0 * 220.0)) + 60.0 * std::sin(x / 90.0) * std::cos(y / 130.0);
+  });
+}
+
+void setUvs(mesh::Mesh& m, double su, double sv) {
+  m.uvs.clear();
+  for (const glm::dvec3& p : m.positions) m.uvs.emplace_back(static_cast<float>(su * p.x), static_cast<float>(sv * p.y));
+}
+
+TEST(Distortion, IsometricMapIsIdealAtAnyScale) {
+  mesh::Mesh m = flatGrid();
+  for (double scale : {1.0, 0.01, 37.0}) {
+    setUvs(m, scale, scale);
+    const Distortion d = measureDistortion(m);
+    EXPECT_NEAR(d.l2_stretch, 1.0, 1e-6) << scale;
+    EXPECT_NEAR(d.linf_stretch, 1.0, 1e-6);
+    EXPECT_NEAR(d.angle_distortion, 1.0, 1e-6);
+    EXPECT_NEAR(d.area_distortion, 0.0, 1e-6);
+    EXPECT_TRUE(d.valid());
+  }
+}
+
+TEST(Distortion, AnisotropicScaleMatchesTheAnalyticValues) {
+  // u = 2x, v = y. After equalising areas the UV->surface map has singular values
+  // sqrt(2) and 1/sqrt(2): L2 = sqrt((2 + 1/2)/2), Linf = sqrt(2), angle 2, area 0.
+  mesh::Mesh m = flatGrid();
+  setUvs(m, 2.0, 1.0);
+  const Distortion d = measureDistortion(m);
+  EXPECT_NEAR(d.l2_stretch, std::sqrt(1.25), 1e-6);
+  EXPECT_NEAR(d.linf_stretch, std::sqrt(2.0), 1e-6);
+  EXPECT_NEAR(d.angle_distortion, 2.0, 1e-6);
+  EXPECT_NEAR(d.area_distortion, 0.0, 1e-6);
+}
+
+TEST(Distortion, SlopedPlaneProjectedFlatStretchesBySecantOfTheSlope) {
+  // z = x tan(30°) projected to xy: one direction stretched by 1/cos 30°.
+  const double t = std::tan(std::numbers::pi / 6);
+  mesh::Mesh m = test::heightGrid(10, 10, 1.0, [&](double x, double) { return t * x; });
+  setUvs(m, 1.0, 1.0);
+  const Distortion d = measureDistortion(m);
+  const double c = 1.0 / std::cos(std::numbers::pi / 6);
+  const double k = std::sqrt(1.0 / c);  // equal-area normalisation: σ = (c, 1)·k
+  EXPECT_NEAR(d.l2_stretch, k * std::sqrt((c * c + 1) / 2), 1e-6);
+  EXPECT_NEAR(d.angle_distortion, c, 1e-6);
+}
+
+TEST(Distortion, CountsFlippedDegenerateAndNonFiniteFaces) {
+  mesh::Mesh m = flatGrid(6);
+  setUvs(m, 1.0, 1.0);
+  m.uvs[14] = m.uvs[14] + glm::vec2(2.2f, 0.0f);  // folds the faces around vertex 14
+  Distortion d = measureDistortion(m);
+  EXPECT_GT(d.flipped, 0);
+  EXPECT_FALSE(d.valid());
+  setUvs(m, 1.0, 1.0);
+  m.uvs[7] = m.uvs[8];  // collapses two faces
+  d = measureDistortion(m);
+  EXPECT_GE(d.degenerate, 1);
+  setUvs(m, 1.0, 1.0);
+  m.uvs[3].x = std::nanf("");
+  d = measureDistortion(m);
+  EXPECT_GE(d.non_finite, 1);
+  EXPECT_FALSE(d.valid());
+}
+
+TEST(UvAdjust, TexelSizeAndNormalize) {
+  mesh::Mesh m = flatGrid(11);  // 10 x 10 units
+  setUvs(m, 3.0, 3.0);
+  scaleToTexelSize(m, 2.5);
+  float maxU = 0;
+  for (const glm::vec2& uv : m.uvs) maxU = std::max(maxU, uv.x);
+  EXPECT_NEAR(maxU, 4.0f, 1e-5f);  // 10 units / 2.5 units per repeat
+  normalizeUvs(m);
+  glm::vec2 lo(1e9f), hi(-1e9f);
+  for (const glm::vec2& uv : m.uvs) {
+    lo = glm::min(lo, uv);
+    hi = glm::max(hi, uv);
+  }
+  EXPECT_EQ(lo, glm::vec2(0.0f));
+  EXPECT_NEAR(std::max(hi.x, hi.y), 1.0f, 1e-6f);
+  test::expectErrorNaming([&] { scaleToTexelSize(m, 0.0); }, "texel size", "positive");
+}
+
+TEST(Parameterize, EveryMethodGivesAOneToOneMapOnAMountain) {
+  const mesh::Mesh m = mountain();
+  for (Method method : {Method::Xy, Method::Mvc, Method::Dcm, Method::Tutte, Method::Lscm, Method::Arap,
+                        Method::Authalic}) {
+    for (Border border : {Border::Circle, Border::Square}) {
+      ParamOptions o;
+      o.method = method;
+      o.border = border;
+      ParamReport r;
+      const mesh::Mesh out = parameterize(m, o, &r);
+      SCOPED_TRACE(std::string(methodName(method)) + " " + borderName(border));
+      ASSERT_EQ(out.uvs.size(), m.positions.size());
+      const Distortion d = measureDistortion(out);
+      EXPECT_TRUE(d.valid()) << d.summary();
+      EXPECT_NEAR(d.l2_stretch, r.distortion.l2_stretch, 1e-9);
+      EXPECT_EQ(out.positions, m.positions) << "positions must come back unchanged";
+      // Planar projection and ARAP are close to isometric here; LSCM is conformal (angles
+      // kept, areas not) and a little further off.
+      const double limit = method == Method::Xy || method == Method::Arap ? 1.06 : method == Method::Lscm ? 1.15 : 1e9;
+      EXPECT_LT(d.l2_stretch, limit) << d.summary();
+    }
+  }
+}
+
+TEST(Parameterize, AutoOnEveryRealDemIsNearIsometricWithoutFlips) {
+  const std::filesystem::path dems[] = {test::sourceDir() / "samples/terrain/mount_st_helens.dem",
+                                        test::sharedData() / "terrain/jacksboro_fault_dem_u16.png",
+                                        test::sharedData() / "terrain/bc_coast_topobathy.asc"};
+  for (const auto& f : dems) {
+    if (!std::filesystem::exists(f)) {
+      ADD_FAILURE() << "missing " << f;
+      continue;
+    }
+    SCOPED_TRACE(f.filename().string());
+    terrain::HeightfieldOptions ho;
+    if (f.extension() == ".png") ho.cell_size = 90.0;
+    terrain::TerrainMeshOptions mo;
+    mo.max_vertices = 60000;
+    const mesh::Mesh m = terrain::heightfieldToMesh(terrain::loadHeightfield(f, ho), mo);
+    ParamReport r;
+    const mesh::Mesh out = parameterize(m, ParamOptions{}, &r, f.string());
+    EXPECT_LE(r.distortion.l2_stretch, 1.05) << r.distortion.summary();
+    EXPECT_EQ(r.distortion.flipped, 0);
+    EXPECT_TRUE(measureDistortion(out).valid());
+  }
+}
+
+TEST(Parameterize, HugeUtmCoordinatesKeepTheirPrecision) {
+  const mesh::Mesh near = mountain();
+  const mesh::Mesh far = test::heightGrid(40, 40, 25.0, [](double x, double y) {
+    const double dx = x - 500, dy = y - 450;
+    return 350.0 * std::exp(-(dx * dx + dy * dy) / (2 * 220.0 * 220.0)) + 60.0 * std::sin(x / 90.0) * std::cos(y / 130.0);
+  }, glm::dvec3(562710.0, 5114985.0, 1200.0));
+  for (Method method : {Method::Xy, Method::Mvc, Method::Arap}) {
+    ParamOptions o;
+    o.method = method;
+    ParamReport a, b;
+    parameterize(near, o, &a);
+    parameterize(far, o, &b);
+    EXPECT_NEAR(a.distortion.l2_stretch, b.distortion.l2_stretch, 1e-4) << methodName(method);
+    EXPECT_TRUE(b.distortion.valid());
+  }
+}
+
+TEST(Parameterize, AutoSkipsSlowMethodsOnLargeMeshes) {
+  // A steep, folded heightfield where xy is not good enough; ARAP is skipped by size.
+  const mesh::Mesh m = test::heightGrid(60, 60, 1.0, [](double x, double y) { return 8.0 * std::sin(x / 3.0) * std::sin(y / 4.0); });
+  ParamOptions o;
+  o.auto_max_vertices_arap = 1000;
+  ParamReport r;
+  parameterize(m, o, &r);
+  bool arapSkipped = false;
+  for (const MethodTrial& t : r.trials) arapSkipped |= t.method == Method::Arap && !t.ran && t.note.find("3600 vertices") != std::string::npos;
+  EXPECT_TRUE(arapSkipped);
+  EXPECT_TRUE(r.distortion.valid());
+  EXPECT_NE(r.method, Method::Arap);
+}
+
+TEST(Parameterize, RefusesWhatIsNotADisc) {
+  test::expectErrorNaming([] { parameterize(test::uvSphere(1.0, 8, 16), {}, nullptr, "ball.off"); }, "ball.off",
+                          "closed mesh");
+  mesh::Mesh holed = flatGrid(8);
+  holed.triangles.erase(holed.triangles.begin() + 48, holed.triangles.begin() + 50);  // an interior hole
+  test::expectErrorNaming([&] { parameterize(holed, {}, nullptr, "holed.obj"); }, "holed.obj", "2 border loops");
+  mesh::Mesh two = flatGrid(4);
+  const mesh::Mesh other = test::heightGrid(4, 4, 1.0, [](double, double) { return 0.0; }, glm::dvec3(10, 0, 0));
+  const auto n = static_cast<unsigned>(two.positions.size());
+  two.positions.insert(two.positions.end(), other.positions.begin(), other.positions.end());
+  for (glm::uvec3 t : other.triangles) two.triangles.push_back(t + glm::uvec3(n));
+  test::expectErrorNaming([&] { parameterize(two, {}, nullptr, "two.obj"); }, "two.obj", "border loops");
+  mesh::Mesh nan = flatGrid(4);
+  nan.positions[5].z = std::nan("");
+  test::expectErrorNaming([&] { parameterize(nan, {}, nullptr, "nan.ply"); }, "nan.ply", "NaN");
+  test::expectErrorNaming([] { parameterize(mesh::Mesh{}, {}, nullptr, "empty.off"); }, "empty.off", "no triangles");
+  test::expectErrorNaming([] { parseMethod("magic"); }, "--method", "'magic'");
+}
+
+// Every CGAL test mesh (libcgal-demo): after the repair the tool runs, a valid
+// parameterization or a clear refusal, never a crash or NaN.
+TEST(Parameterize, CgalTestMeshesGiveAValidMapOrAClearError) {
+  const char* names[] = {"three_peaks", "elephant-with-holes", "holes", "lion", "blobby_3cc", "triceratops",
+                         "anchor", "degtri_sliding", "oblong-shuffled", "cube-ouvert", "bear", "cube_quad", "cross_quad"};
+  int parameterized = 0;
+  for (const char* name : names) {
+    const std::filesystem::path f = test::cgalMeshes() / (std::string(name) + ".off");
+    if (!std::filesystem::exists(f)) {
+      ADD_FAILURE() << "missing " << f;
+      continue;
+    }
+    SCOPED_TRACE(name);
+    mesh::RepairOptions ro;
+    ro.max_hole_edges = 1 << 30;
+    const mesh::Mesh m = mesh::repairMesh(mesh::readPolygonSoup(f), ro, nullptr, f.string());
+    try {
+      ParamReport r;
+      const mesh::Mesh out = parameterize(m, {}, &r, f.string());
+      EXPECT_TRUE(measureDistortion(out).valid());
+      for (const glm::vec2& uv : out.uvs) ASSERT_TRUE(std::isfinite(uv.x) && std::isfinite(uv.y));
+      ++parameterized;
+    } catch (const Error& e) {
+      const std::string msg = e.what();
+      EXPECT_NE(msg.find(f.string()), std::string::npos) << msg;
+      EXPECT_TRUE(msg.find("closed mesh") != std::string::npos || msg.find("topological disc") != std::string::npos)
+          << msg;
+    }
+  }
+  EXPECT_GE(parameterized, 6);
+}
+
+}  // namespace
+}  // namespace shanshui::param
