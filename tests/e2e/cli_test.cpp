@@ -25,7 +25,7 @@ int lines(const std::string& s) {
 
 TEST(Cli, EveryProgramHasHelpWithAnExample) {
   for (const char* p : {"shanshui-terrain", "shanshui-repair", "shanshui-render", "shanshui-view",
-                        "shanshui-enhance", "shanshui-quilt"}) {
+                        "shanshui-enhance", "shanshui-quilt", "shanshui-param"}) {
     const auto r = run(bin(p) + " --help");
     EXPECT_EQ(r.exit_code, 0) << p;
     EXPECT_NE(r.output.find("Example"), std::string::npos) << p << ": " << r.output;
@@ -215,6 +215,65 @@ TEST(Cli, TextureToolsRefuseBadInputAndWriteNothing) {
   for (const auto& e : std::filesystem::directory_iterator(dir.path())) {
     EXPECT_EQ(e.path().filename().string().find(".tmp"), std::string::npos) << e.path();
   }
+}
+
+TEST(Cli, ParamGivesUvsReportAndCheckerView) {
+  test::TempDir dir;
+  auto r = run(bin("shanshui-terrain") + " " + quote(kDem) + " -o " + quote(dir / "m.obj") + " --max-vertices 20000");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  r = run(bin("shanshui-param") + " " + quote(dir / "m.obj") + " -o " + quote(dir / "uv.obj") +
+          " --texel-size 500 --report " + quote(dir / "p.json") + " --checker " + quote(dir / "c.png"));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const mesh::PolygonSoup soup = mesh::readPolygonSoup(dir / "uv.obj");
+  ASSERT_EQ(soup.uvs.size(), soup.positions.size());
+  // One texture repeat per 500 m: the UVs span about the DEM's extent (~10 km) / 500.
+  float maxU = 0;
+  for (const glm::vec2& uv : soup.uvs) maxU = std::max(maxU, uv.x);
+  EXPECT_GT(maxU, 10.0f);
+  EXPECT_LT(maxU, 40.0f);
+  const auto report = nlohmann::json::parse(readBytes(dir / "p.json"));
+  EXPECT_EQ(report["valid"], true);
+  EXPECT_EQ(report["distortion"]["flipped"], 0);
+  EXPECT_LE(report["distortion"]["l2_stretch"].get<double>(), 1.05);
+  EXPECT_TRUE(report.contains("trials"));
+  EXPECT_TRUE(report.contains("repair"));
+  const image::Image checker = image::loadImage(dir / "c.png");
+  // The checkerboard shows: many pixels darkened by the dark squares, many not.
+  std::size_t dark = 0, light = 0;
+  for (std::size_t i = 0; i < checker.pixels.size(); i += 3) {
+    dark += checker.pixels[i] < 0.6f;
+    light += checker.pixels[i] > 0.8f;
+  }
+  EXPECT_GT(dark, checker.pixels.size() / 3 / 50);
+  EXPECT_GT(light, checker.pixels.size() / 3 / 50);
+}
+
+TEST(Cli, ParamRefusesWhatItCannotFlattenAndWritesNothing) {
+  test::TempDir dir;
+  const std::filesystem::path bear = test::cgalMeshes() / "bear.off";
+  SHANSHUI_REQUIRE_FILE(bear);
+  std::ofstream(dir / "keep.obj") << "precious";
+  std::ofstream(dir / "nan.off") << "OFF\n3 1 0\n0 0 0\n1 0 0\nnan 1 0\n3 0 1 2\n";
+  const std::string keep = " -o " + quote(dir / "keep.obj");
+  const std::string param = bin("shanshui-param") + " ";
+  const std::pair<std::string, std::string> cases[] = {
+      {param + quote(bear) + keep, "closed mesh"},
+      {param + quote(kDem) + keep, "unknown mesh format"},
+      {param + quote(dir / "nan.off") + keep, "nan.off"},
+      {param + quote(bear) + keep + " --method magic", "unknown method 'magic'"},
+      {param + quote(bear) + keep + " --border hexagon", "unknown border 'hexagon'"},
+      {param + quote(bear) + " -o " + quote(dir / "out.ply"), "UVs are only written to .obj"},
+      {param + quote(bear) + keep + " --texel-size -3", "--texel-size: -3"},
+  };
+  for (const auto& [command, names] : cases) {
+    SCOPED_TRACE(command);
+    const auto r = run(command);
+    EXPECT_NE(r.exit_code, 0);
+    EXPECT_EQ(lines(r.output), 1) << r.output;
+    EXPECT_NE(r.output.find(names), std::string::npos) << r.output;
+    EXPECT_EQ(readBytes(dir / "keep.obj"), "precious");
+  }
+  EXPECT_FALSE(std::filesystem::exists(dir / "out.ply"));
 }
 
 }  // namespace

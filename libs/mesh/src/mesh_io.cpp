@@ -101,8 +101,32 @@ void writeOff(const Mesh& m, const fs::path& tmp) {
 
 void writePly(const Mesh& m, const fs::path& tmp);  // ply_io.cpp
 
+// tinyobjloader turns an unparsable coordinate ("nan", "inf", "1.2.3") into 0 without a
+// word; vertex lines are checked here first so such a file is refused, not silently changed.
+void checkObjVertexLines(const fs::path& path) {
+  std::ifstream in(path);
+  std::string line;
+  for (long long number = 1; std::getline(in, line); ++number) {
+    if (line.size() < 2 || line[0] != 'v' || (line[1] != ' ' && line[1] != '\t')) continue;
+    const char* p = line.data() + 2;
+    const char* end = line.data() + line.size();
+    for (int k = 0; k < 3; ++k) {
+      while (p < end && (*p == ' ' || *p == '\t')) ++p;
+      const char* start = p;
+      while (p < end && *p != ' ' && *p != '\t' && *p != '\r') ++p;
+      double value = 0.0;
+      const auto [stop, ec] = std::from_chars(start, p, value);
+      if (start == p || ec != std::errc() || stop != p || !std::isfinite(value)) {
+        throw makeError(path.string(), ": line ", number, ": vertex coordinate '", std::string(start, p),
+                        "' is not a finite number");
+      }
+    }
+  }
+}
+
 PolygonSoup readObj(const fs::path& path) {
   checkReadable(path);
+  checkObjVertexLines(path);
   tinyobj::ObjReaderConfig config;
   config.triangulate = false;
   config.vertex_color = false;

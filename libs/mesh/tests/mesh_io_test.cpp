@@ -94,7 +94,13 @@ TEST(MeshIo, BadInputNamesTheFileAndTheProblem) {
   std::ofstream(dir / "badindex.off") << "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n";
   std::ofstream(dir / "garbage.off") << "OFF\n3 1 0\n0 0 zero\n";
   std::ofstream(dir / "empty.obj").close();
+  // tinyobjloader reads these as 0; the reader must refuse them.
+  std::ofstream(dir / "nan.obj") << "v 0 0 0\nv 1 0 0\nv nan 1 0\nf 1 2 3\n";
+  std::ofstream(dir / "inf.obj") << "# c\nv 0 0 0\nv 1 inf 0\nv 0 1 0\nf 1 2 3\n";
+  std::ofstream(dir / "word.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 zero\nf 1 2 3\n";
   const std::pair<const char*, const char*> cases[] = {
+      {"nan.obj", "line 3: vertex coordinate 'nan'"}, {"inf.obj", "line 3: vertex coordinate 'inf'"},
+      {"word.obj", "'zero'"},
       {"missing.obj", "no such file"}, {"cut.ply", "truncated"},     {"cut.off", "truncated"},
       {"nofaces.obj", "no faces"},     {"badindex.off", "vertex 7"}, {"garbage.off", "'zero'"},
       {"empty.obj", "empty file"},     {"mesh.stl", "unknown mesh format"}};
