@@ -110,6 +110,7 @@ int main(int argc, char** argv) {
       view.width = 1024;
       view.height = 768;
       view.elevation_deg = 35.0;
+      view.zoom = 1.6;
       view.checker_squares = texel->count() > 0 ? 2.0f : 16.0f;
       image::saveImage(render::renderPreview(m, view), checkerPath);
     }

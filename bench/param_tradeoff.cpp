@@ -1,0 +1,157 @@
+// Error against run time for parameterization (SPEC.md sections 5 and 12): distortion and
+// seconds per method on the real DEMs and CGAL's test meshes, plus `auto` end to end
+// (read OBJ, repair, parameterize, write OBJ) on a 230k-vertex mountain. Writes
+// param_tradeoff.csv and param_tradeoff.md.
+//   bench_param_tradeoff [--out DIR] [--max-vertices N]
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "shanshui/core/error.h"
+#include "shanshui/mesh/mesh_io.h"
+#include "shanshui/mesh/repair.h"
+#include "shanshui/param/parameterize.h"
+#include "shanshui/terrain/heightfield.h"
+#include "shanshui/terrain/terrain_mesh.h"
+
+namespace {
+
+using namespace shanshui;
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+struct Input {
+  std::string name;
+  mesh::Mesh mesh;
+};
+
+mesh::Mesh demMesh(const fs::path& f, int maxVertices) {
+  terrain::HeightfieldOptions ho;
+  if (f.extension() == ".png") ho.cell_size = 90.0;  // 3 arc-seconds
+  terrain::TerrainMeshOptions mo;
+  mo.max_vertices = maxVertices;
+  return terrain::heightfieldToMesh(terrain::loadHeightfield(f, ho), mo);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  fs::path out = ".";
+  int maxVertices = 30000;
+  for (int i = 1; i + 1 < argc; i += 2) {
+    const std::string flag = argv[i];
+    if (flag == "--out") out = argv[i + 1];
+    else if (flag == "--max-vertices") maxVertices = std::stoi(argv[i + 1]);
+    else {
+      std::fprintf(stderr, "usage: bench_param_tradeoff [--out DIR] [--max-vertices N]\n");
+      return 2;
+    }
+  }
+  fs::create_directories(out);
+  std::vector<Input> inputs;
+  const fs::path source = SHANSHUI_SOURCE_DIR, data = SHANSHUI_DATA_DIR;
+  for (const fs::path& f : {source / "samples/terrain/mount_st_helens.dem", data / "terrain/jacksboro_fault_dem_u16.png",
+                            data / "terrain/bc_coast_topobathy.asc"}) {
+    if (fs::exists(f)) inputs.push_back({f.filename().string(), demMesh(f, maxVertices)});
+  }
+  for (const char* name : {"three_peaks", "holes", "lion", "blobby_3cc"}) {
+    const fs::path f = fs::path(SHANSHUI_TEST_MESH_DIR) / (std::string(name) + ".off");
+    if (!fs::exists(f)) continue;
+    mesh::RepairOptions ro;
+    ro.max_hole_edges = 1 << 30;
+    inputs.push_back({f.filename().string(), mesh::repairMesh(mesh::readPolygonSoup(f), ro, nullptr, f.string())});
+  }
+
+  struct Config {
+    std::string name;
+    param::Method method;
+    param::Border border;
+  };
+  using param::Border;
+  using param::Method;
+  const std::vector<Config> configs = {
+      {"auto", Method::Auto, Border::Circle},       {"xy", Method::Xy, Border::Circle},
+      {"mvc circle", Method::Mvc, Border::Circle},  {"mvc square", Method::Mvc, Border::Square},
+      {"dcm circle", Method::Dcm, Border::Circle},  {"tutte circle", Method::Tutte, Border::Circle},
+      {"authalic circle", Method::Authalic, Border::Circle}, {"lscm", Method::Lscm, Border::Circle},
+      {"arap", Method::Arap, Border::Circle},
+  };
+  std::ofstream csv(out / "param_tradeoff.csv");
+  csv << "input,vertices,config,seconds,l2_stretch,linf_stretch,angle_distortion,area_distortion,flipped,"
+         "degenerate,valid,note\n";
+  std::ofstream md(out / "param_tradeoff.md");
+  md << "Parameterization: distortion against seconds per method (DEMs decimated to at most " << maxVertices
+     << " vertices). L2/Linf: Sander stretch, angle: mean σ1/σ2, area: mean |log σ1σ2| (all area-weighted; "
+        "1, 1, 1, 0 ideal). Invalid = flipped or degenerate UV faces.\n\n"
+     << "| input | vertices | method | seconds | L2 | Linf | angle | area | valid |\n|---|---|---|---|---|---|---|---|---|\n";
+  char line[512];
+  for (const Input& in : inputs) {
+    for (const Config& c : configs) {
+      param::ParamOptions o;
+      o.method = c.method;
+      o.border = c.border;
+      param::ParamReport r;
+      std::string note;
+      const auto start = Clock::now();
+      try {
+        param::parameterize(in.mesh, o, &r, in.name);
+      } catch (const Error& e) {
+        note = e.what();
+        if (!r.trials.empty()) r.distortion = r.trials.back().distortion;
+      }
+      const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
+      const param::Distortion& d = r.distortion;
+      const std::string label = c.method == Method::Auto ? "auto -> " + std::string(param::methodName(r.method)) : c.name;
+      csv << in.name << "," << in.mesh.vertexCount() << "," << label << "," << seconds << "," << d.l2_stretch << ","
+          << d.linf_stretch << "," << d.angle_distortion << "," << d.area_distortion << "," << d.flipped << ","
+          << d.degenerate << "," << (note.empty() && d.valid()) << ",\"" << note << "\"\n";
+      std::snprintf(line, sizeof line, "| %s | %zu | %s | %.3f | %.4f | %.3g | %.4f | %.4f | %s |\n", in.name.c_str(),
+                    in.mesh.vertexCount(), label.c_str(), seconds, d.l2_stretch, d.linf_stretch, d.angle_distortion,
+                    d.area_distortion, note.empty() && d.valid() ? "yes" : "no");
+      md << line;
+      std::fprintf(stderr, "%s", line);
+    }
+  }
+
+  // auto end to end on a 230k-vertex mountain (480 x 480 grid, 30 m cells).
+  {
+    mesh::Mesh m;
+    const int n = 480;
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        const double x = i * 30.0, y = j * 30.0, dx = x - 7000, dy = y - 7500;
+        m.positions.emplace_back(x + 500000.0, y + 4100000.0,
+                                 1800.0 * std::exp(-(dx * dx + dy * dy) / (2 * 3000.0 * 3000.0)) +
+                                     150.0 * std::sin(x / 700.0) * std::cos(y / 900.0));
+      }
+    for (int j = 0; j + 1 < n; ++j)
+      for (int i = 0; i + 1 < n; ++i) {
+        const unsigned a = static_cast<unsigned>(j * n + i);
+        m.triangles.emplace_back(a, a + 1, a + n + 1);
+        m.triangles.emplace_back(a, a + n + 1, a + n);
+      }
+    const fs::path in = out / "mountain_230k.obj", result = out / "mountain_230k_uv.obj";
+    mesh::writeMesh(m, in);
+    const auto start = Clock::now();
+    mesh::Mesh read = mesh::repairMesh(mesh::readPolygonSoup(in), {}, nullptr, in.string());
+    param::ParamReport r;
+    read = param::parameterize(read, {}, &r, in.string());
+    mesh::writeMesh(read, result);
+    const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
+    std::snprintf(line, sizeof line,
+                  "\n`auto` end to end on a %zu-vertex mountain (read OBJ, repair, parameterize, write OBJ): %.2f s "
+                  "(parameterization %.2f s, method %s, L2 %.4f, %d flipped).\n",
+                  m.vertexCount(), seconds, r.seconds, param::methodName(r.method), r.distortion.l2_stretch,
+                  r.distortion.flipped);
+    md << line;
+    std::fprintf(stderr, "%s", line);
+    fs::remove(in);
+    fs::remove(result);
+  }
+  std::fprintf(stderr, "wrote %s and %s\n", (out / "param_tradeoff.csv").c_str(), (out / "param_tradeoff.md").c_str());
+  return 0;
+}
