@@ -250,14 +250,14 @@ TEST(Cli, ParamGivesUvsReportAndCheckerView) {
 
 TEST(Cli, ParamRefusesWhatItCannotFlattenAndWritesNothing) {
   test::TempDir dir;
-  const std::filesystem::path bear = test::cgalMeshes() / "bear.off";
+  const std::filesystem::path bear = test::cgalMeshes() / "anchor.off";  // closed, genus 4
   SHANSHUI_REQUIRE_FILE(bear);
   std::ofstream(dir / "keep.obj") << "precious";
   std::ofstream(dir / "nan.off") << "OFF\n3 1 0\n0 0 0\n1 0 0\nnan 1 0\n3 0 1 2\n";
   const std::string keep = " -o " + quote(dir / "keep.obj");
   const std::string param = bin("shanshui-param") + " ";
   const std::pair<std::string, std::string> cases[] = {
-      {param + quote(bear) + keep, "closed mesh"},
+      {param + quote(bear) + keep, "closed mesh of genus 4"},
       {param + quote(kDem) + keep, "unknown mesh format"},
       {param + quote(dir / "nan.off") + keep, "nan.off"},
       {param + quote(bear) + keep + " --method magic", "unknown method 'magic'"},

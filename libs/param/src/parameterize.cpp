@@ -9,6 +9,7 @@
 
 #include "cgal_methods.h"
 #include "shanshui/core/error.h"
+#include "shanshui/param/seam_cut.h"
 
 namespace shanshui::param {
 namespace {
@@ -143,25 +144,31 @@ mesh::Mesh parameterize(const mesh::Mesh& input, const ParamOptions& opts, Param
   for (const glm::dvec3& p : input.positions) {
     if (!std::isfinite(p.x + p.y + p.z)) throw makeError(what, ": NaN or infinite vertex coordinates; repair the mesh first");
   }
-  const int loops = borderLoops(input);
-  if (loops == 0) {
-    throw makeError(what, ": closed mesh (no border): it cannot be flattened without a seam; cut it open "
-                          "first (seam cutting is not supported)");
+  // A closed sphere-like mesh is cut open along one seam first.
+  mesh::Mesh disc;
+  int seamVertices = 0;
+  if (borderLoops(input) == 0) {
+    SeamCut cut = cutOpen(input, what);
+    disc = std::move(cut.mesh);
+    seamVertices = static_cast<int>(cut.seam.size());
+  } else {
+    disc = input;
   }
+  const int loops = borderLoops(disc);
   if (loops > 1) {
     throw makeError(what, ": ", loops, " border loops (holes or several components); fill the holes and keep "
                           "one component first (shanshui-repair)");
   }
-  const auto uses = edgeUses(input);
-  const long long euler = static_cast<long long>(input.positions.size()) - static_cast<long long>(uses.size()) +
-                          static_cast<long long>(input.triangles.size());
+  const auto uses = edgeUses(disc);
+  const long long euler = static_cast<long long>(disc.positions.size()) - static_cast<long long>(uses.size()) +
+                          static_cast<long long>(disc.triangles.size());
   if (euler != 1) {
     throw makeError(what, ": not a topological disc (Euler characteristic ", euler,
                     ", expected 1: handles or several components); parameterization needs a disc");
   }
 
   // Recentre in double: UTM-sized coordinates would lose precision in the solvers.
-  mesh::Mesh m = input;
+  mesh::Mesh m = disc;
   glm::dvec3 centre(0.0);
   for (const glm::dvec3& p : m.positions) centre += p;
   centre /= static_cast<double>(m.positions.size());
@@ -171,6 +178,7 @@ mesh::Mesh parameterize(const mesh::Mesh& input, const ParamOptions& opts, Param
   ParamReport local;
   ParamReport& r = report ? *report : local;
   r = {};
+  r.seam_vertices = seamVertices;
   const int vertices = static_cast<int>(m.positions.size());
   mesh::Mesh best;
   bool haveBest = false;
@@ -218,6 +226,9 @@ mesh::Mesh parameterize(const mesh::Mesh& input, const ParamOptions& opts, Param
       }
       consider(method);
     }
+    // Last resort: Tutte's barycentric map onto a convex border is one-to-one in exact
+    // arithmetic (Tutte 1963, Floater 2003), whatever the mesh.
+    if (!haveBest && vertices <= opts.auto_max_vertices_linear) consider(Method::Tutte);
     if (!haveBest) {
       std::ostringstream s;
       for (const MethodTrial& t : r.trials) {
@@ -227,7 +238,7 @@ mesh::Mesh parameterize(const mesh::Mesh& input, const ParamOptions& opts, Param
     }
   }
   r.seconds = std::chrono::duration<double>(Clock::now() - start).count();
-  best.positions = input.positions;  // keep the caller's coordinates
+  best.positions = disc.positions;  // the caller's coordinates (plus seam copies)
   return best;
 }
 
