@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -12,6 +13,7 @@
 #include <numbers>
 #include <random>
 #include <string>
+#include <vector>
 
 
 namespace shanshui::test {
@@ -22,6 +24,17 @@ inline fs::path sourceDir() { return SHANSHUI_SOURCE_DIR; }
 inline fs::path binDir() { return SHANSHUI_BIN_DIR; }
 inline fs::path sharedData() { return SHANSHUI_DATA_DIR; }
 inline fs::path cgalMeshes() { return SHANSHUI_TEST_MESH_DIR; }
+
+//! Every texture scan in the shared data (sorted); empty when the data is absent.
+inline std::vector<fs::path> sharedTextures() {
+  std::vector<fs::path> files;
+  const fs::path dir = sharedData() / "textures";
+  if (fs::is_directory(dir)) {
+    for (const auto& e : fs::directory_iterator(dir)) files.push_back(e.path());
+  }
+  std::sort(files.begin(), files.end());
+  return files;
+}
 
 //! Skips the calling test when an input is missing, saying which.
 #define SHANSHUI_REQUIRE_FILE(path)                                               \

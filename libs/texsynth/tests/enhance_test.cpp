@@ -16,16 +16,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::vector<fs::path> textures() {
-  std::vector<fs::path> files;
-  const fs::path dir = test::sharedData() / "textures";
-  if (fs::is_directory(dir)) {
-    for (const auto& e : fs::directory_iterator(dir)) files.push_back(e.path());
-  }
-  std::sort(files.begin(), files.end());
-  return files;
-}
-
 // The oracle: OpenImageIO's linear contrast remap of every channel, then a clamp to [c, d].
 image::Image oiioRemap(const image::Image& img, float a, float b, float c, float d) {
   const OIIO::ImageSpec spec(img.width, img.height, img.channels, OIIO::TypeDesc::FLOAT);
@@ -46,7 +36,7 @@ image::Image randomImage(int w, int h, int channels, int levels, unsigned seed) 
 }
 
 TEST(Enhance, MatchesOpenImageIOContrastRemapExactlyOnEveryTexture) {
-  const auto files = textures();
+  const auto files = test::sharedTextures();
   if (files.empty()) GTEST_SKIP() << "no textures in " << test::sharedData();
   const ValueRange ranges[][2] = {{{0.2, 0.8}, {0.0, 1.0}}, {{0.1, 0.95}, {0.05, 0.9}}, {{0.3, 0.31}, {1.0, 0.0}}};
   for (const fs::path& f : files) {

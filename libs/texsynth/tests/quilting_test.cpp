@@ -14,16 +14,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::vector<fs::path> textures() {
-  std::vector<fs::path> files;
-  const fs::path dir = test::sharedData() / "textures";
-  if (fs::is_directory(dir)) {
-    for (const auto& e : fs::directory_iterator(dir)) files.push_back(e.path());
-  }
-  std::sort(files.begin(), files.end());
-  return files;
-}
-
 #define REQUIRE_TEXTURES(files) \
   if ((files).empty()) GTEST_SKIP() << "no textures in " << test::sharedData() / "textures"
 
@@ -59,7 +49,7 @@ std::vector<int> candidateSet(const cv::Mat& e, long long values) {
 }
 
 TEST(OverlapSearch, FftEqualsExhaustiveOnEveryTextureAndMaskShape) {
-  const auto files = textures();
+  const auto files = test::sharedTextures();
   REQUIRE_TEXTURES(files);
   const int b = 24;
   for (const fs::path& f : files) {
@@ -132,7 +122,7 @@ void expectEveryPixelFromTheSample(const image::Image& sample, const QuiltResult
 }
 
 TEST(Quilt, EveryTextureEverySeamGivesPixelsFromTheSampleAndBeatsRandomPlacement) {
-  const auto files = textures();
+  const auto files = test::sharedTextures();
   REQUIRE_TEXTURES(files);
   for (const fs::path& f : files) {
     const image::Image sample = image::loadImage(f);
@@ -230,7 +220,7 @@ TEST(Quilt, FftAndExhaustiveSearchesGiveTheSameTexture) {
 }
 
 TEST(Quilt, TileableOutputWrapsWithoutASeam) {
-  const auto files = textures();
+  const auto files = test::sharedTextures();
   REQUIRE_TEXTURES(files);
   for (const fs::path& f : files) {
     SCOPED_TRACE(f.filename().string());
