@@ -72,6 +72,9 @@ int main(int argc, char** argv) {
 
     param::ParamReport report;
     m = param::parameterize(m, options, &report, input);
+    if (report.seam_vertices > 0) {
+      std::fprintf(stderr, "%s: closed mesh cut open along a seam of %d vertices\n", input.c_str(), report.seam_vertices);
+    }
     if (texel->count() > 0) {
       param::scaleToTexelSize(m, texelSize);
     } else {
@@ -89,6 +92,7 @@ int main(int argc, char** argv) {
       j["requested_method"] = methodName;
       j["border"] = borderName;
       j["seconds"] = report.seconds;
+      j["seam_vertices"] = report.seam_vertices;
       j["vertices"] = m.vertexCount();
       j["faces"] = m.triangleCount();
       j["distortion"] = distortionJson(report.distortion);
