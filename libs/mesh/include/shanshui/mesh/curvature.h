@@ -1,0 +1,32 @@
+// Object-space curvature per vertex, for the feature lines of seed 001 Eq. 1 (SPEC.md
+// section 6): precomputed on load and passed to the line pass as a vertex attribute.
+#pragma once
+
+#include <vector>
+
+#include "shanshui/mesh/mesh.h"
+
+namespace shanshui::mesh {
+
+//! Discrete differential geometry at the vertices (Meyer, Desbrun, Schröder, Barr 2003):
+//! mean curvature from the cotangent Laplace–Beltrami operator, Gaussian curvature from the
+//! angle defect, both over mixed Voronoi areas; principal curvatures from the two.
+struct VertexCurvature {
+  std::vector<float> mean;      //!< H, signed: positive where the surface bends away from the normal
+  std::vector<float> gaussian;  //!< K
+  std::vector<float> k1, k2;    //!< principal curvatures, k1 >= k2 (H ± sqrt(max(H² − K, 0)))
+  //! |k1| ≥ |k2| magnitude used by the line pass: max(|k1|, |k2|), in 1/mesh units.
+  std::vector<float> magnitude;
+};
+
+//! Border vertices get the values of their nearest interior neighbour (their angle defect
+//! and Voronoi cells are incomplete). The mesh must be a triangle mesh; degenerate faces
+//! contribute nothing.
+VertexCurvature estimateCurvature(const Mesh& mesh);
+
+//! A length that makes curvature dimensionless: 1 / (the `percentile` of |k| over the
+//! vertices, area-weighted), as rtsc does, so `curve_factor` means the same on any mesh.
+//! percentile in (0, 100); returns 0 for a flat mesh.
+double curvatureFeatureSize(const Mesh& mesh, const VertexCurvature& curvature, double percentile = 90.0);
+
+}  // namespace shanshui::mesh

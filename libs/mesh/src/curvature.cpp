@@ -1,0 +1,152 @@
+#include "shanshui/mesh/curvature.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <queue>
+
+#include "shanshui/core/error.h"
+
+namespace shanshui::mesh {
+namespace {
+
+double cotangent(const glm::dvec3& a, const glm::dvec3& b) {
+  const double s = glm::length(glm::cross(a, b));
+  return s > 0.0 ? glm::dot(a, b) / s : 0.0;
+}
+
+}  // namespace
+
+VertexCurvature estimateCurvature(const Mesh& m) {
+  const std::size_t n = m.positions.size();
+  std::vector<glm::dvec3> laplace(n, glm::dvec3(0.0));  // Σ (cot α + cot β)(x_j − x_i)
+  std::vector<double> area(n, 0.0), angleSum(n, 0.0);
+  std::vector<glm::dvec3> normal(n, glm::dvec3(0.0));
+  // Border detection: an edge used once.
+  std::vector<std::pair<std::uint64_t, int>> edges;
+  edges.reserve(m.triangles.size() * 3);
+  for (const glm::uvec3& t : m.triangles) {
+    const std::uint32_t v[3] = {t.x, t.y, t.z};
+    const glm::dvec3 p[3] = {m.positions[v[0]], m.positions[v[1]], m.positions[v[2]]};
+    const glm::dvec3 faceNormal = glm::cross(p[1] - p[0], p[2] - p[0]);
+    const double twiceArea = glm::length(faceNormal);
+    for (int k = 0; k < 3; ++k) {
+      const std::uint32_t a = v[k], b = v[(k + 1) % 3];
+      edges.emplace_back((static_cast<std::uint64_t>(std::min(a, b)) << 32) | std::max(a, b), 1);
+    }
+    if (!(twiceArea > 0.0)) continue;
+    for (int k = 0; k < 3; ++k) {
+      const int i = k, j = (k + 1) % 3, l = (k + 2) % 3;
+      const glm::dvec3 eij = p[j] - p[i], eil = p[l] - p[i];
+      // Angle at i; the edge j-l opposite to it gets cot(angle i).
+      const double cotI = cotangent(eij, eil);
+      laplace[v[j]] += cotI * (p[l] - p[j]);
+      laplace[v[l]] += cotI * (p[j] - p[l]);
+      angleSum[v[i]] += std::atan2(glm::length(glm::cross(eij, eil)), glm::dot(eij, eil));
+      normal[v[i]] += faceNormal;
+    }
+    // Mixed area (Meyer et al., Fig. 4): Voronoi for non-obtuse triangles, else halves.
+    const double faceArea = 0.5 * twiceArea;
+    for (int k = 0; k < 3; ++k) {
+      const int i = k, j = (k + 1) % 3, l = (k + 2) % 3;
+      const glm::dvec3 eij = p[j] - p[i], eil = p[l] - p[i], ejl = p[l] - p[j];
+      const bool obtuseI = glm::dot(eij, eil) < 0.0;
+      const bool obtuseJ = glm::dot(-eij, ejl) < 0.0;
+      const bool obtuseL = glm::dot(-eil, -ejl) < 0.0;
+      if (obtuseI) {
+        area[v[i]] += faceArea / 2.0;
+      } else if (obtuseJ || obtuseL) {
+        area[v[i]] += faceArea / 4.0;
+      } else {
+        area[v[i]] += (glm::dot(eij, eij) * cotangent(-ejl, -eil) + glm::dot(eil, eil) * cotangent(ejl, -eij)) / 8.0;
+      }
+    }
+  }
+  std::sort(edges.begin(), edges.end());
+  std::vector<bool> border(n, false);
+  for (std::size_t e = 0; e < edges.size();) {
+    std::size_t f = e;
+    while (f < edges.size() && edges[f].first == edges[e].first) ++f;
+    if (f - e == 1) {
+      border[edges[e].first >> 32] = true;
+      border[edges[e].first & 0xffffffffu] = true;
+    }
+    e = f;
+  }
+
+  VertexCurvature c;
+  c.mean.assign(n, 0.0f);
+  c.gaussian.assign(n, 0.0f);
+  std::vector<bool> known(n, false);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (border[i] || !(area[i] > 0.0)) continue;
+    // The cotangent Laplacian over the mixed area is the mean curvature normal 2H·n
+    // (Meyer et al., Eq. 8); it points to the side the surface bends towards.
+    const glm::dvec3 meanVector = laplace[i] / (2.0 * area[i]);
+    const double sign = glm::dot(meanVector, normal[i]) < 0.0 ? 1.0 : -1.0;
+    c.mean[i] = static_cast<float>(sign * glm::length(meanVector) / 2.0);
+    c.gaussian[i] = static_cast<float>((2.0 * std::numbers::pi - angleSum[i]) / area[i]);
+    known[i] = true;
+  }
+  // Border vertices (and isolated ones) copy their nearest known neighbour, breadth first.
+  std::vector<std::vector<std::uint32_t>> neighbours(n);
+  for (const glm::uvec3& t : m.triangles) {
+    neighbours[t.x].push_back(t.y);
+    neighbours[t.y].push_back(t.z);
+    neighbours[t.z].push_back(t.x);
+    neighbours[t.y].push_back(t.x);
+    neighbours[t.z].push_back(t.y);
+    neighbours[t.x].push_back(t.z);
+  }
+  std::queue<std::uint32_t> frontier;
+  for (std::uint32_t i = 0; i < n; ++i)
+    if (known[i]) frontier.push(i);
+  while (!frontier.empty()) {
+    const std::uint32_t i = frontier.front();
+    frontier.pop();
+    for (std::uint32_t j : neighbours[i]) {
+      if (known[j]) continue;
+      known[j] = true;
+      c.mean[j] = c.mean[i];
+      c.gaussian[j] = c.gaussian[i];
+      frontier.push(j);
+    }
+  }
+  c.k1.resize(n);
+  c.k2.resize(n);
+  c.magnitude.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const double h = c.mean[i], root = std::sqrt(std::max(h * h - c.gaussian[i], 0.0));
+    c.k1[i] = static_cast<float>(h + root);
+    c.k2[i] = static_cast<float>(h - root);
+    c.magnitude[i] = std::max(std::abs(c.k1[i]), std::abs(c.k2[i]));
+  }
+  return c;
+}
+
+double curvatureFeatureSize(const Mesh& m, const VertexCurvature& c, double percentile) {
+  if (!(percentile > 0.0 && percentile < 100.0)) {
+    throw makeError("curvature feature size: percentile ", percentile, "; expected (0, 100)");
+  }
+  SHANSHUI_CHECK_EQ(c.magnitude.size(), m.positions.size());
+  // Area weight per vertex: a third of the incident faces' areas.
+  std::vector<std::pair<float, double>> weighted(m.positions.size());
+  for (std::size_t i = 0; i < weighted.size(); ++i) weighted[i] = {c.magnitude[i], 0.0};
+  double total = 0.0;
+  for (const glm::uvec3& t : m.triangles) {
+    const double a = glm::length(glm::cross(m.positions[t.y] - m.positions[t.x], m.positions[t.z] - m.positions[t.x])) / 6.0;
+    weighted[t.x].second += a;
+    weighted[t.y].second += a;
+    weighted[t.z].second += a;
+    total += 3.0 * a;
+  }
+  std::sort(weighted.begin(), weighted.end());
+  double sum = 0.0;
+  for (const auto& [k, w] : weighted) {
+    sum += w;
+    if (sum >= percentile / 100.0 * total) return k > 0.0f ? 1.0 / k : 0.0;
+  }
+  return 0.0;
+}
+
+}  // namespace shanshui::mesh
