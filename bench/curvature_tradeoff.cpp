@@ -1,0 +1,104 @@
+// Error against run time for object-space curvature (SPEC.md sections 6 and 12): the
+// cotangent estimator on a unit sphere and a torus (R = 3, r = 1) at increasing resolution;
+// error = median and 95th-percentile relative error of the mean curvature against the
+// analytic value. Writes curvature_tradeoff.md and .csv.
+//   bench_curvature_tradeoff [--out DIR]
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include "shanshui/mesh/curvature.h"
+
+namespace {
+
+using namespace shanshui;
+using Clock = std::chrono::steady_clock;
+
+struct Surface {
+  mesh::Mesh mesh;
+  std::vector<double> mean;  // analytic |H| per vertex
+};
+
+Surface sphere(int stacks) {
+  Surface s;
+  const int slices = 2 * stacks;
+  const double pi = std::numbers::pi;
+  s.mesh.positions.emplace_back(0, 0, 1);
+  for (int i = 1; i < stacks; ++i)
+    for (int j = 0; j < slices; ++j) {
+      const double t = pi * i / stacks, p = 2 * pi * j / slices;
+      s.mesh.positions.emplace_back(std::sin(t) * std::cos(p), std::sin(t) * std::sin(p), std::cos(t));
+    }
+  s.mesh.positions.emplace_back(0, 0, -1);
+  const auto ring = [&](int i, int j) { return 1u + static_cast<unsigned>((i - 1) * slices + (j % slices)); };
+  const auto south = static_cast<unsigned>(s.mesh.positions.size() - 1);
+  for (int j = 0; j < slices; ++j) {
+    s.mesh.triangles.emplace_back(0u, ring(1, j), ring(1, j + 1));
+    for (int i = 1; i + 1 < stacks; ++i) {
+      s.mesh.triangles.emplace_back(ring(i, j), ring(i + 1, j), ring(i + 1, j + 1));
+      s.mesh.triangles.emplace_back(ring(i, j), ring(i + 1, j + 1), ring(i, j + 1));
+    }
+    s.mesh.triangles.emplace_back(ring(stacks - 1, j), south, ring(stacks - 1, j + 1));
+  }
+  s.mean.assign(s.mesh.positions.size(), 1.0);
+  return s;
+}
+
+Surface torus(int nv) {
+  Surface s;
+  const int nu = 2 * nv;
+  const double big = 3, small = 1;
+  for (int i = 0; i < nu; ++i)
+    for (int j = 0; j < nv; ++j) {
+      const double u = 2 * std::numbers::pi * i / nu, v = 2 * std::numbers::pi * j / nv;
+      s.mesh.positions.emplace_back((big + small * std::cos(v)) * std::cos(u),
+                                    (big + small * std::cos(v)) * std::sin(u), small * std::sin(v));
+      s.mean.push_back((big + 2 * small * std::cos(v)) / (2 * small * (big + small * std::cos(v))));
+    }
+  const auto at = [&](int i, int j) { return static_cast<unsigned>((i % nu) * nv + (j % nv)); };
+  for (int i = 0; i < nu; ++i)
+    for (int j = 0; j < nv; ++j) {
+      s.mesh.triangles.emplace_back(at(i, j), at(i + 1, j), at(i + 1, j + 1));
+      s.mesh.triangles.emplace_back(at(i, j), at(i + 1, j + 1), at(i, j + 1));
+    }
+  return s;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::filesystem::path out = ".";
+  if (argc == 3 && std::string(argv[1]) == "--out") out = argv[2];
+  std::filesystem::create_directories(out);
+  std::ofstream csv(out / "curvature_tradeoff.csv"), md(out / "curvature_tradeoff.md");
+  csv << "surface,resolution,vertices,milliseconds,median_rel_error,p95_rel_error\n";
+  md << "Cotangent mean curvature against the analytic value (relative error of |H| per vertex).\n\n"
+     << "| surface | resolution | vertices | ms | median error | 95th percentile |\n|---|---|---|---|---|---|\n";
+  for (const char* name : {"sphere", "torus"}) {
+    for (int res : {8, 16, 32, 64, 128, 256}) {
+      const Surface s = std::string(name) == "sphere" ? sphere(res) : torus(res);
+      const int repeats = std::max(1, 200000 / static_cast<int>(s.mesh.positions.size()));
+      mesh::VertexCurvature c;
+      const auto start = Clock::now();
+      for (int r = 0; r < repeats; ++r) c = mesh::estimateCurvature(s.mesh);
+      const double ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count() / repeats;
+      std::vector<double> e;
+      for (std::size_t i = 0; i < s.mean.size(); ++i) e.push_back(std::abs(std::abs(c.mean[i]) - s.mean[i]) / s.mean[i]);
+      std::sort(e.begin(), e.end());
+      const double median = e[e.size() / 2], p95 = e[e.size() * 95 / 100];
+      csv << name << "," << res << "," << s.mesh.positions.size() << "," << ms << "," << median << "," << p95 << "\n";
+      char line[256];
+      std::snprintf(line, sizeof line, "| %s | %d | %zu | %.3f | %.2e | %.2e |\n", name, res, s.mesh.positions.size(), ms,
+                    median, p95);
+      md << line;
+      std::fputs(line, stderr);
+    }
+  }
+  return 0;
+}
