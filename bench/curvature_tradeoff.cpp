@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "shanshui/mesh/curvature.h"
+#include "test_meshes.h"  // tests/support: the analytic surfaces the tests use
 
 namespace {
 
@@ -26,47 +27,16 @@ struct Surface {
 };
 
 Surface sphere(int stacks) {
-  Surface s;
-  const int slices = 2 * stacks;
-  const double pi = std::numbers::pi;
-  s.mesh.positions.emplace_back(0, 0, 1);
-  for (int i = 1; i < stacks; ++i)
-    for (int j = 0; j < slices; ++j) {
-      const double t = pi * i / stacks, p = 2 * pi * j / slices;
-      s.mesh.positions.emplace_back(std::sin(t) * std::cos(p), std::sin(t) * std::sin(p), std::cos(t));
-    }
-  s.mesh.positions.emplace_back(0, 0, -1);
-  const auto ring = [&](int i, int j) { return 1u + static_cast<unsigned>((i - 1) * slices + (j % slices)); };
-  const auto south = static_cast<unsigned>(s.mesh.positions.size() - 1);
-  for (int j = 0; j < slices; ++j) {
-    s.mesh.triangles.emplace_back(0u, ring(1, j), ring(1, j + 1));
-    for (int i = 1; i + 1 < stacks; ++i) {
-      s.mesh.triangles.emplace_back(ring(i, j), ring(i + 1, j), ring(i + 1, j + 1));
-      s.mesh.triangles.emplace_back(ring(i, j), ring(i + 1, j + 1), ring(i, j + 1));
-    }
-    s.mesh.triangles.emplace_back(ring(stacks - 1, j), south, ring(stacks - 1, j + 1));
-  }
+  Surface s{test::uvSphere(1.0, stacks, 2 * stacks), {}};
   s.mean.assign(s.mesh.positions.size(), 1.0);
   return s;
 }
 
 Surface torus(int nv) {
-  Surface s;
-  const int nu = 2 * nv;
   const double big = 3, small = 1;
-  for (int i = 0; i < nu; ++i)
-    for (int j = 0; j < nv; ++j) {
-      const double u = 2 * std::numbers::pi * i / nu, v = 2 * std::numbers::pi * j / nv;
-      s.mesh.positions.emplace_back((big + small * std::cos(v)) * std::cos(u),
-                                    (big + small * std::cos(v)) * std::sin(u), small * std::sin(v));
-      s.mean.push_back((big + 2 * small * std::cos(v)) / (2 * small * (big + small * std::cos(v))));
-    }
-  const auto at = [&](int i, int j) { return static_cast<unsigned>((i % nu) * nv + (j % nv)); };
-  for (int i = 0; i < nu; ++i)
-    for (int j = 0; j < nv; ++j) {
-      s.mesh.triangles.emplace_back(at(i, j), at(i + 1, j), at(i + 1, j + 1));
-      s.mesh.triangles.emplace_back(at(i, j), at(i + 1, j + 1), at(i, j + 1));
-    }
+  std::vector<double> cosV;
+  Surface s{test::torus(big, small, 2 * nv, nv, &cosV), {}};
+  for (double c : cosV) s.mean.push_back((big + 2 * small * c) / (2 * small * (big + small * c)));
   return s;
 }
 

@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <vector>
 
 #include "shanshui/mesh/mesh.h"
 
@@ -34,6 +35,28 @@ inline mesh::Mesh uvSphere(double radius, int stacks = 48, int slices = 96,
     m.triangles.emplace_back(ring(stacks - 1, j), south, ring(stacks - 1, j + 1));
   }
   m.normals = mesh::vertexNormals(m);
+  return m;
+}
+
+//! A torus around +z with tube radius `small` at distance `big`, nu × nv vertices (u around
+//! the axis, v around the tube); `cosV`, when given, receives cos v per vertex (the
+//! analytic curvatures depend on it: K = cos v / (small (big + small cos v)),
+//! H = (big + 2 small cos v) / (2 small (big + small cos v))).
+inline mesh::Mesh torus(double big, double small, int nu, int nv, std::vector<double>* cosV = nullptr) {
+  mesh::Mesh m;
+  for (int i = 0; i < nu; ++i)
+    for (int j = 0; j < nv; ++j) {
+      const double u = 2 * std::numbers::pi * i / nu, v = 2 * std::numbers::pi * j / nv;
+      m.positions.emplace_back((big + small * std::cos(v)) * std::cos(u), (big + small * std::cos(v)) * std::sin(u),
+                               small * std::sin(v));
+      if (cosV) cosV->push_back(std::cos(v));
+    }
+  const auto at = [&](int i, int j) { return static_cast<unsigned>((i % nu) * nv + (j % nv)); };
+  for (int i = 0; i < nu; ++i)
+    for (int j = 0; j < nv; ++j) {
+      m.triangles.emplace_back(at(i, j), at(i + 1, j), at(i + 1, j + 1));
+      m.triangles.emplace_back(at(i, j), at(i + 1, j + 1), at(i, j + 1));
+    }
   return m;
 }
 

@@ -10,24 +10,6 @@
 namespace shanshui::mesh {
 namespace {
 
-Mesh torus(double big, double small, int nu, int nv, std::vector<double>* cosV) {
-  Mesh m;
-  for (int i = 0; i < nu; ++i)
-    for (int j = 0; j < nv; ++j) {
-      const double u = 2 * std::numbers::pi * i / nu, v = 2 * std::numbers::pi * j / nv;
-      m.positions.emplace_back((big + small * std::cos(v)) * std::cos(u), (big + small * std::cos(v)) * std::sin(u),
-                               small * std::sin(v));
-      cosV->push_back(std::cos(v));
-    }
-  const auto at = [&](int i, int j) { return static_cast<unsigned>((i % nu) * nv + (j % nv)); };
-  for (int i = 0; i < nu; ++i)
-    for (int j = 0; j < nv; ++j) {
-      m.triangles.emplace_back(at(i, j), at(i + 1, j), at(i + 1, j + 1));
-      m.triangles.emplace_back(at(i, j), at(i + 1, j + 1), at(i, j + 1));
-    }
-  return m;
-}
-
 double relativeMedianError(const std::vector<float>& got, const std::vector<double>& expected) {
   std::vector<double> e;
   for (std::size_t i = 0; i < got.size(); ++i) e.push_back(std::abs(got[i] - expected[i]) / std::max(std::abs(expected[i]), 1e-9));
@@ -72,7 +54,7 @@ TEST(Curvature, JitteredSphereStaysCloseOnAverage) {
 TEST(Curvature, TorusMatchesTheAnalyticCurvatures) {
   const double big = 3.0, small = 1.0;
   std::vector<double> cosV;
-  const Mesh m = torus(big, small, 120, 60, &cosV);
+  const Mesh m = test::torus(big, small, 120, 60, &cosV);
   const VertexCurvature c = estimateCurvature(m);
   std::vector<double> k, h;
   for (double cv : cosV) {

@@ -184,23 +184,6 @@ TEST(Parameterize, AutoSkipsSlowMethodsOnLargeMeshes) {
   EXPECT_NE(r.method, Method::Arap);
 }
 
-mesh::Mesh torus(double big, double small, int nu, int nv) {
-  mesh::Mesh m;
-  for (int i = 0; i < nu; ++i)
-    for (int j = 0; j < nv; ++j) {
-      const double u = 2 * std::numbers::pi * i / nu, v = 2 * std::numbers::pi * j / nv;
-      m.positions.emplace_back((big + small * std::cos(v)) * std::cos(u), (big + small * std::cos(v)) * std::sin(u),
-                               small * std::sin(v));
-    }
-  const auto at = [&](int i, int j) { return static_cast<unsigned>((i % nu) * nv + (j % nv)); };
-  for (int i = 0; i < nu; ++i)
-    for (int j = 0; j < nv; ++j) {
-      m.triangles.emplace_back(at(i, j), at(i + 1, j), at(i + 1, j + 1));
-      m.triangles.emplace_back(at(i, j), at(i + 1, j + 1), at(i, j + 1));
-    }
-  return m;
-}
-
 TEST(Parameterize, ClosedSphereIsCutOpenAlongOneSeam) {
   const mesh::Mesh sphere = test::uvSphere(2.0, 16, 32);
   for (Method method : {Method::Auto, Method::Tutte, Method::Lscm, Method::Arap}) {
@@ -219,7 +202,7 @@ TEST(Parameterize, ClosedSphereIsCutOpenAlongOneSeam) {
 }
 
 TEST(Parameterize, RefusesWhatIsNotADisc) {
-  test::expectErrorNaming([] { parameterize(torus(3.0, 1.0, 24, 12), {}, nullptr, "ring.off"); }, "ring.off",
+  test::expectErrorNaming([] { parameterize(test::torus(3.0, 1.0, 24, 12), {}, nullptr, "ring.off"); }, "ring.off",
                           "closed mesh of genus 1");
   mesh::Mesh holed = flatGrid(8);
   holed.triangles.erase(holed.triangles.begin() + 48, holed.triangles.begin() + 50);  // an interior hole
