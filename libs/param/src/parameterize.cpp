@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <map>
 #include <numeric>
 #include <sstream>
 
@@ -30,15 +29,41 @@ int findRoot(std::vector<int>& parent, int i) {
   return i;
 }
 
-// Edge use counts, shared by the border and Euler-characteristic checks.
-std::map<std::uint64_t, int> edgeUses(const mesh::Mesh& m) {
-  std::map<std::uint64_t, int> uses;
+// Border loops and edge count of a triangle mesh, from one sorted list of undirected edges
+// (an edge used by one triangle is a border edge).
+struct Topology {
+  int border_loops = 0;
+  std::size_t edges = 0;
+};
+
+Topology topology(const mesh::Mesh& m) {
+  std::vector<std::uint64_t> keys;
+  keys.reserve(3 * m.triangles.size());
   for (const glm::uvec3& t : m.triangles) {
-    ++uses[edgeKey(t.x, t.y)];
-    ++uses[edgeKey(t.y, t.z)];
-    ++uses[edgeKey(t.z, t.x)];
+    keys.push_back(edgeKey(t.x, t.y));
+    keys.push_back(edgeKey(t.y, t.z));
+    keys.push_back(edgeKey(t.z, t.x));
   }
-  return uses;
+  std::sort(keys.begin(), keys.end());
+  std::vector<int> parent(m.positions.size());
+  std::iota(parent.begin(), parent.end(), 0);
+  std::vector<bool> onBorder(m.positions.size(), false);
+  Topology top;
+  for (std::size_t e = 0; e < keys.size();) {
+    std::size_t f = e + 1;
+    while (f < keys.size() && keys[f] == keys[e]) ++f;
+    ++top.edges;
+    if (f - e == 1) {
+      const int a = static_cast<int>(keys[e] >> 32), b = static_cast<int>(keys[e] & 0xffffffffu);
+      onBorder[a] = onBorder[b] = true;
+      parent[findRoot(parent, a)] = findRoot(parent, b);
+    }
+    e = f;
+  }
+  for (std::size_t v = 0; v < parent.size(); ++v) {
+    top.border_loops += onBorder[v] && findRoot(parent, static_cast<int>(v)) == static_cast<int>(v);
+  }
+  return top;
 }
 
 std::vector<glm::dvec2> runMethod(const mesh::Mesh& m, Method method, const ParamOptions& opts) {
@@ -118,20 +143,7 @@ Border parseBorder(const std::string& text) {
   throw makeError("--border: unknown border '", text, "'; expected circle or square");
 }
 
-int borderLoops(const mesh::Mesh& m) {
-  std::vector<int> parent(m.positions.size());
-  std::iota(parent.begin(), parent.end(), 0);
-  std::vector<bool> onBorder(m.positions.size(), false);
-  for (const auto& [key, count] : edgeUses(m)) {
-    if (count != 1) continue;
-    const int a = static_cast<int>(key >> 32), b = static_cast<int>(key & 0xffffffffu);
-    onBorder[a] = onBorder[b] = true;
-    parent[findRoot(parent, a)] = findRoot(parent, b);
-  }
-  int loops = 0;
-  for (std::size_t v = 0; v < parent.size(); ++v) loops += onBorder[v] && findRoot(parent, static_cast<int>(v)) == static_cast<int>(v);
-  return loops;
-}
+int borderLoops(const mesh::Mesh& m) { return topology(m).border_loops; }
 
 mesh::Mesh parameterize(const mesh::Mesh& input, const ParamOptions& opts, ParamReport* report, const std::string& what) {
   if (opts.authalic_iterations < 1 || opts.authalic_iterations > 1000) {
@@ -147,20 +159,20 @@ mesh::Mesh parameterize(const mesh::Mesh& input, const ParamOptions& opts, Param
   // A closed sphere-like mesh is cut open along one seam first.
   mesh::Mesh disc;
   int seamVertices = 0;
-  if (borderLoops(input) == 0) {
+  Topology top = topology(input);
+  if (top.border_loops == 0) {
     SeamCut cut = cutOpen(input, what);
     disc = std::move(cut.mesh);
     seamVertices = static_cast<int>(cut.seam.size());
+    top = topology(disc);
   } else {
     disc = input;
   }
-  const int loops = borderLoops(disc);
-  if (loops > 1) {
-    throw makeError(what, ": ", loops, " border loops (holes or several components); fill the holes and keep "
-                          "one component first (shanshui-repair)");
+  if (top.border_loops > 1) {
+    throw makeError(what, ": ", top.border_loops, " border loops (holes or several components); fill the holes "
+                          "and keep one component first (shanshui-repair)");
   }
-  const auto uses = edgeUses(disc);
-  const long long euler = static_cast<long long>(disc.positions.size()) - static_cast<long long>(uses.size()) +
+  const long long euler = static_cast<long long>(disc.positions.size()) - static_cast<long long>(top.edges) +
                           static_cast<long long>(disc.triangles.size());
   if (euler != 1) {
     throw makeError(what, ": not a topological disc (Euler characteristic ", euler,

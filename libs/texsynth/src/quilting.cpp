@@ -76,7 +76,7 @@ std::vector<std::vector<int>> waves(const Layout& L, int block) {
 }
 
 struct BlockRecord {
-  int candidates = 0;       // 0 for blocks placed without a search
+  int candidates = 0;       // windows the block was drawn from (all of them without a search)
   long long overlapPixels = 0;
   double chosenError = 0.0;
   double auditRatio = 0.0;  // chosen / floored exhaustive minimum
