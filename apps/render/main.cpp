@@ -1,40 +1,111 @@
-// shanshui-render: headless (EGL) rendering of a mesh to an image.
+// shanshui-render: headless (EGL) ink-wash rendering of a scene to images and statistics.
 #include <cstdio>
+#include <filesystem>
+#include <fstream>
 
+#include <nlohmann/json.hpp>
+
+#include "shanshui/core/atomic_output.h"
 #include "shanshui/core/parse.h"
 #include "shanshui/image/image_io.h"
-#include "shanshui/mesh/mesh_io.h"
-#include "shanshui/mesh/repair.h"
 #include "shanshui/render/gl_context.h"
-#include "shanshui/render/mesh_preview.h"
+#include "shanshui/render/ink_renderer.h"
+#include "shanshui/scene/scene.h"
 #include "tool_main.h"
 
+namespace {
+
+using namespace shanshui;
+
+// out.png, frame 3 of 10 -> out_0003.png; a printf pattern (%04d) is used as given.
+std::filesystem::path framePath(const std::string& pattern, int index, int count) {
+  if (count <= 1) return pattern;
+  if (pattern.find('%') != std::string::npos) {
+    char buf[4096];
+    std::snprintf(buf, sizeof buf, pattern.c_str(), index);
+    return buf;
+  }
+  const std::filesystem::path p(pattern);
+  char suffix[32];
+  std::snprintf(suffix, sizeof suffix, "_%04d", index);
+  return p.parent_path() / (p.stem().string() + suffix + p.extension().string());
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
-  using namespace shanshui;
-  CLI::App app{"Renders a mesh headless (EGL, no display needed) to an image.", "shanshui-render"};
-  app.footer("Example:\n  shanshui-render out/st_helens.obj -o out/st_helens.png --size 1280x800");
-  std::string input, output, size = "1024x768";
-  render::PreviewOptions options;
+  CLI::App app{"Renders a scene (or a single mesh or DEM with default ink parameters) headless, with EGL: "
+               "no display needed.",
+               "shanshui-render"};
+  app.footer(
+      "Examples:\n"
+      "  shanshui-render samples/scenes/default.json -o out/mountain.png\n"
+      "  shanshui-render samples/scenes/default.json -o out/orbit.png --frames 36 --orbit 360 --stats out/stats.json\n"
+      "  shanshui-render samples/scenes/default.json -o out/a.png --set objects.0.lines.curve_factor=2 "
+      "--set canvas.type=none\n"
+      "  shanshui-render out/mountain.obj -o out/mountain.png --size 1280x800\n"
+      "Scene keys: docs/scene.md.");
+  std::string input, output, size, stats_path;
+  std::vector<std::string> sets;
+  int frames = 1;
+  double orbit = 360.0;
   bool verbose = false;
-  app.add_option("input", input, "mesh (.obj, .ply, .off)")->required();
-  app.add_option("-o,--output", output, "image to write (.png, .jpg, .tif, .exr)")->required();
-  app.add_option("--size", size, "output size WxH")->default_val("1024x768");
-  app.add_option("--azimuth", options.azimuth_deg, "camera angle around +Z, degrees")->default_val(-60.0);
-  app.add_option("--elevation", options.elevation_deg, "camera angle above the horizon, degrees")->default_val(25.0);
-  app.add_option("--zoom", options.zoom, "> 1 moves the camera closer")->default_val(1.0);
-  app.add_flag("-v,--verbose", verbose, "print the GL platform");
+  app.add_option("scene", input, "scene (.json), or a mesh (.obj .ply .off) or DEM (.dem .asc) to render alone")
+      ->required();
+  app.add_option("-o,--output", output, "image to write (.png .jpg .tif .exr); numbered with --frames")->required();
+  app.add_option("--size", size, "output size WxH (default: the scene's output.width x output.height)");
+  app.add_option("--frames", frames, "render N frames along camera.path, or an orbit without one")->default_val(1);
+  app.add_option("--orbit", orbit, "degrees turned around +Z over the frames (no camera.path)")->default_val(360.0);
+  app.add_option("--set", sets, "override a scene key, dotted path = JSON value (repeatable)");
+  app.add_option("--stats", stats_path, "write JSON statistics: passes built, per frame time and pass GPU times");
+  app.add_flag("-v,--verbose", verbose, "print the GL platform and load times");
   return tools::runTool(app, argc, argv, [&] {
-    const Size2 s = parseSize(size, "--size");
-    options.width = s.width;
-    options.height = s.height;
-    render::validate(options);
-    mesh::RepairReport report;
-    const mesh::Mesh m = mesh::repairMesh(mesh::readPolygonSoup(input), {}, &report, input);
-    if (report.changed()) std::fprintf(stderr, "note: %s: repaired: %s\n", input.c_str(), report.summary().c_str());
+    if (frames < 1 || frames > 100000) throw makeError("--frames: ", frames, " is out of range; expected [1, 100000]");
+    if (!std::isfinite(orbit)) throw makeError("--orbit: must be finite");
+    if (size.size()) {
+      const Size2 s = parseSize(size, "--size");
+      sets.push_back("output.width=" + std::to_string(s.width));
+      sets.push_back("output.height=" + std::to_string(s.height));
+    }
+    const scene::Scene sc = scene::loadSceneInput(input, sets);
+    for (int i = 0; i < frames; ++i) checkOutputPath(framePath(output, i, frames));
+    if (!stats_path.empty()) checkOutputPath(stats_path);
+
+    scene::AssetCache cache;
+    const auto objects = cache.getAll(sc);
     const auto context = render::GlContext::create({.kind = render::ContextKind::Headless});
     if (verbose) std::fprintf(stderr, "%s\n", context->description().c_str());
-    const image::Image img = render::renderPreview(m, options);
-    image::saveImage(img, output);
-    std::printf("%s\n", output.c_str());
+    render::InkRenderer renderer(sc, objects);
+
+    nlohmann::json stats;
+    stats["scene"] = input;
+    stats["device"] = context->description();
+    stats["size"] = {sc.output.width, sc.output.height};
+    stats["triangles"] = renderer.triangleCount();
+    stats["passes_built"] = renderer.passesBuilt();
+    stats["variants"] = renderer.variants();
+    stats["load_seconds"] = nlohmann::json::array();
+    for (const auto& o : objects) stats["load_seconds"].push_back(o.geometry->load_seconds);
+    stats["frames"] = nlohmann::json::array();
+    for (int i = 0; i < frames; ++i) {
+      render::FrameStats fs;
+      const image::Image img = renderer.renderImage(render::frameKey(sc, i, frames, orbit), &fs);
+      const std::filesystem::path path = framePath(output, i, frames);
+      image::saveImage(img, path);
+      nlohmann::json f = {{"index", i}, {"file", path.string()}, {"frame_ms", fs.frame_ms}, {"cached", fs.cached}};
+      f["passes"] = nlohmann::json::object();
+      for (const auto& p : fs.passes) f["passes"][p.name] = p.gpu_ms;
+      stats["frames"].push_back(f);
+      if (frames > 1) std::fprintf(stderr, "\rframe %d/%d", i + 1, frames);
+      std::printf("%s\n", path.string().c_str());
+    }
+    if (frames > 1) std::fprintf(stderr, "\n");
+    if (!stats_path.empty()) {
+      writeAtomically(stats_path, [&](const std::filesystem::path& tmp) {
+        std::ofstream out(tmp);
+        out << stats.dump(2) << "\n";
+        if (!out.flush()) throw makeError(tmp.string(), ": write failed");
+      });
+    }
   });
 }

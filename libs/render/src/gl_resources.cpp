@@ -9,13 +9,13 @@
 
 namespace shanshui::render {
 
-Texture2D::Texture2D(int width, int height, GLenum internal_format)
+Texture2D::Texture2D(int width, int height, GLenum internal_format, int levels)
     : width_(width), height_(height), format_(internal_format) {
   if (width <= 0 || height <= 0 || width > 16384 || height > 16384) {
     throw makeError("texture size ", width, "x", height, " is out of range (1..16384)");
   }
   glCreateTextures(GL_TEXTURE_2D, 1, &id_);
-  glTextureStorage2D(id_, 1, internal_format, width, height);
+  glTextureStorage2D(id_, levels, internal_format, width, height);
   glTextureParameteri(id_, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
   glTextureParameteri(id_, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
   glTextureParameteri(id_, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
@@ -36,6 +36,22 @@ Texture2D Texture2D::fromImage(const image::Image& img, GLenum internal_format) 
   }
   glTextureSubImage2D(t.id_, 0, 0, 0, img.width, img.height, GL_RGBA, GL_FLOAT, flipped.data());
   SHANSHUI_GL_CHECK("Texture2D upload");
+  return t;
+}
+
+Texture2D Texture2D::tiledFromImage(const image::Image& img, GLenum internal_format) {
+  if (img.empty()) throw makeError("cannot upload an empty image");
+  int levels = 1;
+  while ((std::max(img.width, img.height) >> levels) > 0) ++levels;
+  Texture2D t(img.width, img.height, internal_format, levels);
+  const image::Image rgba = image::toRgba(img);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  glTextureSubImage2D(t.id_, 0, 0, 0, img.width, img.height, GL_RGBA, GL_FLOAT, rgba.pixels.data());
+  glGenerateTextureMipmap(t.id_);
+  glTextureParameteri(t.id_, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+  glTextureParameteri(t.id_, GL_TEXTURE_WRAP_S, GL_REPEAT);
+  glTextureParameteri(t.id_, GL_TEXTURE_WRAP_T, GL_REPEAT);
+  SHANSHUI_GL_CHECK("Texture2D tiled upload");
   return t;
 }
 

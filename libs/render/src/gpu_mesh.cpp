@@ -8,13 +8,13 @@
 
 namespace shanshui::render {
 
-GpuMesh::GpuMesh(const mesh::Mesh& m, const glm::dvec3& centre) {
+GpuMesh::GpuMesh(const mesh::Mesh& m, const glm::dvec3& centre, const std::vector<float>* scalar) {
   if (m.triangles.empty()) throw makeError("cannot draw a mesh without triangles");
   std::vector<glm::vec3> positions(m.positions.size());
   for (std::size_t i = 0; i < positions.size(); ++i) positions[i] = glm::vec3(m.positions[i] - centre);
   const std::vector<glm::vec3> normals =
       m.normals.size() == m.positions.size() ? m.normals : mesh::vertexNormals(m);
-  glCreateBuffers(4, buffers_);
+  glCreateBuffers(5, buffers_);
   glNamedBufferStorage(buffers_[0], static_cast<GLsizeiptr>(positions.size() * sizeof(glm::vec3)), positions.data(), 0);
   glNamedBufferStorage(buffers_[1], static_cast<GLsizeiptr>(normals.size() * sizeof(glm::vec3)), normals.data(), 0);
   glNamedBufferStorage(buffers_[2], static_cast<GLsizeiptr>(m.triangles.size() * sizeof(glm::uvec3)),
@@ -33,6 +33,14 @@ GpuMesh::GpuMesh(const mesh::Mesh& m, const glm::dvec3& centre) {
     glVertexArrayAttribBinding(vao_, 2, 2);
     glEnableVertexArrayAttrib(vao_, 2);
   }
+  if (scalar) {
+    if (scalar->size() != m.positions.size()) throw makeError("GpuMesh: ", scalar->size(), " scalars for ", m.positions.size(), " vertices");
+    glNamedBufferStorage(buffers_[4], static_cast<GLsizeiptr>(scalar->size() * sizeof(float)), scalar->data(), 0);
+    glVertexArrayVertexBuffer(vao_, 3, buffers_[4], 0, sizeof(float));
+    glVertexArrayAttribFormat(vao_, 3, 1, GL_FLOAT, GL_FALSE, 0);
+    glVertexArrayAttribBinding(vao_, 3, 3);
+    glEnableVertexArrayAttrib(vao_, 3);
+  }
   glVertexArrayElementBuffer(vao_, buffers_[2]);
   indexCount_ = static_cast<GLsizei>(m.triangles.size() * 3);
   SHANSHUI_GL_CHECK("GpuMesh upload");
@@ -40,16 +48,16 @@ GpuMesh::GpuMesh(const mesh::Mesh& m, const glm::dvec3& centre) {
 
 void GpuMesh::release() {
   if (vao_) glDeleteVertexArrays(1, &vao_);
-  if (buffers_[0]) glDeleteBuffers(4, buffers_);
+  if (buffers_[0]) glDeleteBuffers(5, buffers_);
   vao_ = 0;
-  buffers_[0] = buffers_[1] = buffers_[2] = buffers_[3] = 0;
+  for (GLuint& b : buffers_) b = 0;
 }
 
 GpuMesh::~GpuMesh() { release(); }
 
 GpuMesh::GpuMesh(GpuMesh&& o) noexcept
     : vao_(std::exchange(o.vao_, 0)), indexCount_(std::exchange(o.indexCount_, 0)) {
-  for (int i = 0; i < 4; ++i) buffers_[i] = std::exchange(o.buffers_[i], 0);
+  for (int i = 0; i < 5; ++i) buffers_[i] = std::exchange(o.buffers_[i], 0);
 }
 
 GpuMesh& GpuMesh::operator=(GpuMesh&& o) noexcept {
@@ -57,7 +65,7 @@ GpuMesh& GpuMesh::operator=(GpuMesh&& o) noexcept {
     release();
     vao_ = std::exchange(o.vao_, 0);
     indexCount_ = std::exchange(o.indexCount_, 0);
-    for (int i = 0; i < 4; ++i) buffers_[i] = std::exchange(o.buffers_[i], 0);
+    for (int i = 0; i < 5; ++i) buffers_[i] = std::exchange(o.buffers_[i], 0);
   }
   return *this;
 }

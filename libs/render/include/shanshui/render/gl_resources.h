@@ -12,10 +12,12 @@ namespace shanshui::render {
 class Texture2D {
  public:
   Texture2D() = default;
-  //! Immutable storage, one mip level. internal_format e.g. GL_RGBA8, GL_RGBA32F, GL_R32F.
-  Texture2D(int width, int height, GLenum internal_format);
+  //! Immutable storage with `levels` mip levels. internal_format e.g. GL_RGBA8, GL_RGBA32F.
+  Texture2D(int width, int height, GLenum internal_format, int levels = 1);
   //! Uploads an Image (1-4 channels, float) into a texture of the given format.
   static Texture2D fromImage(const image::Image& img, GLenum internal_format = GL_RGBA8);
+  //! A repeating, trilinear-mipmapped texture for surface detail (wrinkles, noise).
+  static Texture2D tiledFromImage(const image::Image& img, GLenum internal_format);
   ~Texture2D();
   Texture2D(Texture2D&& other) noexcept;
   Texture2D& operator=(Texture2D&& other) noexcept;

@@ -3,6 +3,8 @@
 
 #include <epoxy/gl.h>
 
+#include <vector>
+
 #include "shanshui/mesh/mesh.h"
 
 namespace shanshui::render {
@@ -12,8 +14,9 @@ class GpuMesh {
   GpuMesh() = default;
   //! Positions are uploaded relative to `centre` (subtracted in double first), so meshes
   //! in UTM metres keep their precision. Normals are computed when the mesh has none.
-  //! UVs, when the mesh has them, go to attribute 2.
-  GpuMesh(const mesh::Mesh& m, const glm::dvec3& centre);
+  //! UVs, when the mesh has them, go to attribute 2; a per-vertex scalar (curvature), when
+  //! given, to attribute 3.
+  GpuMesh(const mesh::Mesh& m, const glm::dvec3& centre, const std::vector<float>* scalar = nullptr);
   ~GpuMesh();
   GpuMesh(GpuMesh&& other) noexcept;
   GpuMesh& operator=(GpuMesh&& other) noexcept;
@@ -27,7 +30,7 @@ class GpuMesh {
  private:
   void release();
   GLuint vao_ = 0;
-  GLuint buffers_[4] = {0, 0, 0};
+  GLuint buffers_[5] = {0, 0, 0, 0, 0};
   GLsizei indexCount_ = 0;
 };
 

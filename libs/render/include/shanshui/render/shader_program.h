@@ -43,6 +43,7 @@ class Program {
   void use() const;
   void set(const char* name, int v) const;
   void set(const char* name, float v) const;
+  void set(const char* name, const glm::vec2& v) const;
   void set(const char* name, const glm::vec3& v) const;
   void set(const char* name, const glm::vec4& v) const;
   void set(const char* name, const glm::mat3& v) const;

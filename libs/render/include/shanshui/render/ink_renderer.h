@@ -1,0 +1,122 @@
+// The ink-wash renderer (SPEC.md sections 6, 7, 10): G-buffer → feature lines → interior
+// shading (with wrinkles) → composite, built from a scene with only the passes and shader
+// variants the scene uses. The headless renderer and the viewer both draw through it.
+#pragma once
+
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "shanshui/render/camera.h"
+#include "shanshui/render/gl_resources.h"
+#include "shanshui/render/gpu_mesh.h"
+#include "shanshui/render/gpu_timer.h"
+#include "shanshui/render/shader_program.h"
+#include "shanshui/scene/scene.h"
+#include "shanshui/scene/scene_assets.h"
+
+namespace shanshui::render {
+
+//! What one call of InkRenderer::render did.
+struct FrameStats {
+  bool cached = false;              //!< nothing changed: the previous image was presented
+  double frame_ms = 0.0;            //!< CPU wall time of the call (including the wait when timing)
+  std::vector<PassTime> passes;     //!< passes that ran, in order, with GPU milliseconds
+};
+
+//! The camera of a scene for one view: orbit parameters from the scene (or a path key),
+//! target and distance framed on the world bounds when the scene leaves them out.
+OrbitCamera sceneCamera(const scene::Scene& s, const mesh::Bounds& world_bounds, double aspect,
+                        const scene::CameraKey& key);
+
+//! The camera key of frame `index` of `count`: along camera.path when the scene has one,
+//! else the scene camera turned by orbit_deg · index / count around +Z.
+scene::CameraKey frameKey(const scene::Scene& s, int index, int count, double orbit_deg);
+
+class InkRenderer {
+ public:
+  //! Uploads the objects and compiles the programs the scene needs. `objects` come from
+  //! scene::AssetCache::getAll(s). Needs a current GL 4.5 context.
+  InkRenderer(const scene::Scene& s, const std::vector<scene::LoadedObject>& objects);
+
+  //! A string that changes exactly when a scene change needs a new InkRenderer (files,
+  //! object count, passes, shader variants); other changes go through setScene().
+  static std::string structureKey(const scene::Scene& s);
+
+  //! Takes new parameters; the scene must have the same structureKey.
+  void setScene(const scene::Scene& s);
+  const scene::Scene& scene() const { return scene_; }
+
+  //! Renders the view into an internal RGBA8 framebuffer and returns it; an identical
+  //! request (camera, size, parameters) returns the cached image without running a pass.
+  //! With timing, waits for the GPU and fills stats->passes with GPU times.
+  const Framebuffer& render(const OrbitCamera& camera, int width, int height, FrameStats* stats = nullptr,
+                            bool timing = true);
+
+  //! Renders a frame of the scene's own camera (key) at the scene's output size and reads it
+  //! back: RGB, row 0 at the top.
+  image::Image renderImage(const scene::CameraKey& key, FrameStats* stats = nullptr);
+
+  //! Recompiles every program from the current shader sources; on a compile error the old
+  //! programs stay and the error is thrown.
+  void reloadShaders();
+
+  //! Pass names in execution order, and the defines each pass's programs were built with.
+  const std::vector<std::string>& passesBuilt() const { return passes_; }
+  const std::map<std::string, std::vector<std::string>>& variants() const { return variants_; }
+  const mesh::Bounds& worldBounds() const { return world_bounds_; }
+  std::size_t triangleCount() const;
+
+ private:
+  struct GpuObject {
+    GpuMesh mesh;                      //!< uploaded relative to the centre of model_bounds
+    mesh::Bounds model_bounds;
+    double model_feature_size = 0.0;   //!< model units
+    glm::dmat4 model{1.0};             //!< uploaded coordinates to world (setScene)
+    glm::dvec3 centre{0.0};            //!< world, of the bounding sphere
+    double radius = 1.0;               //!< world bounding-sphere radius
+    double feature_size = 0.0;         //!< world units
+    int program = 0;                   //!< index into gbuffer_programs_
+    std::optional<Texture2D> wrinkle;
+  };
+  struct GbufferProgram {
+    std::vector<std::string> defines;
+    Program program;
+  };
+
+  void buildPrograms();
+  void ensureTargets(int width, int height);
+  void uploadObjectParams(const OrbitCamera& camera, int height);
+  std::string requestKey(const OrbitCamera& camera, int width, int height) const;
+
+  scene::Scene scene_;
+  std::vector<GpuObject> objects_;
+  mesh::Bounds world_bounds_;
+  std::vector<std::string> passes_;
+  std::map<std::string, std::vector<std::string>> variants_;
+  bool lines_ = false, shading_ = false, wrinkles_ = false;
+
+  std::vector<GbufferProgram> gbuffer_programs_;
+  Program lines_program_, shading_program_, composite_program_;
+  GLuint empty_vao_ = 0;
+  GLuint params_buffer_ = 0;
+  std::size_t params_capacity_ = 0;
+  std::optional<Texture2D> noise_;
+
+  Framebuffer gbuffer_, lines_target_, shading_target_, final_;
+  GpuTimer timer_;
+  std::string last_key_;
+
+ public:
+  InkRenderer(const InkRenderer&) = delete;
+  InkRenderer& operator=(const InkRenderer&) = delete;
+  ~InkRenderer();
+};
+
+//! The erosion and added noise of the shading (two channels, tileable, values in [0, 1]):
+//! value noise with three octaves on a periodic lattice, the same for the same seed.
+image::Image erosionNoise(int size, std::uint64_t seed);
+
+}  // namespace shanshui::render

@@ -1,0 +1,410 @@
+#include "shanshui/render/ink_renderer.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <numbers>
+#include <limits>
+#include <sstream>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <nlohmann/json.hpp>
+
+#include "shanshui/core/error.h"
+#include "shanshui/core/random.h"
+#include "shanshui/render/gl_check.h"
+
+namespace shanshui::render {
+
+namespace {
+
+// std430 mirror of ObjectParams in shaders/ink_objects.glsl.
+struct ObjectParamsGpu {
+  glm::vec4 line_color, bg_color, line_misc, tones, thresholds, shade_misc, shade_misc2;
+};
+static_assert(sizeof(ObjectParamsGpu) == 7 * 16);
+
+constexpr int kLinesOn = 1, kNormalOnly = 2;
+constexpr int kShadingOn = 1, kHalfLambert = 2, kLineValue = 4, kWrinkled = 8;
+
+bool wrinkled(const scene::Object& o) { return !o.wrinkle.texture.empty() && o.shading.enabled; }
+
+std::vector<std::string> gbufferDefines(const scene::Scene& s, const scene::Object& o) {
+  std::vector<std::string> d;
+  if (s.usesShading()) d.emplace_back("SURFACE");
+  if (wrinkled(o)) d.emplace_back("WRINKLE");
+  if (o.lines.enabled) {
+    d.emplace_back(o.lines.curvature == scene::CurvatureSource::Object ? "OBJECT_CURVATURE" : "SCREEN_CURVATURE");
+  }
+  return d;
+}
+
+std::string joined(const std::vector<std::string>& v) {
+  std::string s;
+  for (const auto& x : v) s += (s.empty() ? "" : " ") + x;
+  return s;
+}
+
+glm::vec4 v4(const glm::dvec3& v, double w) { return glm::vec4(glm::vec3(v), static_cast<float>(w)); }
+
+}  // namespace
+
+OrbitCamera sceneCamera(const scene::Scene& s, const mesh::Bounds& world_bounds, double aspect,
+                        const scene::CameraKey& key) {
+  const scene::Camera& c = s.camera;
+  OrbitCamera cam = frameBounds(world_bounds, key.azimuth_deg, key.elevation_deg, c.fov_y_deg, aspect, key.zoom);
+  cam.target += world_bounds.centre();
+  const double radius = std::max(0.5 * glm::length(world_bounds.size()), 1e-6);
+  if (c.target || c.distance > 0) {
+    if (c.target) cam.target = *c.target;
+    if (c.distance > 0) cam.distance = c.distance / key.zoom;
+    // The planes enclose the bounds seen from wherever the camera now is.
+    const double to_centre = glm::length(cam.eye() - world_bounds.centre());
+    cam.near_plane = std::max(to_centre - radius * 1.01, std::max(cam.distance, to_centre) * 1e-4);
+    cam.far_plane = to_centre + radius * 1.01;
+  }
+  return cam;
+}
+
+scene::CameraKey frameKey(const scene::Scene& s, int index, int count, double orbit_deg) {
+  const scene::Camera& c = s.camera;
+  scene::CameraKey key{c.azimuth_deg, c.elevation_deg, c.zoom};
+  if (count <= 1) return key;
+  if (!c.path.empty()) {
+    if (c.path.size() == 1) return c.path[0];
+    const double x = static_cast<double>(index) / (count - 1) * static_cast<double>(c.path.size() - 1);
+    const std::size_t i = std::min(static_cast<std::size_t>(x), c.path.size() - 2);
+    const double t = x - static_cast<double>(i);
+    const scene::CameraKey &a = c.path[i], &b = c.path[i + 1];
+    return {a.azimuth_deg + t * (b.azimuth_deg - a.azimuth_deg), a.elevation_deg + t * (b.elevation_deg - a.elevation_deg),
+            a.zoom * std::pow(b.zoom / a.zoom, t)};
+  }
+  key.azimuth_deg += orbit_deg * index / count;
+  return key;
+}
+
+image::Image erosionNoise(int size, std::uint64_t seed) {
+  SHANSHUI_CHECK(size >= 8);
+  image::Image img(size, size, 2);
+  const int octaves = 3;
+  for (int ch = 0; ch < 2; ++ch) {
+    std::vector<float> sum(static_cast<std::size_t>(size) * size, 0.0f);
+    float weight_total = 0.0f;
+    for (int o = 0; o < octaves; ++o) {
+      const int cells = (ch == 0 ? 8 : 32) << o;  // the added noise is finer than the erosion
+      const float weight = 1.0f / static_cast<float>(1 << o);
+      weight_total += weight;
+      std::vector<float> lattice(static_cast<std::size_t>(cells) * cells);
+      for (std::size_t i = 0; i < lattice.size(); ++i) {
+        lattice[i] = static_cast<float>(streamValue(seed ^ (0x9E37u * (ch + 1)) ^ (static_cast<std::uint64_t>(o) << 40), i) >> 11) *
+                     (1.0f / 9007199254740992.0f);
+      }
+      for (int y = 0; y < size; ++y) {
+        for (int x = 0; x < size; ++x) {
+          const float fx = static_cast<float>(x) * cells / size, fy = static_cast<float>(y) * cells / size;
+          const int x0 = static_cast<int>(fx), y0 = static_cast<int>(fy);
+          float tx = fx - x0, ty = fy - y0;
+          tx = tx * tx * (3 - 2 * tx);
+          ty = ty * ty * (3 - 2 * ty);
+          auto at = [&](int i, int j) { return lattice[static_cast<std::size_t>(j % cells) * cells + (i % cells)]; };
+          const float v = (at(x0, y0) * (1 - tx) + at(x0 + 1, y0) * tx) * (1 - ty) +
+                          (at(x0, y0 + 1) * (1 - tx) + at(x0 + 1, y0 + 1) * tx) * ty;
+          sum[static_cast<std::size_t>(y) * size + x] += weight * v;
+        }
+      }
+    }
+    // Stretch to [0, 1] so the erosion strength means the same for any seed.
+    const auto [lo, hi] = std::minmax_element(sum.begin(), sum.end());
+    const float range = std::max(*hi - *lo, 1e-6f);
+    for (std::size_t i = 0; i < sum.size(); ++i) img.pixels[i * 2 + ch] = (sum[i] - *lo) / range;
+    (void)weight_total;
+  }
+  return img;
+}
+
+std::string InkRenderer::structureKey(const scene::Scene& s) {
+  std::ostringstream k;
+  k << s.objects.size() << "|" << s.usesLines() << s.usesShading() << s.usesWrinkles() << "|"
+    << static_cast<int>(s.canvas.type) << s.diffusion.enabled() << "|" << s.seed;
+  for (const scene::Object& o : s.objects) {
+    k << "|" << s.resolve(o.mesh.empty() ? o.dem : o.mesh).string() << "," << o.z_scale << "," << o.max_vertices << ","
+      << o.recentre << "," << joined(gbufferDefines(s, o));
+    if (wrinkled(o)) k << "," << s.resolve(o.wrinkle.texture).string() << "," << static_cast<int>(o.wrinkle.uv);
+  }
+  return k.str();
+}
+
+InkRenderer::InkRenderer(const scene::Scene& s, const std::vector<scene::LoadedObject>& objects) : scene_(s) {
+  SHANSHUI_CHECK_EQ(objects.size(), s.objects.size());
+  lines_ = s.usesLines();
+  shading_ = s.usesShading();
+  wrinkles_ = s.usesWrinkles();
+  passes_.emplace_back("gbuffer");
+  if (lines_) passes_.emplace_back("lines");
+  if (shading_) passes_.emplace_back("shading");
+  passes_.emplace_back("composite");
+
+  for (std::size_t i = 0; i < objects.size(); ++i) {
+    const scene::ObjectAsset& a = *objects[i].geometry;
+    const scene::Object& o = s.objects[i];
+    const std::vector<std::string> defines = gbufferDefines(s, o);
+    GpuObject g;
+    const bool per_vertex = o.lines.enabled && o.lines.curvature == scene::CurvatureSource::Object;
+    g.mesh = GpuMesh(a.mesh, a.bounds.centre(), per_vertex ? &a.curvature : nullptr);
+    g.model_bounds = a.bounds;
+    g.model_feature_size = a.feature_size;
+    if (wrinkled(o)) {
+      SHANSHUI_CHECK(objects[i].wrinkle != nullptr);
+      g.wrinkle = Texture2D::tiledFromImage(*objects[i].wrinkle, GL_R8);
+    }
+    const auto it = std::find_if(gbuffer_programs_.begin(), gbuffer_programs_.end(),
+                                 [&](const GbufferProgram& p) { return p.defines == defines; });
+    g.program = static_cast<int>(it - gbuffer_programs_.begin());
+    if (it == gbuffer_programs_.end()) gbuffer_programs_.push_back({defines, Program()});
+    objects_.push_back(std::move(g));
+  }
+  if (shading_) noise_ = Texture2D::tiledFromImage(erosionNoise(256, s.seed), GL_RG8);
+  glCreateVertexArrays(1, &empty_vao_);
+  glCreateBuffers(1, &params_buffer_);
+  buildPrograms();
+  setScene(s);
+}
+
+InkRenderer::~InkRenderer() {
+  if (empty_vao_) glDeleteVertexArrays(1, &empty_vao_);
+  if (params_buffer_) glDeleteBuffers(1, &params_buffer_);
+}
+
+std::size_t InkRenderer::triangleCount() const {
+  std::size_t n = 0;
+  for (const GpuObject& o : objects_) n += o.mesh.triangleCount();
+  return n;
+}
+
+void InkRenderer::buildPrograms() {
+  // Build everything first so a failure leaves the old programs in place.
+  std::vector<Program> gbuffer;
+  std::map<std::string, std::vector<std::string>> variants;
+  for (const GbufferProgram& p : gbuffer_programs_) {
+    gbuffer.emplace_back(std::vector<std::string>{"ink_gbuffer.vert", "ink_gbuffer.frag"}, p.defines);
+    variants["gbuffer"].push_back(joined(p.defines));
+  }
+  Program lines, shading, composite;
+  if (lines_) {
+    lines = Program({"fullscreen.vert", "ink_lines.frag"});
+    variants["lines"].emplace_back("");
+  }
+  if (shading_) {
+    std::vector<std::string> d;
+    if (lines_) d.emplace_back("LINES");
+    if (wrinkles_) d.emplace_back("WRINKLE");
+    shading = Program({"fullscreen.vert", "ink_shading.frag"}, d);
+    variants["shading"].push_back(joined(d));
+  }
+  std::vector<std::string> d;
+  if (lines_) d.emplace_back("LINES");
+  if (shading_) d.emplace_back("SHADING");
+  composite = Program({"fullscreen.vert", "ink_composite.frag"}, d);
+  variants["composite"].push_back(joined(d));
+
+  for (std::size_t i = 0; i < gbuffer.size(); ++i) gbuffer_programs_[i].program = std::move(gbuffer[i]);
+  lines_program_ = std::move(lines);
+  shading_program_ = std::move(shading);
+  composite_program_ = std::move(composite);
+  variants_ = std::move(variants);
+  last_key_.clear();
+}
+
+void InkRenderer::reloadShaders() { buildPrograms(); }
+
+void InkRenderer::setScene(const scene::Scene& s) {
+  if (structureKey(s) != structureKey(scene_)) {
+    throw makeError("InkRenderer::setScene: the scene's files, passes or variants changed; build a new renderer");
+  }
+  scene_ = s;
+  world_bounds_ = {glm::dvec3(std::numeric_limits<double>::max()), glm::dvec3(std::numeric_limits<double>::lowest())};
+  for (std::size_t i = 0; i < objects_.size(); ++i) {
+    GpuObject& g = objects_[i];
+    const glm::dmat4 t = s.objects[i].transform.matrix();
+    g.model = t * glm::translate(glm::dmat4(1.0), g.model_bounds.centre());
+    const double scale = std::cbrt(std::abs(glm::determinant(glm::dmat3(t))));
+    g.centre = glm::dvec3(t * glm::dvec4(g.model_bounds.centre(), 1.0));
+    g.radius = std::max(0.5 * glm::length(g.model_bounds.size()) * scale, 1e-12);
+    g.feature_size = g.model_feature_size * scale;
+    for (int c = 0; c < 8; ++c) {
+      const glm::dvec3 corner((c & 1) ? g.model_bounds.max.x : g.model_bounds.min.x,
+                              (c & 2) ? g.model_bounds.max.y : g.model_bounds.min.y,
+                              (c & 4) ? g.model_bounds.max.z : g.model_bounds.min.z);
+      const glm::dvec3 w(t * glm::dvec4(corner, 1.0));
+      world_bounds_.min = glm::min(world_bounds_.min, w);
+      world_bounds_.max = glm::max(world_bounds_.max, w);
+    }
+  }
+  last_key_.clear();
+}
+
+void InkRenderer::ensureTargets(int width, int height) {
+  if (final_.width() == width && final_.height() == height) return;
+  std::vector<GLenum> g{GL_RGBA16F, GL_RGBA32F};
+  if (shading_) g.push_back(GL_RGBA8);
+  gbuffer_ = Framebuffer(width, height, g, true);
+  if (lines_) lines_target_ = Framebuffer(width, height, {GL_RG16F}, false);
+  if (shading_) shading_target_ = Framebuffer(width, height, {GL_R16F}, false);
+  final_ = Framebuffer(width, height, {GL_RGBA8}, false);
+  last_key_.clear();
+}
+
+void InkRenderer::uploadObjectParams(const OrbitCamera& camera, int height) {
+  std::vector<ObjectParamsGpu> params(objects_.size());
+  const double pixels_per_unit_at_1 = 0.5 * height / std::tan(glm::radians(camera.fov_y_deg) * 0.5);
+  for (std::size_t i = 0; i < objects_.size(); ++i) {
+    const scene::Object& o = scene_.objects[i];
+    const GpuObject& g = objects_[i];
+    const scene::LineParams& l = o.lines;
+    const scene::ShadingParams& sh = o.shading;
+    // Projected area of the bounding sphere decides the small-object path.
+    const double d = std::max(glm::length(camera.eye() - g.centre), 1e-12);
+    const double r_px = g.radius / d * pixels_per_unit_at_1;
+    const bool small = std::numbers::pi * r_px * r_px < l.small_object_px;
+    int line_flags = (l.enabled ? kLinesOn : 0) | (small ? kNormalOnly : 0);
+    int shade_flags = (sh.enabled ? kShadingOn : 0) | (sh.half_lambert ? kHalfLambert : 0) |
+                      (sh.line_value ? kLineValue : 0) | (wrinkled(o) ? kWrinkled : 0);
+    ObjectParamsGpu& p = params[i];
+    p.line_color = v4(l.line_color, l.curve_factor);
+    p.bg_color = v4(l.bg_color, l.threshold);
+    p.line_misc = glm::vec4(l.soft_width, l.silhouette, l.depth_edges, line_flags);
+    p.tones = glm::vec4(sh.tones[0], sh.tones[1], sh.tones[2], sh.tones[3]);
+    p.thresholds = glm::vec4(sh.thresholds[0], sh.thresholds[1], sh.thresholds[2], sh.thresholds[3]);
+    p.shade_misc = glm::vec4(sh.tones[4], sh.sigma, sh.beta, sh.erosion);
+    p.shade_misc2 = glm::vec4(sh.noise, 1.0 / o.wrinkle.inner_tex_factor, shade_flags, 0.0f);
+  }
+  const std::size_t bytes = params.size() * sizeof(ObjectParamsGpu);
+  if (bytes > params_capacity_) {
+    glDeleteBuffers(1, &params_buffer_);
+    glCreateBuffers(1, &params_buffer_);
+    glNamedBufferStorage(params_buffer_, static_cast<GLsizeiptr>(bytes), nullptr, GL_DYNAMIC_STORAGE_BIT);
+    params_capacity_ = bytes;
+  }
+  glNamedBufferSubData(params_buffer_, 0, static_cast<GLsizeiptr>(bytes), params.data());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, params_buffer_);
+}
+
+std::string InkRenderer::requestKey(const OrbitCamera& c, int width, int height) const {
+  std::ostringstream k;
+  k.precision(17);
+  k << width << "x" << height << "|" << c.target.x << "," << c.target.y << "," << c.target.z << "," << c.distance << ","
+    << c.azimuth_deg << "," << c.elevation_deg << "," << c.fov_y_deg << "," << c.near_plane << "," << c.far_plane << "|"
+    << scene::toJson(scene_).dump();
+  return k.str();
+}
+
+const Framebuffer& InkRenderer::render(const OrbitCamera& camera, int width, int height, FrameStats* stats,
+                                       bool timing) {
+  const auto start = std::chrono::steady_clock::now();
+  ensureTargets(width, height);
+  std::string key = requestKey(camera, width, height);
+  if (key == last_key_) {
+    if (stats) *stats = FrameStats{true, std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count(), {}};
+    return final_;
+  }
+  const double aspect = static_cast<double>(width) / height;
+  const glm::mat4 view_projection = camera.projection(aspect) * camera.view();
+  const glm::vec3 eye(camera.eye());
+  uploadObjectParams(camera, height);
+  glBindVertexArray(empty_vao_);
+
+  // G-buffer: normal + curvature, world position + object id, surface detail.
+  if (timing) timer_.begin("gbuffer");
+  gbuffer_.bind();
+  const float zero[4] = {0, 0, 0, 0};
+  for (int i = 0; i < (shading_ ? 3 : 2); ++i) glClearNamedFramebufferfv(gbuffer_.id(), GL_COLOR, i, zero);
+  const float far_depth = 1.0f;
+  glClearNamedFramebufferfv(gbuffer_.id(), GL_DEPTH, 0, &far_depth);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  glDisable(GL_CULL_FACE);
+  glDisable(GL_BLEND);
+  for (std::size_t i = 0; i < objects_.size(); ++i) {
+    const GpuObject& g = objects_[i];
+    const Program& p = gbuffer_programs_[static_cast<std::size_t>(g.program)].program;
+    p.use();
+    const glm::mat4 model(g.model);
+    p.set("u_model", model);
+    p.set("u_normal_matrix", glm::mat3(glm::transpose(glm::inverse(glm::dmat3(g.model)))));
+    p.set("u_view_projection", view_projection);
+    p.set("u_object_id", static_cast<float>(i + 1));
+    const scene::Object& o = scene_.objects[i];
+    if (o.lines.enabled && o.lines.curvature == scene::CurvatureSource::Screen) {
+      p.set("u_feature_size", static_cast<float>(g.feature_size));
+    }
+    if (shading_) {
+      glBindTextureUnit(0, noise_->id());
+      p.set("u_noise", 0);
+      p.set("u_noise_frequency", static_cast<float>(1.0 / (o.shading.noise_scale * 0.5 * glm::length(g.model_bounds.size()) + 1e-30)));
+    }
+    if (g.wrinkle) {
+      glBindTextureUnit(1, g.wrinkle->id());
+      p.set("u_wrinkle", 1);
+      p.set("u_repeat", static_cast<float>(o.wrinkle.repeat));
+    }
+    g.mesh.draw();
+  }
+  if (timing) timer_.end();
+  SHANSHUI_GL_CHECK("gbuffer pass");
+
+  glDisable(GL_DEPTH_TEST);
+  glBindVertexArray(empty_vao_);
+  glBindTextureUnit(0, gbuffer_.colour(0).id());
+  glBindTextureUnit(1, gbuffer_.colour(1).id());
+  if (shading_) glBindTextureUnit(2, gbuffer_.colour(2).id());
+  if (lines_) {
+    if (timing) timer_.begin("lines");
+    lines_target_.bind();
+    lines_program_.use();
+    lines_program_.set("u_eye", eye);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    if (timing) timer_.end();
+    SHANSHUI_GL_CHECK("lines pass");
+    glBindTextureUnit(3, lines_target_.colour(0).id());
+  }
+  if (shading_) {
+    if (timing) timer_.begin("shading");
+    shading_target_.bind();
+    shading_program_.use();
+    shading_program_.set("u_light_dir", glm::vec3(glm::normalize(scene_.light.direction)));
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    if (timing) timer_.end();
+    SHANSHUI_GL_CHECK("shading pass");
+    glBindTextureUnit(2, shading_target_.colour(0).id());
+  }
+  if (timing) timer_.begin("composite");
+  final_.bind();
+  composite_program_.use();
+  composite_program_.set("u_eye", eye);
+  composite_program_.set("u_paper", glm::vec3(scene_.output.paper));
+  composite_program_.set("u_fade", static_cast<float>(scene_.output.fade));
+  const double to_centre = glm::length(camera.eye() - world_bounds_.centre());
+  const double radius = 0.5 * glm::length(world_bounds_.size());
+  composite_program_.set("u_fade_range", glm::vec2(static_cast<float>(to_centre - 0.5 * radius),
+                                                   static_cast<float>(to_centre + radius)));
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+  if (timing) timer_.end();
+  SHANSHUI_GL_CHECK("composite pass");
+
+  FrameStats out;
+  if (timing) out.passes = timer_.collect();
+  else glFlush();
+  out.frame_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  if (stats) *stats = std::move(out);
+  last_key_ = std::move(key);
+  return final_;
+}
+
+image::Image InkRenderer::renderImage(const scene::CameraKey& key, FrameStats* stats) {
+  const int w = scene_.output.width, h = scene_.output.height;
+  const OrbitCamera cam = sceneCamera(scene_, world_bounds_, static_cast<double>(w) / h, key);
+  const Framebuffer& fb = render(cam, w, h, stats, true);
+  return fb.colour(0).download(3);
+}
+
+}  // namespace shanshui::render

@@ -1,0 +1,191 @@
+// A landscape scene: objects with their line, shading and wrinkle parameters, light,
+// camera (with an optional path), canvas, diffusion and output (SPEC.md section 10).
+// Every key, default and range is documented in docs/scene.md; parseScene() checks them.
+#pragma once
+
+#include <array>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+#include <nlohmann/json_fwd.hpp>
+
+namespace shanshui::scene {
+
+//! Model to world: scale, then rotations about x, y, z (degrees), then translation.
+struct Transform {
+  glm::dvec3 translate{0.0};
+  glm::dvec3 rotate_deg{0.0};
+  glm::dvec3 scale{1.0};  //!< each in [1e-6, 1e6]
+  glm::dmat4 matrix() const;
+};
+
+enum class CurvatureSource {
+  Object,  //!< per-vertex, precomputed on load (cotangent Laplacian), interpolated
+  Screen,  //!< per-pixel |fwidth(N)| / |fwidth(P)|, as seed 001 does
+};
+
+//! Feature lines from curvature (seed 001 Eq. 1; SPEC.md section 6).
+struct LineParams {
+  bool enabled = true;
+  CurvatureSource curvature = CurvatureSource::Object;
+  //! R_CurveFactor on dimensionless curvature k·feature_size (k = 1 at the mesh's 90th
+  //! percentile of |k|), so the same value gives the same line density on any mesh; [0, 100].
+  double curve_factor = 0.8;
+  double threshold = 0.4;        //!< Curv0: line where 1 − k·curve_factor < threshold; [-10, 1]
+  double soft_width = 0.1;       //!< smoothstep width around Curv0 (0 = hard binarisation); [0, 1]
+  glm::dvec3 line_color{0.06, 0.06, 0.07};  //!< _LineColor, RGB in [0, 1]
+  glm::dvec3 bg_color{1.0, 1.0, 1.0};       //!< _BgColor, RGB in [0, 1]; multiplies the shading
+  double silhouette = 0.18;      //!< N·V below which the surface is drawn as silhouette; [0, 1], 0 = off
+  double depth_edges = 0.03;     //!< relative depth jump between pixels drawn as a line; [0, 10], 0 = off
+  //! Objects whose projected area is below this many pixels get N·V lines only (the
+  //! paper's small-object path); [0, 1e9].
+  double small_object_px = 2000.0;
+};
+
+//! Interior shading (seed 001 Eqs. 2, 3, 5; SPEC.md section 7).
+struct ShadingParams {
+  bool enabled = true;
+  std::array<double, 5> tones{0.22, 0.42, 0.62, 0.82, 1.0};  //!< C1..C5 grey, [0, 1], dark to light
+  std::array<double, 4> thresholds{0.12, 0.3, 0.5, 0.72};     //!< t1..t4, ascending in [0, 1]
+  //! σ of the Gaussian-smoothed steps (Φ((t − t_k)/σ) instead of a hard step); [0, 1],
+  //! 0 gives Eq. 2 exactly.
+  double sigma = 0.04;
+  double beta = -1.0;            //!< β of Eq. 3, t_dw = clamp(t_d + t_w + β, 0, 1); [-2, 1]
+  //! Strength of the erosion noise: t_w = 1 − erosion·(1 − noise), noise in [0, 1]; [0, 1].
+  double erosion = 0.35;
+  double noise = 0.06;           //!< amplitude of the noise added before quantisation; [0, 1]
+  //! Erosion noise cell size as a fraction of the object's radius; [1e-4, 10].
+  double noise_scale = 0.02;
+  bool half_lambert = false;     //!< t_d = (N·L)·0.5 + 0.5 instead of max(N·L, 0)
+  bool line_value = true;        //!< multiply t_dw by the line pass's col_i (the paper's Fig. 4f)
+};
+
+enum class UvSource {
+  Mesh,    //!< the mesh's own UVs (from shanshui-param)
+  Planar,  //!< x and y over the object's larger horizontal extent (terrain)
+};
+
+//! Wrinkle (cun) texture mapping (seed 001 Eq. 5). No texture: no wrinkle code is built.
+struct WrinkleParams {
+  std::string texture;              //!< image path relative to the scene file; empty = none
+  double inner_tex_factor = 1.0;    //!< R_InnerTexFactor, t_w = luma(W) / factor; [0.01, 100]
+  double repeat = 4.0;              //!< texture repetitions per UV unit; (0, 1e4]
+  UvSource uv = UvSource::Mesh;
+};
+
+struct Object {
+  std::string name;
+  std::string mesh;  //!< .obj/.ply/.off relative to the scene file (exactly one of mesh, dem)
+  std::string dem;   //!< heightfield (.dem, .asc, .png, .tif), meshed on load
+  double z_scale = 1.0;              //!< dem only: vertical exaggeration, (0, 1000]
+  std::size_t max_vertices = 250000; //!< dem only: grid decimation limit, [4, 1e8]
+  //! true: the mesh is moved so its bounding-box centre is the model origin.
+  bool recentre = true;
+  Transform transform;
+  LineParams lines;
+  ShadingParams shading;
+  WrinkleParams wrinkle;
+};
+
+struct Light {
+  glm::dvec3 direction{-0.5, 0.3, 0.8};  //!< towards the light, world space, non-zero
+};
+
+//! One key of a camera path; frames are spread evenly over the keys.
+struct CameraKey {
+  double azimuth_deg = -60.0;
+  double elevation_deg = 25.0;
+  double zoom = 1.0;
+};
+
+//! An orbit camera. Without a target it looks at the centre of the scene's bounds;
+//! distance 0 frames the bounds (zoom > 1 moves closer).
+struct Camera {
+  std::optional<glm::dvec3> target;
+  double distance = 0.0;         //!< [0, 1e9], 0 = frame the scene
+  double azimuth_deg = -60.0;    //!< around +Z, any finite value
+  double elevation_deg = 25.0;   //!< (-90, 90)
+  double fov_y_deg = 35.0;       //!< (1, 170)
+  double zoom = 1.0;             //!< (0.001, 1000]
+  std::vector<CameraKey> path;   //!< optional; used by --frames
+};
+
+enum class CanvasType { None };  // Gabor/Perlin canvases come with issue 7
+
+struct Canvas {
+  CanvasType type = CanvasType::None;
+};
+
+//! Seed 001 Eqs. 6-8, SPEC.md section 9. d = 0 and n = 0 turns the pass off.
+struct Diffusion {
+  int ring_steps = 0;        //!< d, [0, 256]
+  double attenuation = 0.85; //!< f, [0, 1]
+  double absorb = 0.5;       //!< I_p, [0, 1e3]
+  double residual = 0.05;    //!< I_r, [0, 1]
+  int iterations = 0;        //!< n, [0, 1000]
+  double threshold = 0.5;    //!< stroke threshold, [0, 1]
+  bool enabled() const { return ring_steps > 0 || iterations > 0; }
+};
+
+struct Output {
+  int width = 1024;    //!< [1, 16384]
+  int height = 768;    //!< [1, 16384]
+  glm::dvec3 paper{0.95, 0.93, 0.87};  //!< paper colour behind and under the ink, RGB [0, 1]
+  //! Distance fade: far parts move towards the paper by up to this much (0 = off); [0, 1].
+  double fade = 0.35;
+};
+
+struct Scene {
+  std::filesystem::path base_dir;  //!< directory the relative paths are resolved against
+  std::uint64_t seed = 1;          //!< noise textures; same seed, same picture
+  std::vector<Object> objects;
+  Light light;
+  Camera camera;
+  Canvas canvas;
+  Diffusion diffusion;
+  Output output;
+
+  std::filesystem::path resolve(const std::string& relative) const;
+  bool usesWrinkles() const;
+  bool usesLines() const;
+  bool usesShading() const;
+};
+
+//! One parameter the parser accepts: its dotted path (objects.* for every object), kind
+//! and range, for the viewer's panel and the documentation check.
+struct SchemaEntry {
+  std::string path;
+  std::string kind;  //!< number, integer, bool, string, choice, color, vec3, list
+  double min = 0.0, max = 0.0;
+  std::vector<std::string> choices;
+};
+
+//! Parses and validates. `origin` names the file in messages. Unknown keys and values out
+//! of range throw Error naming "origin: key.path". Relative paths resolve against base_dir.
+Scene parseScene(const nlohmann::json& j, const std::string& origin, const std::filesystem::path& base_dir);
+
+//! Reads a scene file, applies --set overrides ("objects.0.lines.curve_factor=2"; the
+//! value is JSON, or a plain string), then parses.
+Scene loadScene(const std::filesystem::path& path, const std::vector<std::string>& overrides = {});
+
+//! A scene file, or a mesh (.obj .ply .off) or heightfield (.dem .asc .png .tif .tiff)
+//! made into a one-object scene with every default; overrides apply to both.
+Scene loadSceneInput(const std::filesystem::path& path, const std::vector<std::string>& overrides = {});
+
+//! Applies one KEY=VALUE override to raw scene JSON; array indices must exist.
+void applyOverride(nlohmann::json& j, const std::string& assignment);
+
+//! Every key with its value (defaults written out), paths as given. parseScene(toJson(s))
+//! gives s back.
+nlohmann::json toJson(const Scene& s);
+
+//! Writes toJson(s) atomically (for the viewer's Save).
+void saveScene(const Scene& s, const std::filesystem::path& path);
+
+//! Every parameter parseScene accepts.
+const std::vector<SchemaEntry>& sceneSchema();
+
+}  // namespace shanshui::scene

@@ -1,0 +1,51 @@
+// What a scene's objects need on the GPU, loaded (and meshed, repaired, measured) on the
+// CPU: meshes with the attributes the scene's passes use, curvature, wrinkle images.
+#pragma once
+
+#include <map>
+#include <memory>
+#include <string>
+
+#include "shanshui/image/image.h"
+#include "shanshui/mesh/mesh.h"
+#include "shanshui/scene/scene.h"
+
+namespace shanshui::scene {
+
+struct ObjectAsset {
+  mesh::Mesh mesh;       //!< model space (recentred when the object asks); UVs when wrinkled
+  mesh::Bounds bounds;   //!< of mesh
+  //! Per-vertex |k|·feature_size (dimensionless, 1 at the 90th percentile); empty unless
+  //! the object draws lines from object-space curvature.
+  std::vector<float> curvature;
+  double feature_size = 0.0;  //!< 1 / (90th percentile of |k|), model units; 0 if not measured
+  double load_seconds = 0.0;
+};
+
+//! One object's geometry and its wrinkle image (one channel, Eq. 5's luma; null without).
+struct LoadedObject {
+  std::shared_ptr<const ObjectAsset> geometry;
+  std::shared_ptr<const image::Image> wrinkle;
+};
+
+//! Keeps loaded assets by what they were made from, so a viewer that changes a parameter
+//! does not reload meshes, and one that changes a file path loads only that file.
+class AssetCache {
+ public:
+  //! Loads (or reuses) what scene.objects[index] needs. Throws Error naming the scene key
+  //! and the file for unreadable input, or a wrinkled object without UVs.
+  LoadedObject get(const Scene& scene, std::size_t index);
+  std::vector<LoadedObject> getAll(const Scene& scene);
+
+ private:
+  std::map<std::string, std::shared_ptr<const ObjectAsset>> meshes_;
+  std::map<std::string, std::shared_ptr<const image::Image>> images_;
+};
+
+//! Planar UVs: x and y over the larger horizontal extent of the mesh, in [0, 1].
+void planarUvs(mesh::Mesh& m);
+
+//! Eq. 5's grey value, dot(rgb, (0.3, 0.59, 0.11)), of every pixel (grey images as is).
+image::Image wrinkleLuma(const image::Image& img);
+
+}  // namespace shanshui::scene

@@ -1,0 +1,117 @@
+#include "shanshui/scene/scene_assets.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "shanshui/core/error.h"
+#include "shanshui/image/image_io.h"
+#include "shanshui/mesh/curvature.h"
+#include "shanshui/mesh/mesh_io.h"
+#include "shanshui/mesh/repair.h"
+#include "shanshui/terrain/heightfield.h"
+#include "shanshui/terrain/terrain_mesh.h"
+
+namespace shanshui::scene {
+
+void planarUvs(mesh::Mesh& m) {
+  const mesh::Bounds b = mesh::bounds(m);
+  const double extent = std::max({b.size().x, b.size().y, 1e-300});
+  m.uvs.resize(m.positions.size());
+  for (std::size_t i = 0; i < m.positions.size(); ++i) {
+    m.uvs[i] = glm::vec2((m.positions[i].x - b.min.x) / extent, (m.positions[i].y - b.min.y) / extent);
+  }
+}
+
+image::Image wrinkleLuma(const image::Image& img) {
+  image::Image out(img.width, img.height, 1);
+  const std::size_t n = static_cast<std::size_t>(img.width) * img.height;
+  for (std::size_t i = 0; i < n; ++i) {
+    const float* p = &img.pixels[i * img.channels];
+    out.pixels[i] = img.channels >= 3 ? 0.3f * p[0] + 0.59f * p[1] + 0.11f * p[2] : p[0];
+  }
+  return out;
+}
+
+namespace {
+
+std::string where(std::size_t index, const char* key) { return "objects." + std::to_string(index) + "." + key; }
+
+}  // namespace
+
+LoadedObject AssetCache::get(const Scene& scene, std::size_t index) {
+  const Object& o = scene.objects.at(index);
+  const bool wrinkled = !o.wrinkle.texture.empty() && o.shading.enabled;
+  const bool object_curvature = o.lines.enabled;  // feature size is needed for both sources
+  const bool per_vertex = o.lines.enabled && o.lines.curvature == CurvatureSource::Object;
+  const std::filesystem::path source = scene.resolve(o.mesh.empty() ? o.dem : o.mesh);
+  const std::string key = source.string() + "|" + std::to_string(o.z_scale) + "|" + std::to_string(o.max_vertices) +
+                          "|" + std::to_string(o.recentre) + "|" + std::to_string(object_curvature) +
+                          std::to_string(per_vertex) + "|" +
+                          (wrinkled ? (o.wrinkle.uv == UvSource::Mesh ? "uv-mesh" : "uv-planar") : "no-uv");
+  std::shared_ptr<const ObjectAsset>& slot = meshes_[key];
+  std::shared_ptr<const image::Image> wrinkle;
+  if (wrinkled) {
+    const std::filesystem::path tex = scene.resolve(o.wrinkle.texture);
+    auto& img = images_[tex.string()];
+    if (!img) {
+      try {
+        img = std::make_shared<const image::Image>(wrinkleLuma(image::loadImage(tex)));
+      } catch (const Error& e) {
+        images_.erase(tex.string());
+        throw makeError(where(index, "wrinkle.texture"), ": ", e.what());
+      }
+    }
+    wrinkle = img;
+  }
+  if (!slot) {
+    const auto start = std::chrono::steady_clock::now();
+    auto asset = std::make_shared<ObjectAsset>();
+    try {
+      if (!o.dem.empty()) {
+        terrain::TerrainMeshOptions topt;
+        topt.z_scale = o.z_scale;
+        topt.max_vertices = o.max_vertices;
+        asset->mesh = terrain::heightfieldToMesh(terrain::loadHeightfield(source), topt, nullptr, source.string());
+      } else {
+        mesh::RepairOptions ropt;
+        asset->mesh = mesh::repairMesh(mesh::readPolygonSoup(source), ropt, nullptr, source.string());
+      }
+    } catch (const Error& e) {
+      meshes_.erase(key);
+      throw makeError(where(index, o.dem.empty() ? "mesh" : "dem"), ": ", e.what());
+    }
+    mesh::Mesh& m = asset->mesh;
+    if (o.recentre) mesh::recentre(m);
+    if (wrinkled && o.wrinkle.uv == UvSource::Planar) planarUvs(m);
+    if (wrinkled && m.uvs.size() != m.positions.size()) {
+      meshes_.erase(key);
+      throw makeError(where(index, "wrinkle.uv"), ": ", source.string(),
+                      " has no UVs; parameterize it with shanshui-param or use \"uv\": \"planar\"");
+    }
+    if (!wrinkled) m.uvs.clear();
+    if (m.normals.size() != m.positions.size()) m.normals = mesh::vertexNormals(m);
+    if (object_curvature) {
+      const mesh::VertexCurvature c = mesh::estimateCurvature(m);
+      asset->feature_size = mesh::curvatureFeatureSize(m, c);
+      if (per_vertex) {
+        asset->curvature.resize(c.magnitude.size());
+        for (std::size_t i = 0; i < c.magnitude.size(); ++i) {
+          asset->curvature[i] = static_cast<float>(c.magnitude[i] * asset->feature_size);
+        }
+      }
+    }
+    asset->bounds = mesh::bounds(m);
+    asset->load_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    slot = std::move(asset);
+  }
+  return {slot, wrinkle};
+}
+
+std::vector<LoadedObject> AssetCache::getAll(const Scene& scene) {
+  std::vector<LoadedObject> out;
+  for (std::size_t i = 0; i < scene.objects.size(); ++i) out.push_back(get(scene, i));
+  return out;
+}
+
+}  // namespace shanshui::scene
