@@ -1,21 +1,33 @@
-// shanshui-view: a GLFW window on a mesh; drag to orbit, scroll to zoom, S for a screenshot.
+// shanshui-view: a GLFW window on a scene, drawn by the same InkRenderer as shanshui-render,
+// with a Dear ImGui panel over every scene parameter, per-pass timings and shader reload.
 #include <epoxy/gl.h>
 #include <GLFW/glfw3.h>
+#include <imgui.h>
+#include <backends/imgui_impl_glfw.h>
+#include <backends/imgui_impl_opengl3.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <map>
+#include <memory>
+
+#include <nlohmann/json.hpp>
 
 #include "shanshui/core/parse.h"
 #include "shanshui/image/image_io.h"
-#include "shanshui/mesh/mesh_io.h"
-#include "shanshui/mesh/repair.h"
 #include "shanshui/render/gl_context.h"
-#include "shanshui/render/mesh_preview.h"
+#include "shanshui/render/ink_renderer.h"
+#include "shanshui/render/shader_library.h"
+#include "shanshui/scene/scene.h"
 #include "tool_main.h"
 
 namespace {
 
 using namespace shanshui;
+using nlohmann::json;
 
 // Reads the window's back buffer (what the next swap will show), row 0 at the top.
 image::Image readBackBuffer(int width, int height) {
@@ -32,90 +44,316 @@ image::Image readBackBuffer(int width, int height) {
   return img;
 }
 
+// "objects.2.lines.curve_factor" -> "objects.*.lines.curve_factor", the schema's spelling.
+std::string schemaPath(const std::string& path) {
+  std::string out, part;
+  std::string prev;
+  auto flush = [&] {
+    const bool index = !part.empty() && part.find_first_not_of("0123456789") == std::string::npos;
+    out += (out.empty() ? "" : ".") + ((index && (prev == "objects" || prev == "path")) ? std::string("*") : part);
+    prev = part;
+    part.clear();
+  };
+  for (char c : path) {
+    if (c == '.') flush();
+    else part += c;
+  }
+  flush();
+  return out;
+}
+
+const scene::SchemaEntry* findSchema(const std::string& path) {
+  const std::string p = schemaPath(path);
+  for (const auto& e : scene::sceneSchema()) {
+    if (e.path == p) return &e;
+  }
+  return nullptr;
+}
+
+// A widget per scene key, built from the scene's JSON and the parser's schema, so every
+// parameter the file accepts can be edited live. Returns true when something changed.
+bool editJson(json& node, const std::string& path, const std::string& label) {
+  const scene::SchemaEntry* e = findSchema(path);
+  const char* id = label.c_str();
+  bool changed = false;
+  if (node.is_object()) {
+    const bool top = path.empty();
+    if (top || ImGui::TreeNodeEx(id, path.find('.') == std::string::npos ? ImGuiTreeNodeFlags_DefaultOpen : 0)) {
+      for (auto& [key, value] : node.items()) {
+        changed |= editJson(value, path.empty() ? key : path + "." + key, key);
+      }
+      if (!top) ImGui::TreePop();
+    }
+    return changed;
+  }
+  if (node.is_array() && !node.empty() && node[0].is_object()) {
+    if (ImGui::TreeNodeEx(id, ImGuiTreeNodeFlags_DefaultOpen)) {
+      for (std::size_t i = 0; i < node.size(); ++i) {
+        const std::string name = node[i].contains("name") ? node[i]["name"].get<std::string>() : std::to_string(i);
+        changed |= editJson(node[i], path + "." + std::to_string(i), name + "##" + std::to_string(i));
+      }
+      ImGui::TreePop();
+    }
+    return changed;
+  }
+  const float lo = e ? static_cast<float>(e->min) : 0.0f, hi = e ? static_cast<float>(e->max) : 0.0f;
+  const bool bounded = e && hi - lo < 1e5f;
+  const float speed = bounded ? (hi - lo) / 500.0f : 0.05f;
+  if (node.is_boolean()) {
+    bool v = node.get<bool>();
+    if (ImGui::Checkbox(id, &v)) node = v, changed = true;
+  } else if (e && e->kind == "choice") {
+    const std::string current = node.get<std::string>();
+    if (ImGui::BeginCombo(id, current.c_str())) {
+      for (const auto& c : e->choices) {
+        if (ImGui::Selectable(c.c_str(), c == current)) node = c, changed = true;
+      }
+      ImGui::EndCombo();
+    }
+  } else if (node.is_string()) {
+    char buf[1024];
+    std::snprintf(buf, sizeof buf, "%s", node.get<std::string>().c_str());
+    if (ImGui::InputText(id, buf, sizeof buf, ImGuiInputTextFlags_EnterReturnsTrue)) node = std::string(buf), changed = true;
+  } else if (node.is_number_integer() || (e && e->kind == "integer")) {
+    int v = node.get<int>();
+    if (ImGui::DragInt(id, &v, std::max(1.0f, speed), bounded ? static_cast<int>(lo) : 0, bounded ? static_cast<int>(hi) : 0)) {
+      node = v, changed = true;
+    }
+  } else if (node.is_number()) {
+    float v = node.get<float>();
+    if (ImGui::DragFloat(id, &v, speed, bounded ? lo : 0.0f, bounded ? hi : 0.0f, "%.4g")) node = v, changed = true;
+  } else if (node.is_array() && node.size() <= 5 && std::all_of(node.begin(), node.end(), [](const json& x) { return x.is_number(); })) {
+    float v[5] = {};
+    for (std::size_t i = 0; i < node.size(); ++i) v[i] = node[i].get<float>();
+    const int n = static_cast<int>(node.size());
+    bool edited = e && e->kind == "color" ? ImGui::ColorEdit3(id, v)
+                                          : ImGui::DragScalarN(id, ImGuiDataType_Float, v, n, speed, bounded ? &lo : nullptr,
+                                                               bounded ? &hi : nullptr, "%.3g");
+    if (edited) {
+      for (std::size_t i = 0; i < node.size(); ++i) node[i] = v[i];
+      changed = true;
+    }
+  } else if (node.is_null() && e) {
+    ImGui::TextDisabled("%s: auto", id);
+  }
+  return changed;
+}
+
 struct ViewState {
-  render::PreviewOptions options;
-  bool dragging = false;
-  double lastX = 0, lastY = 0;
-  bool screenshotRequested = false;
+  render::OrbitCamera camera;
+  bool dragging = false, panning = false;
+  double last_x = 0, last_y = 0;
+  bool screenshot = false, reload = false;
 };
+
+std::filesystem::file_time_type newestShader(const std::filesystem::path& dir) {
+  std::filesystem::file_time_type newest{};
+  std::error_code ec;
+  for (const auto& f : std::filesystem::directory_iterator(dir, ec)) newest = std::max(newest, f.last_write_time(ec));
+  return newest;
+}
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"Interactive viewer: drag to orbit, scroll to zoom, S saves a screenshot, Esc quits.",
+  CLI::App app{"Interactive ink-wash viewer. Left drag orbits, right drag pans, scroll zooms; S saves a "
+               "screenshot, R reloads shaders, Esc quits. The panel edits every scene parameter live.",
                "shanshui-view"};
-  app.footer("Example:\n  shanshui-view out/st_helens.obj\n"
-             "  xvfb-run -a shanshui-view mesh.obj --frames 3 --screenshot shot.png   # scripted");
-  std::string input, size = "1024x768", screenshot = "shanshui-screenshot.png";
+  app.footer("Examples:\n  shanshui-view samples/scenes/default.json\n"
+             "  shanshui-view samples/scenes/default.json --shaders shaders   # hot reload while editing GLSL\n"
+             "  xvfb-run -a shanshui-view scene.json --frames 3 --screenshot shot.png   # scripted");
+  std::string input, size = "1024x768", screenshot = "shanshui-screenshot.png", shader_dir, save_path;
+  std::vector<std::string> sets;
   int frames = 0;
-  ViewState state;
-  app.add_option("input", input, "mesh (.obj, .ply, .off)")->required();
+  double orbit = 0.0;
+  bool no_ui = false, with_ui = false;
+  app.add_option("scene", input, "scene (.json), or a mesh or DEM to view with default parameters")->required();
   app.add_option("--size", size, "window size WxH")->default_val("1024x768");
-  app.add_option("--azimuth", state.options.azimuth_deg, "initial camera azimuth, degrees")->default_val(-60.0);
-  app.add_option("--elevation", state.options.elevation_deg, "initial camera elevation, degrees")->default_val(25.0);
+  app.add_option("--set", sets, "override a scene key, dotted path = JSON value (repeatable)");
   app.add_option("--frames", frames, "quit after N frames (0: run until closed); with --screenshot, "
                                      "the last frame is saved")->default_val(0);
+  app.add_option("--orbit", orbit, "scripted camera: degrees turned per frame around +Z")->default_val(0.0);
   app.add_option("--screenshot", screenshot, "file for screenshots (S key, or the last of --frames)");
+  app.add_option("--shaders", shader_dir, "read shaders from this directory and reload them when they change");
+  app.add_option("--save-to", save_path, "where the panel's Save writes the scene (default: the input scene)");
+  app.add_flag("--no-ui", no_ui, "hide the panel");
+  app.add_flag("--screenshot-ui", with_ui, "screenshots include the panel");
   return tools::runTool(app, argc, argv, [&] {
     const Size2 s = parseSize(size, "--size");
     if (frames < 0) throw makeError("--frames: ", frames, " is negative");
-    render::validate(state.options);
-    mesh::RepairReport report;
-    const mesh::Mesh m = mesh::repairMesh(mesh::readPolygonSoup(input), {}, &report, input);
-    const auto context = render::GlContext::create(
-        {.kind = render::ContextKind::Window, .width = s.width, .height = s.height,
-         .title = "shanshui-view: " + input, .vsync = frames == 0});
+    if (!std::isfinite(orbit)) throw makeError("--orbit: must be finite");
+    if (!shader_dir.empty()) {
+      if (!std::filesystem::is_directory(shader_dir)) throw makeError("--shaders: ", shader_dir, ": not a directory");
+      render::setShaderDirectory(shader_dir);
+    }
+    scene::Scene sc = scene::loadSceneInput(input, sets);
+    if (save_path.empty()) {
+      save_path = std::filesystem::path(input).extension() == ".json"
+                      ? input
+                      : std::filesystem::path(input).replace_extension(".scene.json").string();
+    }
+    scene::AssetCache cache;
+    auto objects = cache.getAll(sc);
+    const auto context = render::GlContext::create({.kind = render::ContextKind::Window, .width = s.width,
+                                                    .height = s.height, .title = "shanshui-view: " + input,
+                                                    .vsync = frames == 0});
     GLFWwindow* window = context->window();
+    auto renderer = std::make_unique<render::InkRenderer>(sc, objects);
+
+    ViewState state;
+    auto resetCamera = [&](int width, int height) {
+      state.camera = render::sceneCamera(sc, renderer->worldBounds(), static_cast<double>(width) / height,
+                                         render::frameKey(sc, 0, 1, 0.0));
+    };
+    resetCamera(s.width, s.height);
+
+    IMGUI_CHECKVERSION();
+    ImGui::CreateContext();
+    ImGui::GetIO().IniFilename = nullptr;
+    ImGui_ImplGlfw_InitForOpenGL(window, true);  // chains to the callbacks below
+    ImGui_ImplOpenGL3_Init("#version 450");
+
     glfwSetWindowUserPointer(window, &state);
-    glfwSetMouseButtonCallback(window, [](GLFWwindow* w, int button, int action, int) {
+    glfwSetMouseButtonCallback(window, [](GLFWwindow* w, int button, int action, int mods) {
+      ImGui_ImplGlfw_MouseButtonCallback(w, button, action, mods);
       auto* st = static_cast<ViewState*>(glfwGetWindowUserPointer(w));
-      if (button == GLFW_MOUSE_BUTTON_LEFT) {
-        st->dragging = action == GLFW_PRESS;
-        glfwGetCursorPos(w, &st->lastX, &st->lastY);
-      }
+      if (ImGui::GetIO().WantCaptureMouse && action == GLFW_PRESS) return;
+      if (button == GLFW_MOUSE_BUTTON_LEFT) st->dragging = action == GLFW_PRESS;
+      if (button == GLFW_MOUSE_BUTTON_RIGHT) st->panning = action == GLFW_PRESS;
+      glfwGetCursorPos(w, &st->last_x, &st->last_y);
     });
     glfwSetCursorPosCallback(window, [](GLFWwindow* w, double x, double y) {
       auto* st = static_cast<ViewState*>(glfwGetWindowUserPointer(w));
-      if (!st->dragging) return;
-      st->options.azimuth_deg -= 0.3 * (x - st->lastX);
-      st->options.elevation_deg = std::clamp(st->options.elevation_deg + 0.3 * (y - st->lastY), -85.0, 85.0);
-      st->lastX = x;
-      st->lastY = y;
+      const double dx = x - st->last_x, dy = y - st->last_y;
+      st->last_x = x;
+      st->last_y = y;
+      render::OrbitCamera& c = st->camera;
+      if (st->dragging) {
+        c.azimuth_deg -= 0.3 * dx;
+        c.elevation_deg = std::clamp(c.elevation_deg + 0.3 * dy, -85.0, 85.0);
+      } else if (st->panning) {
+        const glm::dvec3 forward = glm::normalize(c.target - c.eye());
+        const glm::dvec3 right = glm::normalize(glm::cross(forward, glm::dvec3(0, 0, 1)));
+        const glm::dvec3 up = glm::cross(right, forward);
+        const double scale = c.distance * 0.0015;
+        c.target += (-dx * right + dy * up) * scale;
+      }
     });
-    glfwSetScrollCallback(window, [](GLFWwindow* w, double, double dy) {
+    glfwSetScrollCallback(window, [](GLFWwindow* w, double dx, double dy) {
+      ImGui_ImplGlfw_ScrollCallback(w, dx, dy);
+      if (ImGui::GetIO().WantCaptureMouse) return;
       auto* st = static_cast<ViewState*>(glfwGetWindowUserPointer(w));
-      st->options.zoom = std::clamp(st->options.zoom * std::pow(1.1, dy), 0.05, 100.0);
+      const double f = std::pow(1.1, -dy);
+      st->camera.distance *= f;
+      st->camera.near_plane *= f;  // keeps the depth range proportionate
+      st->camera.far_plane = std::max(st->camera.far_plane, st->camera.distance * 2);
     });
-    glfwSetKeyCallback(window, [](GLFWwindow* w, int key, int, int action, int) {
+    glfwSetKeyCallback(window, [](GLFWwindow* w, int key, int code, int action, int mods) {
+      ImGui_ImplGlfw_KeyCallback(w, key, code, action, mods);
+      if (action != GLFW_PRESS || ImGui::GetIO().WantCaptureKeyboard) return;
       auto* st = static_cast<ViewState*>(glfwGetWindowUserPointer(w));
-      if (action != GLFW_PRESS) return;
       if (key == GLFW_KEY_ESCAPE) glfwSetWindowShouldClose(w, GLFW_TRUE);
-      if (key == GLFW_KEY_S) st->screenshotRequested = true;
+      if (key == GLFW_KEY_S) st->screenshot = true;
+      if (key == GLFW_KEY_R) st->reload = true;
     });
 
-    const render::MeshPreview preview(m);
-    render::Framebuffer fb;
+    json edited = scene::toJson(sc);
+    std::string scene_error, status;
+    render::FrameStats stats, last_drawn;
+    auto shader_stamp = shader_dir.empty() ? std::filesystem::file_time_type{} : newestShader(shader_dir);
+    double last_poll = glfwGetTime();
     for (int frame = 1; !glfwWindowShouldClose(window); ++frame) {
       int width = 0, height = 0;
       glfwGetFramebufferSize(window, &width, &height);
+      if (!shader_dir.empty() && glfwGetTime() - last_poll > 0.5) {
+        last_poll = glfwGetTime();
+        const auto stamp = newestShader(shader_dir);
+        if (stamp != shader_stamp) state.reload = true, shader_stamp = stamp;
+      }
+      if (state.reload) {
+        state.reload = false;
+        try {
+          renderer->reloadShaders();
+          status = "shaders reloaded";
+        } catch (const std::exception& e) {
+          status = std::string("shader error (old shaders kept): ") + e.what();
+        }
+      }
       if (width > 0 && height > 0) {
-        if (fb.width() != width || fb.height() != height) fb = render::Framebuffer(width, height, {GL_RGBA8}, true);
-        state.options.width = width;
-        state.options.height = height;
-        // The same offscreen pass as shanshui-render, then shown: one code path for both.
-        preview.render(fb, state.options);
+        if (orbit != 0.0) state.camera.azimuth_deg += orbit;
+        const render::Framebuffer& fb = renderer->render(state.camera, width, height, &stats);
+        if (!stats.cached) last_drawn = stats;
+        glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
         glBlitNamedFramebuffer(fb.id(), 0, 0, 0, width, height, 0, 0, width, height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
         const bool last = frames > 0 && frame >= frames;
-        if (state.screenshotRequested || (last && app.count("--screenshot"))) {
+        const bool take = state.screenshot || (last && app.count("--screenshot"));
+        auto saveScreenshot = [&] {
           image::saveImage(readBackBuffer(width, height), screenshot);
           std::printf("%s\n", screenshot.c_str());
-          state.screenshotRequested = false;
+          status = "saved " + screenshot;
+          state.screenshot = false;
+        };
+        if (take && !with_ui) saveScreenshot();  // the picture alone, as shanshui-render writes it
+        if (!no_ui) {
+          ImGui_ImplOpenGL3_NewFrame();
+          ImGui_ImplGlfw_NewFrame();
+          ImGui::NewFrame();
+          ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
+          ImGui::SetNextWindowSize(ImVec2(380, static_cast<float>(height) - 16), ImGuiCond_FirstUseEver);
+          ImGui::Begin("shanshui");
+          ImGui::Text("%zu triangles, %dx%d", renderer->triangleCount(), width, height);
+          ImGui::Text("%s", stats.cached ? "frame: cached (nothing re-rendered)" : "frame: rendered");
+          double total = 0;
+          for (const auto& p : last_drawn.passes) {
+            ImGui::Text("  %-10s %7.2f ms", p.name.c_str(), p.gpu_ms);
+            total += p.gpu_ms;
+          }
+          ImGui::Text("  %-10s %7.2f ms (GPU)", "total", total);
+          if (ImGui::Button("Reset camera")) resetCamera(width, height);
+          ImGui::SameLine();
+          if (ImGui::Button("Save scene")) {
+            try {
+              scene::saveScene(sc, save_path);
+              status = "saved " + save_path;
+            } catch (const std::exception& e) {
+              status = e.what();
+            }
+          }
+          ImGui::SameLine();
+          if (ImGui::Button("Reload shaders")) state.reload = true;
+          if (!status.empty()) ImGui::TextWrapped("%s", status.c_str());
+          if (!scene_error.empty()) ImGui::TextColored(ImVec4(1, 0.3f, 0.2f, 1), "%s", scene_error.c_str());
+          ImGui::Separator();
+          if (editJson(edited, "", "scene")) {
+            try {
+              scene::Scene next = scene::parseScene(edited, "panel", sc.base_dir);
+              const bool camera_changed = scene::toJson(next)["camera"] != scene::toJson(sc)["camera"];
+              if (render::InkRenderer::structureKey(next) == render::InkRenderer::structureKey(sc)) {
+                renderer->setScene(next);
+              } else {
+                auto loaded = cache.getAll(next);
+                renderer = std::make_unique<render::InkRenderer>(next, loaded);
+              }
+              sc = std::move(next);
+              if (camera_changed) resetCamera(width, height);
+              scene_error.clear();
+            } catch (const std::exception& e) {
+              scene_error = e.what();  // the last good scene stays on screen
+            }
+          }
+          ImGui::End();
+          ImGui::Render();
+          ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
         }
+        if (take && with_ui) saveScreenshot();
         glfwSwapBuffers(window);
         if (last) break;
       }
       if (frames > 0) glfwPollEvents();
       else glfwWaitEventsTimeout(0.05);
     }
+    ImGui_ImplOpenGL3_Shutdown();
+    ImGui_ImplGlfw_Shutdown();
+    ImGui::DestroyContext();
   });
 }

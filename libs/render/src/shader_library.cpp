@@ -1,10 +1,35 @@
 #include "shanshui/render/shader_library.h"
 
+#include <fstream>
+#include <map>
+#include <sstream>
+
 #include "shanshui/core/error.h"
 
 namespace shanshui::render {
 
+namespace {
+std::filesystem::path& shaderDirectory() {
+  static std::filesystem::path dir;
+  return dir;
+}
+}  // namespace
+
+void setShaderDirectory(const std::filesystem::path& dir) { shaderDirectory() = dir; }
+
 std::string_view shaderSource(std::string_view name) {
+  if (!shaderDirectory().empty()) {
+    const std::filesystem::path file = shaderDirectory() / std::string(name);
+    std::ifstream in(file);
+    if (in) {
+      static std::map<std::string, std::string, std::less<>> loaded;  // keeps the views valid
+      std::ostringstream text;
+      text << in.rdbuf();
+      std::string& slot = loaded[std::string(name)];
+      slot = text.str();
+      return slot;
+    }
+  }
   for (const auto* s = detail::kEmbeddedShaders; s->name; ++s) {
     if (name == s->name) return s->source;
   }
