@@ -1,0 +1,163 @@
+// End-to-end: shanshui-render on scene files, its statistics, and scene-file errors.
+#include <fstream>
+#include <set>
+#include <nlohmann/json.hpp>
+
+#include "shanshui/image/image_io.h"
+#include "test_support.h"
+
+namespace shanshui {
+namespace {
+
+using nlohmann::json;
+using test::quote;
+using test::run;
+
+std::string bin(const char* name) { return quote(test::binDir() / name); }
+std::string sampleScene() { return quote(test::sourceDir() / "samples/scenes/default.json"); }
+
+json readJson(const std::filesystem::path& p) {
+  std::ifstream in(p);
+  return json::parse(in);
+}
+
+std::set<std::string> passNames(const json& frame) {
+  std::set<std::string> names;
+  for (const auto& [k, v] : frame["passes"].items()) names.insert(k);
+  return names;
+}
+
+TEST(RenderCli, StatsListThePassesBuiltAndTheirGpuTimePerFrame) {
+  test::TempDir dir;
+  const auto r = run(bin("shanshui-render") + " " + sampleScene() + " -o " + quote(dir / "f.png") +
+                     " --size 160x120 --frames 3 --stats " + quote(dir / "s.json") +
+                     " --set objects.0.max_vertices=20000");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  for (const char* f : {"f_0000.png", "f_0001.png", "f_0002.png"}) {
+    const image::Image img = image::loadImage(dir / f);
+    EXPECT_EQ(img.width, 160);
+    EXPECT_EQ(img.height, 120);
+  }
+  const json s = readJson(dir / "s.json");
+  EXPECT_EQ(s["passes_built"], json({"gbuffer", "lines", "shading", "composite"}));
+  EXPECT_EQ(s["variants"]["shading"], json({"LINES WRINKLE"}));
+  ASSERT_EQ(s["frames"].size(), 3u);
+  for (const json& f : s["frames"]) {
+    EXPECT_FALSE(f["cached"].get<bool>());
+    EXPECT_EQ(passNames(f), std::set<std::string>({"gbuffer", "lines", "shading", "composite"}));
+    double sum = 0;
+    for (const auto& [k, v] : f["passes"].items()) {
+      EXPECT_GE(v.get<double>(), 0.0) << k;
+      sum += v.get<double>();
+    }
+    // GPU times are real: they fit inside the frame's wall time (which waits for them).
+    EXPECT_LE(sum, f["frame_ms"].get<double>() * 1.05 + 1.0);
+  }
+  // Frames along the camera path differ.
+  EXPECT_NE(image::loadImage(dir / "f_0000.png").pixels, image::loadImage(dir / "f_0002.png").pixels);
+}
+
+TEST(RenderCli, ASceneWithoutWrinklesCanvasOrDiffusionRunsNoneOfThem) {
+  test::TempDir dir;
+  const auto r = run(bin("shanshui-render") + " " + sampleScene() + " -o " + quote(dir / "f.png") +
+                     " --size 96x64 --frames 2 --orbit 0 --set camera.path='[]' --stats " + quote(dir / "s.json") +
+                     " --set objects.0.max_vertices=5000 --set objects.0.wrinkle.texture='\"\"'");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const json s = readJson(dir / "s.json");
+  for (const json& j : s["passes_built"]) {
+    const std::string pass = j.get<std::string>();
+    EXPECT_EQ(pass.find("wrinkle"), std::string::npos);
+    EXPECT_EQ(pass.find("canvas"), std::string::npos);
+    EXPECT_EQ(pass.find("diffusion"), std::string::npos);
+  }
+  // No shader variant samples a wrinkle texture or reads UVs.
+  for (const auto& [pass, variants] : s["variants"].items()) {
+    for (const json& v : variants) EXPECT_EQ(v.get<std::string>().find("WRINKLE"), std::string::npos) << pass;
+  }
+  // The second frame is the same view: presented from the cache, no pass ran.
+  ASSERT_EQ(s["frames"].size(), 2u);
+  EXPECT_FALSE(s["frames"][0]["cached"].get<bool>());
+  EXPECT_TRUE(s["frames"][1]["cached"].get<bool>());
+  EXPECT_TRUE(s["frames"][1]["passes"].empty());
+  EXPECT_EQ(image::loadImage(dir / "f_0000.png").pixels, image::loadImage(dir / "f_0001.png").pixels);
+}
+
+TEST(RenderCli, LinesOnlyAndShadingOnlyBuildOnlyTheirPasses) {
+  test::TempDir dir;
+  const std::string base = bin("shanshui-render") + " " + sampleScene() + " --size 64x48 --set objects.0.max_vertices=3000";
+  auto r = run(base + " -o " + quote(dir / "a.png") + " --stats " + quote(dir / "a.json") +
+               " --set objects.0.shading.enabled=false");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_EQ(readJson(dir / "a.json")["passes_built"], json({"gbuffer", "lines", "composite"}));
+  r = run(base + " -o " + quote(dir / "b.png") + " --stats " + quote(dir / "b.json") + " --set objects.0.lines.enabled=false");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const json b = readJson(dir / "b.json");
+  EXPECT_EQ(b["passes_built"], json({"gbuffer", "shading", "composite"}));
+  EXPECT_EQ(b["variants"]["gbuffer"], json({"SURFACE WRINKLE"}));  // no curvature of either kind
+}
+
+TEST(RenderCli, SetChangesTheRenderedPicture) {
+  test::TempDir dir;
+  const std::string base = bin("shanshui-render") + " " + sampleScene() + " --size 128x96 --set objects.0.max_vertices=5000";
+  ASSERT_EQ(run(base + " -o " + quote(dir / "a.png")).exit_code, 0);
+  ASSERT_EQ(run(base + " -o " + quote(dir / "b.png") + " --set objects.0.lines.curve_factor=3").exit_code, 0);
+  const image::Image a = image::loadImage(dir / "a.png"), b = image::loadImage(dir / "b.png");
+  double ink_a = 0, ink_b = 0;
+  for (std::size_t i = 0; i < a.pixels.size(); ++i) ink_a += 1 - a.pixels[i], ink_b += 1 - b.pixels[i];
+  EXPECT_GT(ink_b, ink_a * 1.02) << "a larger curve factor draws more line ink";
+}
+
+int lineCount(const std::string& s) {
+  int n = 0;
+  for (char c : s) n += c == '\n';
+  return n;
+}
+
+TEST(RenderCli, EveryKindOfSceneErrorHasItsOwnMessageAndWritesNothing) {
+  test::TempDir dir;
+  const std::string dem = (test::sourceDir() / "samples/terrain/mount_st_helens.dem").string();
+  auto scene = [&](const std::string& name, const std::string& text) {
+    std::ofstream(dir / name) << text;
+    return quote(dir / name);
+  };
+  const std::string obj = "{\"objects\": [{\"dem\": \"" + dem + "\"";
+  std::ofstream(dir / "quad.obj") << "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0.2\nf 1 2 3\nf 1 3 4\n";
+  struct Case {
+    std::string args;
+    std::vector<std::string> expect;  // every part must be in the one-line message
+  };
+  const Case cases[] = {
+      {scene("bad.json", "{ \"objects\": [ }"), {"bad.json", "not valid JSON"}},
+      {quote(dir / "absent.json"), {"absent.json", "cannot open"}},
+      {scene("unknown.json", obj + ", \"lines\": {\"curve_factr\": 1}}]}"), {"objects.0.lines.curve_factr", "unknown key", "curve_factor"}},
+      {scene("range.json", obj + ", \"lines\": {\"curve_factor\": 500}}]}"), {"objects.0.lines.curve_factor", "500", "[0, 100]"}},
+      {scene("type.json", obj + ", \"shading\": {\"sigma\": \"wide\"}}]}"), {"objects.0.shading.sigma", "expected a number"}},
+      {scene("order.json", obj + ", \"shading\": {\"thresholds\": [0.5, 0.2, 0.6, 0.7]}}]}"), {"objects.0.shading.thresholds", "ascending"}},
+      {scene("count.json", obj + ", \"shading\": {\"tones\": [0.1, 0.2]}}]}"), {"objects.0.shading.tones", "list of 5"}},
+      {scene("choice.json", obj + ", \"lines\": {\"curvature\": \"jet\"}}]}"), {"objects.0.lines.curvature", "object, screen"}},
+      {scene("none.json", "{\"objects\": []}"), {"objects", "at least one object"}},
+      {scene("both.json", obj + ", \"mesh\": \"a.obj\"}]}"), {"objects.0", "both 'mesh' and 'dem'"}},
+      {scene("missing.json", "{\"objects\": [{\"mesh\": \"nowhere.obj\"}]}"), {"objects.0.mesh", "nowhere.obj"}},
+      {scene("tex.json", obj + ", \"wrinkle\": {\"texture\": \"nowhere.png\", \"uv\": \"planar\"}}]}"), {"objects.0.wrinkle.texture", "nowhere.png"}},
+      {scene("uv.json", "{\"objects\": [{\"mesh\": \"" + (dir / "quad.obj").string() +
+                            "\", \"wrinkle\": {\"texture\": \"" + (test::sourceDir() / "samples/textures/rain_strokes_wrinkle.png").string() + "\"}}]}"),
+       {"objects.0.wrinkle.uv", "no UVs"}},
+      {scene("light.json", obj + "}], \"light\": {\"direction\": [0, 0, 0]}}"), {"light.direction", "zero"}},
+      {scene("elev.json", obj + "}], \"camera\": {\"elevation\": 90}}"), {"camera.elevation", "89.9"}},
+      {scene("diff.json", obj + "}], \"diffusion\": {\"iterations\": 5}}"), {"diffusion", "not available"}},
+      {sampleScene() + " --set objects.3.lines.curve_factor=2", {"--set", "objects.3", "the list has 1"}},
+      {sampleScene() + " --set nonsense", {"--set", "KEY=VALUE"}},
+      {sampleScene() + " --set output.width=0", {"output.width", "[1, 16384]"}},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.args);
+    const auto r = run(bin("shanshui-render") + " " + c.args + " -o " + quote(dir / "out.png"));
+    EXPECT_NE(r.exit_code, 0);
+    EXPECT_EQ(lineCount(r.output), 1) << r.output;
+    for (const std::string& part : c.expect) EXPECT_NE(r.output.find(part), std::string::npos) << part << " in " << r.output;
+    EXPECT_FALSE(std::filesystem::exists(dir / "out.png"));
+  }
+}
+
+}  // namespace
+}  // namespace shanshui
