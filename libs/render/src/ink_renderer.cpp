@@ -181,6 +181,14 @@ std::size_t InkRenderer::triangleCount() const {
   return n;
 }
 
+const Framebuffer* InkRenderer::passTarget(const std::string& pass) const {
+  if (pass == "gbuffer") return &gbuffer_;
+  if (pass == "lines") return lines_ ? &lines_target_ : nullptr;
+  if (pass == "shading") return shading_ ? &shading_target_ : nullptr;
+  if (pass == "composite") return &final_;
+  return nullptr;
+}
+
 void InkRenderer::buildPrograms() {
   // Build everything first so a failure leaves the old programs in place.
   std::vector<Program> gbuffer;

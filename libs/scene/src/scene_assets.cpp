@@ -33,6 +33,32 @@ image::Image wrinkleLuma(const image::Image& img) {
   return out;
 }
 
+ObjectAsset prepareAsset(mesh::Mesh m, const Object& o, const std::string& where) {
+  ObjectAsset asset;
+  const bool wrinkled = !o.wrinkle.texture.empty() && o.shading.enabled;
+  if (o.recentre) mesh::recentre(m);
+  if (wrinkled && o.wrinkle.uv == UvSource::Planar) planarUvs(m);
+  if (wrinkled && m.uvs.size() != m.positions.size()) {
+    throw makeError(where, ".wrinkle.uv: ", o.mesh.empty() ? o.dem : o.mesh,
+                    " has no UVs; parameterize it with shanshui-param or use \"uv\": \"planar\"");
+  }
+  if (!wrinkled) m.uvs.clear();
+  if (m.normals.size() != m.positions.size()) m.normals = mesh::vertexNormals(m);
+  if (o.lines.enabled) {  // the feature size serves both curvature sources
+    const mesh::VertexCurvature c = mesh::estimateCurvature(m);
+    asset.feature_size = mesh::curvatureFeatureSize(m, c);
+    if (o.lines.curvature == CurvatureSource::Object) {
+      asset.curvature.resize(c.magnitude.size());
+      for (std::size_t i = 0; i < c.magnitude.size(); ++i) {
+        asset.curvature[i] = static_cast<float>(c.magnitude[i] * asset.feature_size);
+      }
+    }
+  }
+  asset.bounds = mesh::bounds(m);
+  asset.mesh = std::move(m);
+  return asset;
+}
+
 namespace {
 
 std::string where(std::size_t index, const char* key) { return "objects." + std::to_string(index) + "." + key; }
@@ -81,27 +107,12 @@ LoadedObject AssetCache::get(const Scene& scene, std::size_t index) {
       meshes_.erase(key);
       throw makeError(where(index, o.dem.empty() ? "mesh" : "dem"), ": ", e.what());
     }
-    mesh::Mesh& m = asset->mesh;
-    if (o.recentre) mesh::recentre(m);
-    if (wrinkled && o.wrinkle.uv == UvSource::Planar) planarUvs(m);
-    if (wrinkled && m.uvs.size() != m.positions.size()) {
+    try {
+      *asset = prepareAsset(std::move(asset->mesh), o, "objects." + std::to_string(index));
+    } catch (const Error&) {
       meshes_.erase(key);
-      throw makeError(where(index, "wrinkle.uv"), ": ", source.string(),
-                      " has no UVs; parameterize it with shanshui-param or use \"uv\": \"planar\"");
+      throw;
     }
-    if (!wrinkled) m.uvs.clear();
-    if (m.normals.size() != m.positions.size()) m.normals = mesh::vertexNormals(m);
-    if (object_curvature) {
-      const mesh::VertexCurvature c = mesh::estimateCurvature(m);
-      asset->feature_size = mesh::curvatureFeatureSize(m, c);
-      if (per_vertex) {
-        asset->curvature.resize(c.magnitude.size());
-        for (std::size_t i = 0; i < c.magnitude.size(); ++i) {
-          asset->curvature[i] = static_cast<float>(c.magnitude[i] * asset->feature_size);
-        }
-      }
-    }
-    asset->bounds = mesh::bounds(m);
     asset->load_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     slot = std::move(asset);
   }

@@ -69,6 +69,11 @@ class InkRenderer {
   const mesh::Bounds& worldBounds() const { return world_bounds_; }
   std::size_t triangleCount() const;
 
+  //! The last frame's intermediate images, for tests and debug views: "gbuffer" (0: normal
+  //! and curvature, 1: position and object id, 2: surface), "lines" (weight, col_i),
+  //! "shading" (tone); null for a pass the scene does not build.
+  const Framebuffer* passTarget(const std::string& pass) const;
+
  private:
   struct GpuObject {
     GpuMesh mesh;                      //!< uploaded relative to the centre of model_bounds

@@ -42,6 +42,11 @@ class AssetCache {
   std::map<std::string, std::shared_ptr<const image::Image>> images_;
 };
 
+//! Prepares a loaded mesh for object `o`: recentres it when asked, makes planar UVs or checks
+//! the mesh's own when the object is wrinkled (Error naming `where` otherwise), computes
+//! normals and, when the object draws lines, curvature and the feature size.
+ObjectAsset prepareAsset(mesh::Mesh m, const Object& o, const std::string& where = "object");
+
 //! Planar UVs: x and y over the larger horizontal extent of the mesh, in [0, 1].
 void planarUvs(mesh::Mesh& m);
 

@@ -1,0 +1,243 @@
+// The ink renderer against analytic answers: curvature of spheres, Eq. 2/3 tones from the
+// G-buffer normals, wrinkles only off the lines, pruning and the frame cache; and a golden
+// image of the sample scene.
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <memory>
+
+#include <nlohmann/json.hpp>
+
+#include "shanshui/core/error.h"
+#include "shanshui/image/image_io.h"
+#include "shanshui/render/gl_context.h"
+#include "shanshui/render/ink_renderer.h"
+#include "shanshui/scene/scene.h"
+#include "shanshui/scene/scene_assets.h"
+#include "test_meshes.h"
+#include "test_support.h"
+
+namespace shanshui::render {
+namespace {
+
+using nlohmann::json;
+
+class Ink : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() { context_ = GlContext::create({.kind = ContextKind::Headless}); }
+  static void TearDownTestSuite() { context_.reset(); }
+  static std::unique_ptr<GlContext> context_;
+};
+std::unique_ptr<GlContext> Ink::context_;
+
+// A one-object scene around a mesh given in memory (the file name is never read).
+scene::Scene sceneWith(const json& object_overrides, const json& top = json::object()) {
+  json j = top;
+  json o = {{"mesh", "memory.obj"}};
+  if (object_overrides.is_object()) o.update(object_overrides, true);
+  j["objects"] = json::array({o});
+  return scene::parseScene(j, "test", ".");
+}
+
+std::vector<scene::LoadedObject> prepare(const scene::Scene& s, const mesh::Mesh& m,
+                                         std::shared_ptr<const image::Image> wrinkle = nullptr) {
+  return {{std::make_shared<const scene::ObjectAsset>(scene::prepareAsset(m, s.objects[0])), std::move(wrinkle)}};
+}
+
+double median(std::vector<double> v) {
+  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2), v.end());
+  return v[v.size() / 2];
+}
+
+// Curvature the G-buffer holds (dimensionless) at object pixels away from the silhouette.
+std::vector<double> gbufferCurvature(InkRenderer& r, const OrbitCamera& cam) {
+  const Framebuffer* g = r.passTarget("gbuffer");
+  const image::Image nc = g->colour(0).download(4), pos = g->colour(1).download(4);
+  std::vector<double> k;
+  const glm::vec3 eye(cam.eye());
+  for (int y = 0; y < nc.height; ++y) {
+    for (int x = 0; x < nc.width; ++x) {
+      if (pos.at(x, y, 3) < 0.5f) continue;
+      const glm::vec3 n(nc.at(x, y, 0), nc.at(x, y, 1), nc.at(x, y, 2));
+      const glm::vec3 p(pos.at(x, y, 0), pos.at(x, y, 1), pos.at(x, y, 2));
+      if (std::abs(glm::dot(glm::normalize(n), glm::normalize(eye - p))) < 0.3f) continue;
+      k.push_back(nc.at(x, y, 3));
+    }
+  }
+  return k;
+}
+
+TEST_F(Ink, SphereCurvatureIsOneOnEverySphereForBothEstimators) {
+  // On a sphere |k| = 1/R everywhere and the feature size is R, so the dimensionless
+  // curvature is 1 whatever the radius: the point of normalising curve_factor.
+  for (double radius : {0.01, 1.0, 1000.0}) {
+    for (const char* source : {"object", "screen"}) {
+      SCOPED_TRACE(std::to_string(radius) + " " + source);
+      const scene::Scene s = sceneWith({{"lines", {{"curvature", source}}}, {"shading", {{"enabled", false}}}});
+      InkRenderer r(s, prepare(s, test::uvSphere(radius, 64, 128, glm::dvec3(3e5, -2e5, 40.0))));
+      const OrbitCamera cam = sceneCamera(s, r.worldBounds(), 1.0, {30, 20, 1.0});
+      r.render(cam, 256, 256);
+      const std::vector<double> k = gbufferCurvature(r, cam);
+      ASSERT_GT(k.size(), 10000u);
+      EXPECT_NEAR(median(k), 1.0, std::string(source) == "object" ? 0.02 : 0.1);
+    }
+  }
+}
+
+TEST_F(Ink, TonesFollowEquationsTwoAndThreeFromTheNormals) {
+  // No lines, no erosion, no noise: t_dw = clamp(t_d + 1 − 1) = t_d, and the tone is the
+  // Gaussian-smoothed ladder of t_d, which the test recomputes from the G-buffer normal with
+  // std::erf. σ = 0 gives Eq. 2 exactly (away from the thresholds).
+  for (double sigma : {0.0, 0.05}) {
+    SCOPED_TRACE(sigma);
+    const scene::Scene s = sceneWith({{"lines", {{"enabled", false}}},
+                                      {"shading", {{"erosion", 0.0}, {"noise", 0.0}, {"sigma", sigma}}}});
+    InkRenderer r(s, prepare(s, test::uvSphere(2.0, 64, 128)));
+    ASSERT_EQ(r.passesBuilt(), (std::vector<std::string>{"gbuffer", "shading", "composite"}));
+    r.render(sceneCamera(s, r.worldBounds(), 1.0, {-40, 30, 1.0}), 200, 200);
+    const image::Image nc = r.passTarget("gbuffer")->colour(0).download(4);
+    const image::Image pos = r.passTarget("gbuffer")->colour(1).download(4);
+    const image::Image tone = r.passTarget("shading")->colour(0).download(1);
+    const scene::ShadingParams& p = s.objects[0].shading;
+    const glm::dvec3 light = glm::normalize(s.light.direction);
+    int checked = 0;
+    double worst = 0;
+    for (int y = 0; y < tone.height; ++y) {
+      for (int x = 0; x < tone.width; ++x) {
+        if (pos.at(x, y, 3) < 0.5f) continue;
+        const glm::dvec3 n = glm::normalize(glm::dvec3(nc.at(x, y, 0), nc.at(x, y, 1), nc.at(x, y, 2)));
+        const double t = std::max(glm::dot(n, light), 0.0);
+        double expected = p.tones[0];
+        bool near_step = false;
+        for (int k = 0; k < 4; ++k) {
+          const double step = sigma > 0 ? 0.5 * std::erfc(-(t - p.thresholds[k]) / (sigma * std::sqrt(2.0)))
+                                        : (t > p.thresholds[k] ? 1.0 : 0.0);
+          near_step |= std::abs(t - p.thresholds[k]) < 0.003;
+          expected += (p.tones[k + 1] - p.tones[k]) * step;
+        }
+        if (sigma == 0 && near_step) continue;  // half-float normals decide the side there
+        worst = std::max(worst, std::abs(tone.at(x, y, 0) - expected));
+        ++checked;
+      }
+    }
+    EXPECT_GT(checked, 8000);
+    EXPECT_LT(worst, sigma > 0 ? 3e-3 : 1e-3);  // R16F output; near a step a half-float normal moves Φ
+  }
+}
+
+TEST_F(Ink, WrinklesAreMappedOnlyWhereTheLinePassGaveBackground) {
+  // A black wrinkle texture (t_w = 0) drives every background pixel to the darkest tone
+  // C1 (σ = 0, no noise); line pixels keep the tone they have without wrinkles.
+  const mesh::Mesh sphere = test::uvSphere(1.0, 48, 96);
+  json object = {{"lines", {{"curve_factor", 0.0}, {"silhouette", 0.5}, {"soft_width", 0.0}, {"depth_edges", 0.0}}},
+                 {"shading", {{"erosion", 0.0}, {"noise", 0.0}, {"sigma", 0.0}, {"line_value", false}}}};
+  const scene::Scene plain = sceneWith(object);
+  object["wrinkle"] = {{"texture", "black.png"}, {"uv", "planar"}};
+  const scene::Scene wrinkled = sceneWith(object);
+  auto black = std::make_shared<const image::Image>(64, 64, 1, 0.0f);
+  InkRenderer a(plain, prepare(plain, sphere)), b(wrinkled, prepare(wrinkled, sphere, black));
+  const OrbitCamera cam = sceneCamera(plain, a.worldBounds(), 1.0, {10, 10, 1.0});
+  a.render(cam, 160, 160);
+  b.render(cam, 160, 160);
+  const image::Image line = b.passTarget("lines")->colour(0).download(2);
+  const image::Image pos = b.passTarget("gbuffer")->colour(1).download(4);
+  const image::Image ta = a.passTarget("shading")->colour(0).download(1);
+  const image::Image tb = b.passTarget("shading")->colour(0).download(1);
+  int on_lines = 0, off_lines = 0;
+  for (int y = 0; y < 160; ++y) {
+    for (int x = 0; x < 160; ++x) {
+      if (pos.at(x, y, 3) < 0.5f) continue;
+      if (line.at(x, y, 0) >= 0.5f) {
+        EXPECT_NEAR(tb.at(x, y, 0), ta.at(x, y, 0), 1e-3) << x << "," << y;
+        ++on_lines;
+      } else {
+        EXPECT_NEAR(tb.at(x, y, 0), wrinkled.objects[0].shading.tones[0], 1e-3) << x << "," << y;
+        ++off_lines;
+      }
+    }
+  }
+  EXPECT_GT(on_lines, 500);
+  EXPECT_GT(off_lines, 5000);
+}
+
+TEST_F(Ink, UnchangedFramesArePresentedFromTheCache) {
+  const scene::Scene s = sceneWith({});
+  InkRenderer r(s, prepare(s, test::uvSphere(1.0)));
+  OrbitCamera cam = sceneCamera(s, r.worldBounds(), 1.0, {0, 20, 1.0});
+  FrameStats st;
+  r.render(cam, 64, 64, &st);
+  EXPECT_FALSE(st.cached);
+  EXPECT_EQ(st.passes.size(), 4u);
+  r.render(cam, 64, 64, &st);
+  EXPECT_TRUE(st.cached);
+  EXPECT_TRUE(st.passes.empty());
+  scene::Scene changed = s;
+  changed.objects[0].lines.curve_factor = 2.0;
+  r.setScene(changed);
+  r.render(cam, 64, 64, &st);
+  EXPECT_FALSE(st.cached) << "a parameter changed";
+  cam.azimuth_deg += 1;
+  r.render(cam, 64, 64, &st);
+  EXPECT_FALSE(st.cached) << "the camera moved";
+  r.render(cam, 64, 48, &st);
+  EXPECT_FALSE(st.cached) << "the size changed";
+  // A change of variant is not a parameter change.
+  changed.objects[0].lines.enabled = false;
+  EXPECT_THROW(r.setScene(changed), Error);
+}
+
+TEST_F(Ink, SmallObjectsGetNormalLinesOnly) {
+  // A sphere far away covers few pixels: curvature lines are off (curve_factor is huge, so
+  // they would cover it), only the N·V rim is drawn.
+  const scene::Scene s = sceneWith({{"lines", {{"curve_factor", 100.0}, {"small_object_px", 5000.0}, {"depth_edges", 0.0}}},
+                                    {"shading", {{"enabled", false}}}});
+  InkRenderer r(s, prepare(s, test::uvSphere(1.0)));
+  auto lineShare = [&](double zoom) {
+    r.render(sceneCamera(s, r.worldBounds(), 1.0, {0, 0, zoom}), 200, 200);
+    const image::Image line = r.passTarget("lines")->colour(0).download(2);
+    const image::Image pos = r.passTarget("gbuffer")->colour(1).download(4);
+    double on = 0, all = 0;
+    for (int y = 0; y < 200; ++y)
+      for (int x = 0; x < 200; ++x)
+        if (pos.at(x, y, 3) > 0.5f) on += line.at(x, y, 0) > 0.5f, all += 1;
+    return std::pair{on / std::max(all, 1.0), all};
+  };
+  const auto [near_share, near_px] = lineShare(1.0);
+  const auto [far_share, far_px] = lineShare(0.15);
+  EXPECT_GT(near_px, 5000.0);
+  EXPECT_LT(far_px, 5000.0);
+  EXPECT_GT(near_share, 0.95);  // curvature lines everywhere
+  EXPECT_LT(far_share, 0.6);    // only the rim
+}
+
+TEST_F(Ink, SampleSceneMatchesItsGoldenImage) {
+  // Update with SHANSHUI_UPDATE_GOLDEN=1 after an intended change, and look at the picture.
+  const std::filesystem::path golden = test::sourceDir() / "tests/golden/default_scene_200x150.png";
+  scene::Scene s = scene::loadScene(test::sourceDir() / "samples/scenes/default.json",
+                                    {"objects.0.max_vertices=20000", "output.width=200", "output.height=150"});
+  scene::AssetCache cache;
+  InkRenderer r(s, cache.getAll(s));
+  const image::Image img = r.renderImage(frameKey(s, 0, 1, 0.0));
+  if (std::getenv("SHANSHUI_UPDATE_GOLDEN")) {
+    image::saveImage(img, golden);
+    GTEST_SKIP() << "golden image written: " << golden;
+  }
+  SHANSHUI_REQUIRE_FILE(golden);
+  const image::Image ref = image::loadImage(golden);
+  ASSERT_EQ(ref.width, img.width);
+  ASSERT_EQ(ref.height, img.height);
+  double sum = 0;
+  std::size_t far_off = 0;
+  for (std::size_t i = 0; i < img.pixels.size(); ++i) {
+    const double d = std::abs(img.pixels[i] - ref.pixels[i]);
+    sum += d;
+    far_off += d > 0.1;
+  }
+  // Tolerances for another rasteriser (a GPU instead of llvmpipe): small mean difference,
+  // few pixels far off (edges of lines and tone steps move by a pixel).
+  EXPECT_LT(sum / static_cast<double>(img.pixels.size()), 0.01);
+  EXPECT_LT(far_off, img.pixels.size() / 50);
+}
+
+}  // namespace
+}  // namespace shanshui::render

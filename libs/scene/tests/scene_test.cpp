@@ -1,0 +1,214 @@
+// Scene files: defaults, round trips, overrides, the schema against docs/scene.md, errors.
+#include <fstream>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "shanshui/core/error.h"
+#include "shanshui/scene/scene.h"
+#include "shanshui/scene/scene_assets.h"
+#include "test_support.h"
+
+namespace shanshui::scene {
+namespace {
+
+using nlohmann::json;
+
+const json kMinimal = {{"objects", json::array({{{"dem", "hill.asc"}}})}};
+
+std::string errorOf(const json& j) {
+  try {
+    parseScene(j, "s.json", ".");
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(Scene, MissingKeysTakeTheDocumentedDefaults) {
+  const Scene s = parseScene(kMinimal, "s.json", "base");
+  ASSERT_EQ(s.objects.size(), 1u);
+  const Object& o = s.objects[0];
+  const Object d;
+  EXPECT_EQ(o.dem, "hill.asc");
+  EXPECT_EQ(o.name, "objects.0");
+  EXPECT_EQ(o.lines.curve_factor, d.lines.curve_factor);
+  EXPECT_EQ(o.shading.tones, d.shading.tones);
+  EXPECT_EQ(o.shading.beta, -1.0);
+  EXPECT_EQ(s.output.width, 1024);
+  EXPECT_FALSE(s.camera.target.has_value());
+  EXPECT_FALSE(s.diffusion.enabled());
+  EXPECT_EQ(s.resolve("hill.asc"), std::filesystem::path("base") / "hill.asc");
+  EXPECT_FALSE(s.usesWrinkles());
+  EXPECT_TRUE(s.usesLines());
+}
+
+TEST(Scene, SampleSceneRoundTripsThroughJson) {
+  const Scene a = loadScene(test::sourceDir() / "samples/scenes/default.json");
+  const json ja = toJson(a);
+  const Scene b = parseScene(ja, "again", a.base_dir);
+  EXPECT_EQ(toJson(b), ja);
+  EXPECT_TRUE(a.usesWrinkles());
+  EXPECT_EQ(a.camera.path.size(), 3u);
+  // Non-default values survive too.
+  json j = ja;
+  j["objects"][0]["lines"]["curvature"] = "screen";
+  j["camera"]["target"] = {1, 2, 3};
+  j["objects"][0]["transform"]["rotate"] = {0, 0, 45};
+  const Scene c = parseScene(j, "c", ".");
+  EXPECT_EQ(c.objects[0].lines.curvature, CurvatureSource::Screen);
+  EXPECT_EQ(*c.camera.target, glm::dvec3(1, 2, 3));
+  EXPECT_EQ(toJson(parseScene(toJson(c), "d", ".")), toJson(c));
+}
+
+TEST(Scene, OverridesTakeDottedPathsAndJsonValues) {
+  json j = kMinimal;
+  applyOverride(j, "objects.0.lines.curve_factor=2.5");
+  applyOverride(j, "objects.0.shading.tones=[0.1,0.2,0.3,0.4,0.5]");
+  applyOverride(j, "objects.0.lines.enabled=false");
+  applyOverride(j, "canvas.type=none");  // not JSON: a string
+  applyOverride(j, "objects.0.name=\"peak\"");
+  const Scene s = parseScene(j, "s", ".");
+  EXPECT_EQ(s.objects[0].lines.curve_factor, 2.5);
+  EXPECT_EQ(s.objects[0].shading.tones[4], 0.5);
+  EXPECT_FALSE(s.objects[0].lines.enabled);
+  EXPECT_EQ(s.objects[0].name, "peak");
+  EXPECT_THROW(applyOverride(j, "objects.1.name=x"), Error);
+  EXPECT_THROW(applyOverride(j, "objects.x.name=x"), Error);
+  EXPECT_THROW(applyOverride(j, "=3"), Error);
+  EXPECT_THROW(applyOverride(j, "objects..name=3"), Error);
+  EXPECT_THROW(applyOverride(j, "objects.0.lines.curve_factor.x=3"), Error);  // parent is a number
+}
+
+TEST(Scene, EveryKindOfBadValueNamesItsKeyPath) {
+  auto with = [](const std::string& path, const json& v) {
+    json j = kMinimal;
+    j["objects"][0]["wrinkle"] = json::object();
+    json* node = &j;
+    std::stringstream ss(path);
+    std::string part;
+    while (std::getline(ss, part, '.')) {
+      node = node->is_array() ? &(*node)[std::stoul(part)] : &(*node)[part];
+    }
+    *node = v;
+    return errorOf(j);
+  };
+  struct Case {
+    std::string path;
+    json value;
+    std::string expect;
+  };
+  const Case cases[] = {
+      {"objects.0.lines.curve_factor", -1, "out of range"},
+      {"objects.0.lines.curve_factor", "big", "expected a number"},
+      {"objects.0.lines.enabled", 1, "expected true or false"},
+      {"objects.0.lines.line_color", json::array({1, 2, 3}), "out of range"},
+      {"objects.0.lines.line_color", json::array({1, 1}), "list of 3"},
+      {"objects.0.lines", 3, "expected an object"},
+      {"objects.0.wrinkle.uv", "cylinder", "not one of"},
+      {"objects.0.max_vertices", 2.5, "expected an integer"},
+      {"objects.0.z_scale", 0, "out of range; expected (0, 1000]"},
+      {"objects.0.transform.scale", json::array({1, 0, 1}), "objects.0.transform.scale.1"},
+      {"objects.0.colour", 1, "unknown key"},
+      {"objects", 3, "expected a list"},
+      {"camera.path", json::array({{{"zoom", 0}}}), "camera.path.0.zoom"},
+      {"output.paper", json::array({0.5, 0.5, 1.5}), "output.paper.2"},
+      {"seed", -1, "seed"},
+      {"canvas.type", "silk", "not one of: none"},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.path);
+    const std::string e = with(c.path, c.value);
+    EXPECT_NE(e.find("s.json: "), std::string::npos) << e;
+    EXPECT_NE(e.find(c.path), std::string::npos) << e;
+    EXPECT_NE(e.find(c.expect), std::string::npos) << e;
+  }
+}
+
+TEST(Scene, EveryKeyTheParserAcceptsIsDocumented) {
+  std::ifstream in(test::sourceDir() / "docs/scene.md");
+  ASSERT_TRUE(in) << "docs/scene.md";
+  std::stringstream text;
+  text << in.rdbuf();
+  const std::string doc = text.str();
+  ASSERT_GT(sceneSchema().size(), 50u);
+  for (const SchemaEntry& e : sceneSchema()) {
+    // Documented in its section's table as `key`, or `parent.key` (transform.scale,
+    // light.direction), or by its whole path.
+    const std::size_t last = e.path.rfind('.');
+    const std::size_t parent = last == std::string::npos || last == 0 ? std::string::npos : e.path.rfind('.', last - 1);
+    const std::string key = e.path.substr(last + 1);
+    const std::string two = parent == std::string::npos ? e.path : e.path.substr(parent + 1);
+    const bool found = doc.find("`" + key + "`") != std::string::npos || doc.find("`" + two + "`") != std::string::npos ||
+                       doc.find("`" + e.path + "`") != std::string::npos;
+    EXPECT_TRUE(found) << e.path;
+    if (e.kind == "choice") {
+      for (const auto& c : e.choices) EXPECT_NE(doc.find("`" + c + "`"), std::string::npos) << e.path << " = " << c;
+    }
+  }
+}
+
+TEST(Scene, SchemaRangesMatchTheParser) {
+  // For every bounded number: the bounds parse, just outside them does not.
+  for (const SchemaEntry& e : sceneSchema()) {
+    if (e.kind != "number" || e.path.find('*') != std::string::npos || e.path == "seed") continue;
+    SCOPED_TRACE(e.path);
+    json j = kMinimal;
+    const std::string assignment = e.path + "=";
+    json ok = j, bad = j;
+    applyOverride(ok, assignment + std::to_string(e.max));
+    EXPECT_NO_THROW(parseScene(ok, "s", ".")) << e.max;
+    applyOverride(bad, assignment + std::to_string(e.max + std::max(1.0, std::abs(e.max))));
+    EXPECT_THROW(parseScene(bad, "s", "."), Error);
+  }
+}
+
+TEST(Scene, AMeshOrDemBecomesAOneObjectScene) {
+  const Scene s = loadSceneInput("peaks/hill.asc", {"objects.0.z_scale=2"});
+  ASSERT_EQ(s.objects.size(), 1u);
+  EXPECT_EQ(s.objects[0].dem, "peaks/hill.asc");
+  EXPECT_EQ(s.objects[0].z_scale, 2.0);
+  EXPECT_EQ(loadSceneInput("m.obj").objects[0].mesh, "m.obj");
+  EXPECT_THROW(loadSceneInput("notes.txt"), Error);
+}
+
+TEST(SceneAssets, PlanarUvsSpanTheLargerExtentAndLumaIsEquationFive) {
+  mesh::Mesh m;
+  m.positions = {{10, 20, 0}, {14, 20, 5}, {10, 22, 1}};
+  m.triangles = {{0, 1, 2}};
+  planarUvs(m);
+  EXPECT_EQ(m.uvs[0], glm::vec2(0, 0));
+  EXPECT_EQ(m.uvs[1], glm::vec2(1, 0));
+  EXPECT_EQ(m.uvs[2], glm::vec2(0, 0.5f));
+  image::Image rgb(1, 1, 3);
+  rgb.pixels = {1.0f, 0.5f, 0.0f};
+  EXPECT_FLOAT_EQ(wrinkleLuma(rgb).pixels[0], 0.3f + 0.295f);
+}
+
+TEST(SceneAssets, AWrinkledMeshWithoutUvsIsRefusedAndPlanarUvsAreMade) {
+  mesh::Mesh m;
+  m.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0.3}};
+  m.triangles = {{0, 1, 2}, {1, 3, 2}};
+  Object o;
+  o.mesh = "quad.obj";
+  o.wrinkle.texture = "w.png";
+  try {
+    prepareAsset(m, o, "objects.0");
+    FAIL() << "expected an error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("objects.0.wrinkle.uv: quad.obj has no UVs"), std::string::npos) << e.what();
+  }
+  o.wrinkle.uv = UvSource::Planar;
+  const ObjectAsset a = prepareAsset(m, o);
+  EXPECT_EQ(a.mesh.uvs.size(), 4u);
+  EXPECT_EQ(a.curvature.size(), 4u);
+  o.wrinkle.texture.clear();
+  o.lines.enabled = false;
+  const ObjectAsset b = prepareAsset(m, o);
+  EXPECT_TRUE(b.mesh.uvs.empty()) << "no wrinkles: no UVs uploaded";
+  EXPECT_TRUE(b.curvature.empty()) << "no lines: no curvature computed";
+  EXPECT_EQ(b.feature_size, 0.0);
+}
+
+}  // namespace
+}  // namespace shanshui::scene
