@@ -1,11 +1,11 @@
 #version 450 core
-// G-buffer pass. Curvature is dimensionless (|k| times the mesh's feature size): either
+// G-buffer pass: world normal and dimensionless curvature (|k| times the mesh's feature
+// size), and the surface detail the shading reads, with the object id. Curvature is either
 // interpolated from the vertices (OBJECT_CURVATURE) or, as seed 001 does, estimated in
 // screen space from how fast the normal turns per unit of surface, |fwidth(N)| / |fwidth(P)|
-// (SCREEN_CURVATURE); objects without lines get neither.
-in vec3 v_world;
+// (SCREEN_CURVATURE); objects without lines get neither. World positions are not stored:
+// the image passes rebuild them from the depth buffer.
 in vec3 v_normal;
-in vec3 v_model;
 #ifdef WRINKLE
 in vec2 v_uv;
 uniform sampler2D u_wrinkle;   // Eq. 5's luma of the wrinkle texture, mipmapped
@@ -15,24 +15,22 @@ uniform float u_repeat;        // texture repetitions per UV unit
 in float v_curvature;
 #endif
 #ifdef SCREEN_CURVATURE
+in vec3 v_world;
 uniform float u_feature_size;  // world units
 #endif
 #ifdef SURFACE
-uniform sampler2D u_noise;          // r: erosion noise, g: noise added before quantisation
-uniform float u_noise_frequency;    // noise texture repetitions per model unit
+in vec2 v_noise_uv;
+uniform sampler2D u_noise;     // r: erosion noise, g: noise added before quantisation
 #endif
-uniform float u_object_id;          // index + 1; 0 is the background
+uniform float u_object_id;     // (index + 1) / 255; 0 is the background
 
 layout(location = 0) out vec4 o_normal_curvature;
-layout(location = 1) out vec4 o_position_id;
-#ifdef SURFACE
-layout(location = 2) out vec4 o_surface;  // erosion noise, added noise, wrinkle luma, 1
-#endif
+layout(location = 1) out vec4 o_surface_id;  // erosion noise, added noise, wrinkle luma, id
 
 void main() {
   vec3 n = normalize(v_normal);
   if (!gl_FrontFacing) n = -n;
-  float k = 0.0;  // objects without lines
+  float k = 0.0;
 #ifdef OBJECT_CURVATURE
   k = v_curvature;
 #endif
@@ -41,13 +39,13 @@ void main() {
   k = dp > 0.0 ? length(fwidth(n)) / dp * u_feature_size : 0.0;
 #endif
   o_normal_curvature = vec4(n, k);
-  o_position_id = vec4(v_world, u_object_id);
+  vec2 noise = vec2(1.0, 0.5);  // no erosion, nothing added
 #ifdef SURFACE
-  vec2 noise = texture(u_noise, v_model.xy * u_noise_frequency).rg;
+  noise = texture(u_noise, v_noise_uv).rg;
+#endif
   float wrinkle = 1.0;
 #ifdef WRINKLE
   wrinkle = texture(u_wrinkle, v_uv * u_repeat).r;
 #endif
-  o_surface = vec4(noise, wrinkle, 1.0);
-#endif
+  o_surface_id = vec4(noise, wrinkle, u_object_id);
 }

@@ -1,6 +1,7 @@
 #version 450 core
-// G-buffer pass: world position and normal, model position for the erosion noise, and the
-// attributes of the variant: UVs (WRINKLE), per-vertex curvature (OBJECT_CURVATURE).
+// G-buffer pass. Only what the variant needs is interpolated (llvmpipe pays per varying):
+// normal always; erosion-noise coordinates (SURFACE), UVs (WRINKLE), per-vertex curvature
+// (OBJECT_CURVATURE), world position for screen-space derivatives (SCREEN_CURVATURE).
 layout(location = 0) in vec3 a_position;
 layout(location = 1) in vec3 a_normal;
 #ifdef WRINKLE
@@ -11,25 +12,34 @@ out vec2 v_uv;
 layout(location = 3) in float a_curvature;
 out float v_curvature;
 #endif
+#ifdef SCREEN_CURVATURE
+out vec3 v_world;
+#endif
+#ifdef SURFACE
+uniform float u_noise_frequency;  // noise texture repetitions per model unit
+out vec2 v_noise_uv;
+#endif
 
 uniform mat4 u_model;
 uniform mat3 u_normal_matrix;
 uniform mat4 u_view_projection;
 
-out vec3 v_world;
 out vec3 v_normal;
-out vec3 v_model;
 
 void main() {
   vec4 world = u_model * vec4(a_position, 1.0);
-  v_world = world.xyz;
   v_normal = u_normal_matrix * a_normal;
-  v_model = a_position;
 #ifdef WRINKLE
   v_uv = a_uv;
 #endif
 #ifdef OBJECT_CURVATURE
   v_curvature = a_curvature;
+#endif
+#ifdef SCREEN_CURVATURE
+  v_world = world.xyz;
+#endif
+#ifdef SURFACE
+  v_noise_uv = a_position.xy * u_noise_frequency;  // fixed to the model: moves with it
 #endif
   gl_Position = u_view_projection * world;
 }

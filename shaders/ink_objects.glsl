@@ -1,4 +1,4 @@
-// Per-object parameters of the ink passes, indexed by the G-buffer's object id − 1.
+// Per-object parameters of the ink pass, indexed by the G-buffer's object id − 1.
 // Layout matches ObjectParamsGpu in libs/render/src/ink_renderer.cpp (std430).
 struct ObjectParams {
   vec4 line_color;   // rgb, curve_factor
@@ -18,5 +18,3 @@ const int kShadingOn = 1;     // shade_misc2.z bits
 const int kHalfLambert = 2;
 const int kLineValue = 4;
 const int kWrinkled = 8;
-
-int objectId(vec4 position_id) { return int(position_id.w + 0.5); }

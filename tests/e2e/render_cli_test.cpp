@@ -39,12 +39,13 @@ TEST(RenderCli, StatsListThePassesBuiltAndTheirGpuTimePerFrame) {
     EXPECT_EQ(img.height, 120);
   }
   const json s = readJson(dir / "s.json");
-  EXPECT_EQ(s["passes_built"], json({"gbuffer", "lines", "shading", "composite"}));
-  EXPECT_EQ(s["variants"]["shading"], json({"LINES WRINKLE"}));
+  EXPECT_EQ(s["passes_built"], json({"gbuffer", "ink"}));
+  EXPECT_EQ(s["variants"]["ink"], json({"LINES SHADING WRINKLE"}));
+  EXPECT_EQ(s["variants"]["gbuffer"], json({"SURFACE WRINKLE OBJECT_CURVATURE"}));
   ASSERT_EQ(s["frames"].size(), 3u);
   for (const json& f : s["frames"]) {
     EXPECT_FALSE(f["cached"].get<bool>());
-    EXPECT_EQ(passNames(f), std::set<std::string>({"gbuffer", "lines", "shading", "composite"}));
+    EXPECT_EQ(passNames(f), std::set<std::string>({"gbuffer", "ink"}));
     double sum = 0;
     for (const auto& [k, v] : f["passes"].items()) {
       EXPECT_GE(v.get<double>(), 0.0) << k;
@@ -82,17 +83,19 @@ TEST(RenderCli, ASceneWithoutWrinklesCanvasOrDiffusionRunsNoneOfThem) {
   EXPECT_EQ(image::loadImage(dir / "f_0000.png").pixels, image::loadImage(dir / "f_0001.png").pixels);
 }
 
-TEST(RenderCli, LinesOnlyAndShadingOnlyBuildOnlyTheirPasses) {
+TEST(RenderCli, LinesOnlyAndShadingOnlyBuildOnlyTheirShaderCode) {
   test::TempDir dir;
   const std::string base = bin("shanshui-render") + " " + sampleScene() + " --size 64x48 --set objects.0.max_vertices=3000";
   auto r = run(base + " -o " + quote(dir / "a.png") + " --stats " + quote(dir / "a.json") +
                " --set objects.0.shading.enabled=false");
   ASSERT_EQ(r.exit_code, 0) << r.output;
-  EXPECT_EQ(readJson(dir / "a.json")["passes_built"], json({"gbuffer", "lines", "composite"}));
+  const json a = readJson(dir / "a.json");
+  EXPECT_EQ(a["variants"]["ink"], json({"LINES"}));
+  EXPECT_EQ(a["variants"]["gbuffer"], json({"OBJECT_CURVATURE"})) << "no noise, no wrinkle texture, no UVs";
   r = run(base + " -o " + quote(dir / "b.png") + " --stats " + quote(dir / "b.json") + " --set objects.0.lines.enabled=false");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const json b = readJson(dir / "b.json");
-  EXPECT_EQ(b["passes_built"], json({"gbuffer", "shading", "composite"}));
+  EXPECT_EQ(b["variants"]["ink"], json({"SHADING WRINKLE"}));
   EXPECT_EQ(b["variants"]["gbuffer"], json({"SURFACE WRINKLE"}));  // no curvature of either kind
 }
 

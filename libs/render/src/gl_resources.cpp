@@ -48,7 +48,7 @@ Texture2D Texture2D::tiledFromImage(const image::Image& img, GLenum internal_for
   glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
   glTextureSubImage2D(t.id_, 0, 0, 0, img.width, img.height, GL_RGBA, GL_FLOAT, rgba.pixels.data());
   glGenerateTextureMipmap(t.id_);
-  glTextureParameteri(t.id_, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+  glTextureParameteri(t.id_, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_NEAREST);  // half the fetches of trilinear
   glTextureParameteri(t.id_, GL_TEXTURE_WRAP_S, GL_REPEAT);
   glTextureParameteri(t.id_, GL_TEXTURE_WRAP_T, GL_REPEAT);
   SHANSHUI_GL_CHECK("Texture2D tiled upload");
@@ -78,7 +78,9 @@ image::Image Texture2D::download(int channels) const {
   if (channels < 1 || channels > 4) throw makeError("download: ", channels, " channels (expected 1-4)");
   image::Image img(width_, height_, channels);
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
-  glGetTextureImage(id_, 0, formats[channels - 1], GL_FLOAT,
+  const bool depth = format_ == GL_DEPTH_COMPONENT32F || format_ == GL_DEPTH_COMPONENT24 || format_ == GL_DEPTH_COMPONENT16;
+  if (depth && channels != 1) throw makeError("download: a depth texture has 1 channel, not ", channels);
+  glGetTextureImage(id_, 0, depth ? GL_DEPTH_COMPONENT : formats[channels - 1], GL_FLOAT,
                     static_cast<GLsizei>(img.pixels.size() * sizeof(float)), img.pixels.data());
   SHANSHUI_GL_CHECK("Texture2D download");
   const std::size_t row = static_cast<std::size_t>(width_) * channels;

@@ -27,6 +27,9 @@ static_assert(sizeof(ObjectParamsGpu) == 7 * 16);
 constexpr int kLinesOn = 1, kNormalOnly = 2;
 constexpr int kShadingOn = 1, kHalfLambert = 2, kLineValue = 4, kWrinkled = 8;
 
+// Coarsest erosion-noise cells per texture tile; shading.noise_scale is the size of one.
+constexpr int kErosionCells = 4;
+
 bool wrinkled(const scene::Object& o) { return !o.wrinkle.texture.empty() && o.shading.enabled; }
 
 std::vector<std::string> gbufferDefines(const scene::Scene& s, const scene::Object& o) {
@@ -91,7 +94,7 @@ image::Image erosionNoise(int size, std::uint64_t seed) {
     std::vector<float> sum(static_cast<std::size_t>(size) * size, 0.0f);
     float weight_total = 0.0f;
     for (int o = 0; o < octaves; ++o) {
-      const int cells = (ch == 0 ? 8 : 32) << o;  // the added noise is finer than the erosion
+      const int cells = (ch == 0 ? kErosionCells : 32) << o;  // the added noise is finer than the erosion
       const float weight = 1.0f / static_cast<float>(1 << o);
       weight_total += weight;
       std::vector<float> lattice(static_cast<std::size_t>(cells) * cells);
@@ -139,10 +142,8 @@ InkRenderer::InkRenderer(const scene::Scene& s, const std::vector<scene::LoadedO
   lines_ = s.usesLines();
   shading_ = s.usesShading();
   wrinkles_ = s.usesWrinkles();
-  passes_.emplace_back("gbuffer");
-  if (lines_) passes_.emplace_back("lines");
-  if (shading_) passes_.emplace_back("shading");
-  passes_.emplace_back("composite");
+  if (objects.size() > 255) throw makeError("a scene holds at most 255 objects; this one has ", objects.size());
+  passes_ = {"gbuffer", "ink"};
 
   for (std::size_t i = 0; i < objects.size(); ++i) {
     const scene::ObjectAsset& a = *objects[i].geometry;
@@ -183,9 +184,7 @@ std::size_t InkRenderer::triangleCount() const {
 
 const Framebuffer* InkRenderer::passTarget(const std::string& pass) const {
   if (pass == "gbuffer") return &gbuffer_;
-  if (pass == "lines") return lines_ ? &lines_target_ : nullptr;
-  if (pass == "shading") return shading_ ? &shading_target_ : nullptr;
-  if (pass == "composite") return &final_;
+  if (pass == "ink") return &final_;
   return nullptr;
 }
 
@@ -197,30 +196,25 @@ void InkRenderer::buildPrograms() {
     gbuffer.emplace_back(std::vector<std::string>{"ink_gbuffer.vert", "ink_gbuffer.frag"}, p.defines);
     variants["gbuffer"].push_back(joined(p.defines));
   }
-  Program lines, shading, composite;
-  if (lines_) {
-    lines = Program({"fullscreen.vert", "ink_lines.frag"});
-    variants["lines"].emplace_back("");
-  }
-  if (shading_) {
-    std::vector<std::string> d;
-    if (lines_) d.emplace_back("LINES");
-    if (wrinkles_) d.emplace_back("WRINKLE");
-    shading = Program({"fullscreen.vert", "ink_shading.frag"}, d);
-    variants["shading"].push_back(joined(d));
-  }
   std::vector<std::string> d;
   if (lines_) d.emplace_back("LINES");
   if (shading_) d.emplace_back("SHADING");
-  composite = Program({"fullscreen.vert", "ink_composite.frag"}, d);
-  variants["composite"].push_back(joined(d));
+  if (wrinkles_) d.emplace_back("WRINKLE");
+  if (debug_outputs_) d.emplace_back("DEBUG_OUTPUTS");
+  Program ink({"fullscreen.vert", "ink.frag"}, d);
+  variants["ink"].push_back(joined(d));
 
   for (std::size_t i = 0; i < gbuffer.size(); ++i) gbuffer_programs_[i].program = std::move(gbuffer[i]);
-  lines_program_ = std::move(lines);
-  shading_program_ = std::move(shading);
-  composite_program_ = std::move(composite);
+  ink_program_ = std::move(ink);
   variants_ = std::move(variants);
   last_key_.clear();
+}
+
+void InkRenderer::setDebugOutputs(bool on) {
+  if (on == debug_outputs_) return;
+  debug_outputs_ = on;
+  buildPrograms();
+  final_ = Framebuffer();  // targets are remade with or without the extra outputs
 }
 
 void InkRenderer::reloadShaders() { buildPrograms(); }
@@ -253,12 +247,10 @@ void InkRenderer::setScene(const scene::Scene& s) {
 
 void InkRenderer::ensureTargets(int width, int height) {
   if (final_.width() == width && final_.height() == height) return;
-  std::vector<GLenum> g{GL_RGBA16F, GL_RGBA32F};
-  if (shading_) g.push_back(GL_RGBA8);
-  gbuffer_ = Framebuffer(width, height, g, true);
-  if (lines_) lines_target_ = Framebuffer(width, height, {GL_RG16F}, false);
-  if (shading_) shading_target_ = Framebuffer(width, height, {GL_R16F}, false);
-  final_ = Framebuffer(width, height, {GL_RGBA8}, false);
+  gbuffer_ = Framebuffer(width, height, {GL_RGBA16F, GL_RGBA8}, true);
+  std::vector<GLenum> out{GL_RGBA8};
+  if (debug_outputs_) out.insert(out.end(), {GL_RG16F, GL_R16F});
+  final_ = Framebuffer(width, height, out, false);
   last_key_.clear();
 }
 
@@ -321,12 +313,12 @@ const Framebuffer& InkRenderer::render(const OrbitCamera& camera, int width, int
   uploadObjectParams(camera, height);
   glBindVertexArray(empty_vao_);
 
-  // G-buffer: normal + curvature, world position + object id, surface detail.
+  // G-buffer: normal + curvature, surface detail + object id, depth.
   if (timing) timer_.begin("gbuffer");
   gbuffer_.bind();
-  const float zero[4] = {0, 0, 0, 0};
-  for (int i = 0; i < (shading_ ? 3 : 2); ++i) glClearNamedFramebufferfv(gbuffer_.id(), GL_COLOR, i, zero);
-  const float far_depth = 1.0f;
+  const float zero[4] = {0, 0, 0, 0}, far_depth = 1.0f;
+  glClearNamedFramebufferfv(gbuffer_.id(), GL_COLOR, 0, zero);
+  glClearNamedFramebufferfv(gbuffer_.id(), GL_COLOR, 1, zero);
   glClearNamedFramebufferfv(gbuffer_.id(), GL_DEPTH, 0, &far_depth);
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
@@ -336,11 +328,10 @@ const Framebuffer& InkRenderer::render(const OrbitCamera& camera, int width, int
     const GpuObject& g = objects_[i];
     const Program& p = gbuffer_programs_[static_cast<std::size_t>(g.program)].program;
     p.use();
-    const glm::mat4 model(g.model);
-    p.set("u_model", model);
+    p.set("u_model", glm::mat4(g.model));
     p.set("u_normal_matrix", glm::mat3(glm::transpose(glm::inverse(glm::dmat3(g.model)))));
     p.set("u_view_projection", view_projection);
-    p.set("u_object_id", static_cast<float>(i + 1));
+    p.set("u_object_id", static_cast<float>(i + 1) / 255.0f);
     const scene::Object& o = scene_.objects[i];
     if (o.lines.enabled && o.lines.curvature == scene::CurvatureSource::Screen) {
       p.set("u_feature_size", static_cast<float>(g.feature_size));
@@ -348,7 +339,9 @@ const Framebuffer& InkRenderer::render(const OrbitCamera& camera, int width, int
     if (shading_) {
       glBindTextureUnit(0, noise_->id());
       p.set("u_noise", 0);
-      p.set("u_noise_frequency", static_cast<float>(1.0 / (o.shading.noise_scale * 0.5 * glm::length(g.model_bounds.size()) + 1e-30)));
+      const double model_radius = 0.5 * glm::length(g.model_bounds.size());
+      const double tile = kErosionCells * o.shading.noise_scale * model_radius;
+      p.set("u_noise_frequency", static_cast<float>(1.0 / std::max(tile, 1e-30)));
     }
     if (g.wrinkle) {
       glBindTextureUnit(1, g.wrinkle->id());
@@ -360,44 +353,29 @@ const Framebuffer& InkRenderer::render(const OrbitCamera& camera, int width, int
   if (timing) timer_.end();
   SHANSHUI_GL_CHECK("gbuffer pass");
 
+  // One image pass: lines, shading and composite.
+  if (timing) timer_.begin("ink");
   glDisable(GL_DEPTH_TEST);
   glBindVertexArray(empty_vao_);
   glBindTextureUnit(0, gbuffer_.colour(0).id());
   glBindTextureUnit(1, gbuffer_.colour(1).id());
-  if (shading_) glBindTextureUnit(2, gbuffer_.colour(2).id());
-  if (lines_) {
-    if (timing) timer_.begin("lines");
-    lines_target_.bind();
-    lines_program_.use();
-    lines_program_.set("u_eye", eye);
-    glDrawArrays(GL_TRIANGLES, 0, 3);
-    if (timing) timer_.end();
-    SHANSHUI_GL_CHECK("lines pass");
-    glBindTextureUnit(3, lines_target_.colour(0).id());
-  }
-  if (shading_) {
-    if (timing) timer_.begin("shading");
-    shading_target_.bind();
-    shading_program_.use();
-    shading_program_.set("u_light_dir", glm::vec3(glm::normalize(scene_.light.direction)));
-    glDrawArrays(GL_TRIANGLES, 0, 3);
-    if (timing) timer_.end();
-    SHANSHUI_GL_CHECK("shading pass");
-    glBindTextureUnit(2, shading_target_.colour(0).id());
-  }
-  if (timing) timer_.begin("composite");
+  glBindTextureUnit(2, gbuffer_.depth().id());
   final_.bind();
-  composite_program_.use();
-  composite_program_.set("u_eye", eye);
-  composite_program_.set("u_paper", glm::vec3(scene_.output.paper));
-  composite_program_.set("u_fade", static_cast<float>(scene_.output.fade));
+  const Program& ink = ink_program_;
+  ink.use();
+  last_inverse_view_projection_ = glm::inverse(glm::dmat4(camera.projection(aspect)) * glm::dmat4(camera.view()));
+  ink.set("u_inverse_view_projection", glm::mat4(last_inverse_view_projection_));
+  ink.set("u_eye", eye);
+  ink.set("u_near_far", glm::vec2(static_cast<float>(camera.near_plane), static_cast<float>(camera.far_plane)));
+  ink.set("u_light_dir", glm::vec3(glm::normalize(scene_.light.direction)));
+  ink.set("u_paper", glm::vec3(scene_.output.paper));
+  ink.set("u_fade", static_cast<float>(scene_.output.fade));
   const double to_centre = glm::length(camera.eye() - world_bounds_.centre());
   const double radius = 0.5 * glm::length(world_bounds_.size());
-  composite_program_.set("u_fade_range", glm::vec2(static_cast<float>(to_centre - 0.5 * radius),
-                                                   static_cast<float>(to_centre + radius)));
+  ink.set("u_fade_range", glm::vec2(static_cast<float>(to_centre - 0.5 * radius), static_cast<float>(to_centre + radius)));
   glDrawArrays(GL_TRIANGLES, 0, 3);
   if (timing) timer_.end();
-  SHANSHUI_GL_CHECK("composite pass");
+  SHANSHUI_GL_CHECK("ink pass");
 
   FrameStats out;
   if (timing) out.passes = timer_.collect();
@@ -406,6 +384,23 @@ const Framebuffer& InkRenderer::render(const OrbitCamera& camera, int width, int
   if (stats) *stats = std::move(out);
   last_key_ = std::move(key);
   return final_;
+}
+
+image::Image InkRenderer::worldPositions() const {
+  const image::Image depth = gbuffer_.depth().download(1);
+  image::Image out(depth.width, depth.height, 4);
+  for (int y = 0; y < depth.height; ++y) {
+    for (int x = 0; x < depth.width; ++x) {
+      const double d = depth.at(x, y, 0);
+      if (d >= 1.0) continue;
+      // Row 0 of the image is the top: GL's y counts from the bottom.
+      const glm::dvec4 ndc((x + 0.5) / depth.width * 2 - 1, 1 - (y + 0.5) / depth.height * 2, d * 2 - 1, 1);
+      const glm::dvec4 w = last_inverse_view_projection_ * ndc;
+      for (int c = 0; c < 3; ++c) out.at(x, y, c) = static_cast<float>(w[c] / w.w);
+      out.at(x, y, 3) = 1.0f;
+    }
+  }
+  return out;
 }
 
 image::Image InkRenderer::renderImage(const scene::CameraKey& key, FrameStats* stats) {

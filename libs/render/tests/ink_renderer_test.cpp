@@ -51,8 +51,7 @@ double median(std::vector<double> v) {
 
 // Curvature the G-buffer holds (dimensionless) at object pixels away from the silhouette.
 std::vector<double> gbufferCurvature(InkRenderer& r, const OrbitCamera& cam) {
-  const Framebuffer* g = r.passTarget("gbuffer");
-  const image::Image nc = g->colour(0).download(4), pos = g->colour(1).download(4);
+  const image::Image nc = r.passTarget("gbuffer")->colour(0).download(4), pos = r.worldPositions();
   std::vector<double> k;
   const glm::vec3 eye(cam.eye());
   for (int y = 0; y < nc.height; ++y) {
@@ -93,11 +92,13 @@ TEST_F(Ink, TonesFollowEquationsTwoAndThreeFromTheNormals) {
     const scene::Scene s = sceneWith({{"lines", {{"enabled", false}}},
                                       {"shading", {{"erosion", 0.0}, {"noise", 0.0}, {"sigma", sigma}}}});
     InkRenderer r(s, prepare(s, test::uvSphere(2.0, 64, 128)));
-    ASSERT_EQ(r.passesBuilt(), (std::vector<std::string>{"gbuffer", "shading", "composite"}));
+    r.setDebugOutputs(true);
+    ASSERT_EQ(r.passesBuilt(), (std::vector<std::string>{"gbuffer", "ink"}));
+    ASSERT_EQ(r.variants().at("ink"), std::vector<std::string>{"SHADING DEBUG_OUTPUTS"}) << "no line code";
     r.render(sceneCamera(s, r.worldBounds(), 1.0, {-40, 30, 1.0}), 200, 200);
     const image::Image nc = r.passTarget("gbuffer")->colour(0).download(4);
-    const image::Image pos = r.passTarget("gbuffer")->colour(1).download(4);
-    const image::Image tone = r.passTarget("shading")->colour(0).download(1);
+    const image::Image pos = r.worldPositions();
+    const image::Image tone = r.passTarget("ink")->colour(2).download(1);
     const scene::ShadingParams& p = s.objects[0].shading;
     const glm::dvec3 light = glm::normalize(s.light.direction);
     int checked = 0;
@@ -136,13 +137,15 @@ TEST_F(Ink, WrinklesAreMappedOnlyWhereTheLinePassGaveBackground) {
   const scene::Scene wrinkled = sceneWith(object);
   auto black = std::make_shared<const image::Image>(64, 64, 1, 0.0f);
   InkRenderer a(plain, prepare(plain, sphere)), b(wrinkled, prepare(wrinkled, sphere, black));
+  a.setDebugOutputs(true);
+  b.setDebugOutputs(true);
   const OrbitCamera cam = sceneCamera(plain, a.worldBounds(), 1.0, {10, 10, 1.0});
   a.render(cam, 160, 160);
   b.render(cam, 160, 160);
-  const image::Image line = b.passTarget("lines")->colour(0).download(2);
-  const image::Image pos = b.passTarget("gbuffer")->colour(1).download(4);
-  const image::Image ta = a.passTarget("shading")->colour(0).download(1);
-  const image::Image tb = b.passTarget("shading")->colour(0).download(1);
+  const image::Image line = b.passTarget("ink")->colour(1).download(2);
+  const image::Image pos = b.worldPositions();
+  const image::Image ta = a.passTarget("ink")->colour(2).download(1);
+  const image::Image tb = b.passTarget("ink")->colour(2).download(1);
   int on_lines = 0, off_lines = 0;
   for (int y = 0; y < 160; ++y) {
     for (int x = 0; x < 160; ++x) {
@@ -167,7 +170,7 @@ TEST_F(Ink, UnchangedFramesArePresentedFromTheCache) {
   FrameStats st;
   r.render(cam, 64, 64, &st);
   EXPECT_FALSE(st.cached);
-  EXPECT_EQ(st.passes.size(), 4u);
+  EXPECT_EQ(st.passes.size(), 2u);
   r.render(cam, 64, 64, &st);
   EXPECT_TRUE(st.cached);
   EXPECT_TRUE(st.passes.empty());
@@ -192,10 +195,11 @@ TEST_F(Ink, SmallObjectsGetNormalLinesOnly) {
   const scene::Scene s = sceneWith({{"lines", {{"curve_factor", 100.0}, {"small_object_px", 5000.0}, {"depth_edges", 0.0}}},
                                     {"shading", {{"enabled", false}}}});
   InkRenderer r(s, prepare(s, test::uvSphere(1.0)));
+  r.setDebugOutputs(true);
   auto lineShare = [&](double zoom) {
     r.render(sceneCamera(s, r.worldBounds(), 1.0, {0, 0, zoom}), 200, 200);
-    const image::Image line = r.passTarget("lines")->colour(0).download(2);
-    const image::Image pos = r.passTarget("gbuffer")->colour(1).download(4);
+    const image::Image line = r.passTarget("ink")->colour(1).download(2);
+    const image::Image pos = r.worldPositions();
     double on = 0, all = 0;
     for (int y = 0; y < 200; ++y)
       for (int x = 0; x < 200; ++x)

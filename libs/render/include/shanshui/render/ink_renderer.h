@@ -1,6 +1,6 @@
-// The ink-wash renderer (SPEC.md sections 6, 7, 10): G-buffer → feature lines → interior
-// shading (with wrinkles) → composite, built from a scene with only the passes and shader
-// variants the scene uses. The headless renderer and the viewer both draw through it.
+// The ink-wash renderer (SPEC.md sections 6, 7, 10): a G-buffer pass, then one image pass
+// for feature lines, interior shading (with wrinkles) and the composite on paper, built with
+// only the shader variants the scene uses. The headless renderer and the viewer both draw through it.
 #pragma once
 
 #include <map>
@@ -69,10 +69,18 @@ class InkRenderer {
   const mesh::Bounds& worldBounds() const { return world_bounds_; }
   std::size_t triangleCount() const;
 
-  //! The last frame's intermediate images, for tests and debug views: "gbuffer" (0: normal
-  //! and curvature, 1: position and object id, 2: surface), "lines" (weight, col_i),
-  //! "shading" (tone); null for a pass the scene does not build.
+  //! The last frame's images, for tests and debug views: "gbuffer" (colour 0: normal and
+  //! dimensionless curvature; 1: erosion noise, added noise, wrinkle luma, object id / 255;
+  //! depth), "ink" (colour 0: the picture; with debug outputs 1: line weight and col_i,
+  //! 2: tone). Null for other names.
   const Framebuffer* passTarget(const std::string& pass) const;
+
+  //! World positions of the last frame rebuilt from its depth buffer (as the ink pass does):
+  //! RGBA, xyz and 1 where a surface was drawn, 0 on the background; row 0 at the top.
+  image::Image worldPositions() const;
+
+  //! Builds the ink pass with the DEBUG_OUTPUTS variant (line weight and tone as targets).
+  void setDebugOutputs(bool on);
 
  private:
   struct GpuObject {
@@ -101,18 +109,19 @@ class InkRenderer {
   mesh::Bounds world_bounds_;
   std::vector<std::string> passes_;
   std::map<std::string, std::vector<std::string>> variants_;
-  bool lines_ = false, shading_ = false, wrinkles_ = false;
+  bool lines_ = false, shading_ = false, wrinkles_ = false, debug_outputs_ = false;
 
   std::vector<GbufferProgram> gbuffer_programs_;
-  Program lines_program_, shading_program_, composite_program_;
+  Program ink_program_;
   GLuint empty_vao_ = 0;
   GLuint params_buffer_ = 0;
   std::size_t params_capacity_ = 0;
   std::optional<Texture2D> noise_;
 
-  Framebuffer gbuffer_, lines_target_, shading_target_, final_;
+  Framebuffer gbuffer_, final_;
   GpuTimer timer_;
   std::string last_key_;
+  glm::dmat4 last_inverse_view_projection_{1.0};
 
  public:
   InkRenderer(const InkRenderer&) = delete;

@@ -57,8 +57,9 @@ struct ShadingParams {
   //! Strength of the erosion noise: t_w = 1 − erosion·(1 − noise), noise in [0, 1]; [0, 1].
   double erosion = 0.35;
   double noise = 0.06;           //!< amplitude of the noise added before quantisation; [0, 1]
-  //! Erosion noise cell size as a fraction of the object's radius; [1e-4, 10].
-  double noise_scale = 0.02;
+  //! Size of the erosion noise's coarsest cells as a fraction of the object's radius
+  //! (finer octaves at 1/2 and 1/4 of it); [1e-4, 10].
+  double noise_scale = 0.03;
   bool half_lambert = false;     //!< t_d = (N·L)·0.5 + 0.5 instead of max(N·L, 0)
   bool line_value = true;        //!< multiply t_dw by the line pass's col_i (the paper's Fig. 4f)
 };

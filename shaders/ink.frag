@@ -1,0 +1,122 @@
+#version 450 core
+// The image pass of the ink renderer: feature lines (seed 001 Eq. 1), interior shading
+// (Eqs. 2, 3, 5) and the composite on paper, in one pass over the G-buffer so each pixel is
+// read once. Variants: LINES and SHADING (some object uses them), WRINKLE (some object has a
+// wrinkle texture), DEBUG_OUTPUTS (line weight and tone as extra targets, for tests).
+#include "ink_objects.glsl"
+#ifdef SHADING
+#include "ink_gaussian_cdf.glsl"
+#endif
+
+layout(binding = 0) uniform sampler2D u_normal_curvature;
+layout(binding = 1) uniform sampler2D u_surface_id;
+layout(binding = 2) uniform sampler2D u_depth;
+uniform mat4 u_inverse_view_projection;
+uniform vec3 u_eye;
+uniform vec2 u_near_far;     // of the projection, for linear depth
+uniform vec3 u_light_dir;    // unit, towards the light
+uniform vec3 u_paper;
+uniform float u_fade;        // strength, [0, 1]
+uniform vec2 u_fade_range;   // distances where the fade starts and is full
+
+layout(location = 0) out vec4 o_colour;
+#ifdef DEBUG_OUTPUTS
+layout(location = 1) out vec2 o_line;  // weight, col_i
+layout(location = 2) out float o_tone;
+#endif
+
+vec3 worldPosition(ivec2 p, float depth) {
+  vec2 ndc = (vec2(p) + 0.5) / vec2(textureSize(u_depth, 0)) * 2.0 - 1.0;
+  vec4 w = u_inverse_view_projection * vec4(ndc, depth * 2.0 - 1.0, 1.0);
+  return w.xyz / w.w;
+}
+
+// Distance along the view axis; background is infinitely far.
+float viewDepth(ivec2 p) {
+  float d = texelFetch(u_depth, clamp(p, ivec2(0), textureSize(u_depth, 0) - 1), 0).r;
+  if (d >= 1.0) return 3.0e38;
+  float n = u_near_far.x, f = u_near_far.y;
+  return n * f / (f - d * (f - n));
+}
+
+void main() {
+  ivec2 p = ivec2(gl_FragCoord.xy);
+  vec4 surface = texelFetch(u_surface_id, p, 0);
+  int id = int(surface.a * 255.0 + 0.5);
+#ifdef DEBUG_OUTPUTS
+  o_line = vec2(0.0, 1.0);
+  o_tone = 1.0;
+#endif
+  if (id == 0) {
+    o_colour = vec4(u_paper, 1.0);
+    return;
+  }
+  ObjectParams o = objects[id - 1];
+  float depth = texelFetch(u_depth, p, 0).r;
+  vec3 position = worldPosition(p, depth);
+  vec4 nc = texelFetch(u_normal_curvature, p, 0);
+  vec3 n = normalize(nc.xyz);
+
+  // Feature lines: col = 1 − k·R_CurveFactor, a line where col < Curv0 (smoothstep of the
+  // soft width), silhouettes where N·V is small, outlines where the depth jumps away.
+  float line_weight = 0.0, col = 1.0;
+#ifdef LINES
+  int line_flags = int(o.line_misc.w);
+  if ((line_flags & kLinesOn) != 0) {
+    col = 1.0 - nc.w * o.line_color.w;
+    float threshold = o.bg_color.w, soft = o.line_misc.x;
+    if ((line_flags & kNormalOnly) == 0) {
+      line_weight = soft > 0.0 ? 1.0 - smoothstep(threshold - 0.5 * soft, threshold + 0.5 * soft, col)
+                               : (col < threshold ? 1.0 : 0.0);
+    }
+    float silhouette = o.line_misc.y;
+    if (silhouette > 0.0) {
+      float n_dot_v = abs(dot(n, normalize(u_eye - position)));
+      line_weight = max(line_weight, 1.0 - smoothstep(0.5 * silhouette, silhouette, n_dot_v));
+    }
+    float jump = o.line_misc.z;
+    if (jump > 0.0) {
+      float z = viewDepth(p);
+      float farthest = max(max(viewDepth(p + ivec2(1, 0)), viewDepth(p - ivec2(1, 0))),
+                           max(viewDepth(p + ivec2(0, 1)), viewDepth(p - ivec2(0, 1))));
+      if (farthest - z > jump * z) line_weight = 1.0;
+    }
+    col = clamp(col, 0.0, 1.0);
+  }
+#endif
+
+  // Interior shading: diffuse term eroded by noise, or by the wrinkle texture where the
+  // lines left background (Eq. 3, β a parameter), times col_i, plus noise, then five tones
+  // with Gaussian-smoothed steps.
+  float tone = 1.0;
+#ifdef SHADING
+  int shade_flags = int(o.shade_misc2.z);
+  if ((shade_flags & kShadingOn) != 0) {
+    float n_dot_l = dot(n, u_light_dir);
+    float t_d = (shade_flags & kHalfLambert) != 0 ? 0.5 * n_dot_l + 0.5 : max(n_dot_l, 0.0);
+    float t_w = 1.0 - o.shade_misc.w * (1.0 - surface.r);
+#ifdef WRINKLE
+    if ((shade_flags & kWrinkled) != 0 && line_weight < 0.5) t_w = surface.b * o.shade_misc2.y;
+#endif
+    float t = clamp(t_d + t_w + o.shade_misc.z, 0.0, 1.0);
+    if ((shade_flags & kLineValue) != 0) t *= col;
+    t += o.shade_misc2.x * (2.0 * surface.g - 1.0);
+    float sigma = o.shade_misc.y;
+    float c[5] = float[5](o.tones.x, o.tones.y, o.tones.z, o.tones.w, o.shade_misc.x);
+    tone = c[0];
+    for (int k = 0; k < 4; ++k) {
+      float s = sigma > 0.0 ? gaussianCdf((t - o.thresholds[k]) / sigma) : (t > o.thresholds[k] ? 1.0 : 0.0);
+      tone += (c[k + 1] - c[k]) * s;
+    }
+  }
+#endif
+
+  // Composite: ink on paper, lines over the interior, far surfaces fading into the paper.
+  vec3 colour = mix(u_paper * o.bg_color.rgb * tone, o.line_color.rgb, line_weight);
+  float fade = u_fade * smoothstep(u_fade_range.x, u_fade_range.y, distance(u_eye, position));
+  o_colour = vec4(mix(colour, u_paper, fade), 1.0);
+#ifdef DEBUG_OUTPUTS
+  o_line = vec2(line_weight, col);
+  o_tone = tone;
+#endif
+}
