@@ -1,11 +1,10 @@
 # shanshui: the two commands of the README, each doing its own set-up.
-#   make demo   DEM -> mountain mesh -> headless render, results in out/
+#   make demo   the sample scene rendered headless (still + camera path), results in out/
 #   make test   build and run the whole test suite (CTest)
 BUILD ?= build
 BUILD_TYPE ?= Release
 JOBS ?= $(shell nproc)
 CMAKE_FLAGS ?=
-SAMPLE_DEM ?= samples/terrain/mount_st_helens.dem
 
 .PHONY: all setup configure build test test-asan demo format clean
 
@@ -29,14 +28,17 @@ test: build
 test-asan:
 	$(MAKE) test BUILD=build-asan BUILD_TYPE=RelWithDebInfo CMAKE_FLAGS="-DSHANSHUI_SANITIZE=ON -DSHANSHUI_BUILD_BENCH=OFF"
 
+SCENE ?= samples/scenes/default.json
+
 demo: build
 	@mkdir -p out
-	$(BUILD)/bin/shanshui-terrain $(SAMPLE_DEM) -o out/mount_st_helens.obj --max-vertices 200000
-	$(BUILD)/bin/shanshui-render out/mount_st_helens.obj -o out/mount_st_helens.png --size 1280x800 --elevation 30 --zoom 1.6
+	$(BUILD)/bin/shanshui-render $(SCENE) -o out/mountain.png --stats out/mountain_stats.json
+	$(BUILD)/bin/shanshui-render $(SCENE) -o out/path.png --size 640x480 --frames 12 --stats out/path_stats.json
 	@echo
 	@echo "demo results in $(CURDIR)/out/:"
-	@echo "  out/mount_st_helens.obj   mountain mesh from the USGS DEM"
-	@echo "  out/mount_st_helens.png   headless render of it"
+	@echo "  out/mountain.png         the sample scene, painted headless"
+	@echo "  out/path_0000..0011.png  frames along the scene's camera path"
+	@echo "  out/*_stats.json         passes built, shader variants, per-frame GPU time per pass"
 
 format:
 	find apps libs tools tests bench -name '*.cpp' -o -name '*.h' | xargs clang-format -i

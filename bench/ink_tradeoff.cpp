@@ -73,7 +73,7 @@ Surface paraboloid(int n) {
   });
   m.normals = mesh::vertexNormals(m);
   return {"paraboloid", std::move(m), [a](const glm::dvec3& p) {
-            const double rho2 = p.x * p.x + p.y * p.y;
+            const double rho2 = (p.x - 1) * (p.x - 1) + (p.y - 1) * (p.y - 1);  // apex at (1, 1)
             return 2 * a / std::sqrt(1 + 4 * a * a * rho2);
           }};
 }
@@ -163,10 +163,10 @@ int main(int argc, char** argv) {
     surfaces.push_back(torus(res));
     surfaces.push_back(paraboloid(2 * res));
     for (const Surface& s : surfaces) {
-      for (const char* source : {"object", "screen"}) {
+      for (const char* source : {"quadric", "cotangent", "screen"}) {
         const CurvatureRow row = measureCurvature(s, source, 512);
         char line[512];
-        std::snprintf(line, sizeof line, "| %s | %d | %zu | %s | %.3f | %.3f | %.1f | %.2f |\n", s.name.c_str(), res,
+        std::snprintf(line, sizeof line, "| %s | %d | %zu | %s | %.1e | %.1e | %.1f | %.2f |\n", s.name.c_str(), res,
                       s.mesh.positions.size(), source, row.median, row.p90, row.precompute_ms, row.gbuffer_ms);
         md << line;
         std::fputs(line, stderr);

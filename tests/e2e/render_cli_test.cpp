@@ -137,7 +137,7 @@ TEST(RenderCli, EveryKindOfSceneErrorHasItsOwnMessageAndWritesNothing) {
       {scene("type.json", obj + ", \"shading\": {\"sigma\": \"wide\"}}]}"), {"objects.0.shading.sigma", "expected a number"}},
       {scene("order.json", obj + ", \"shading\": {\"thresholds\": [0.5, 0.2, 0.6, 0.7]}}]}"), {"objects.0.shading.thresholds", "ascending"}},
       {scene("count.json", obj + ", \"shading\": {\"tones\": [0.1, 0.2]}}]}"), {"objects.0.shading.tones", "list of 5"}},
-      {scene("choice.json", obj + ", \"lines\": {\"curvature\": \"jet\"}}]}"), {"objects.0.lines.curvature", "object, screen"}},
+      {scene("choice.json", obj + ", \"lines\": {\"curvature\": \"jet\"}}]}"), {"objects.0.lines.curvature", "quadric, cotangent, screen"}},
       {scene("none.json", "{\"objects\": []}"), {"objects", "at least one object"}},
       {scene("both.json", obj + ", \"mesh\": \"a.obj\"}]}"), {"objects.0", "both 'mesh' and 'dem'"}},
       {scene("missing.json", "{\"objects\": [{\"mesh\": \"nowhere.obj\"}]}"), {"objects.0.mesh", "nowhere.obj"}},

@@ -124,6 +124,123 @@ VertexCurvature estimateCurvature(const Mesh& m) {
   return c;
 }
 
+namespace {
+
+// Solves the n×n system A x = b (row-major, n ≤ 5) by Gaussian elimination with partial
+// pivoting; false when it is singular.
+bool solveSmall(double* a, double* b, int n) {
+  for (int col = 0; col < n; ++col) {
+    int pivot = col;
+    for (int r = col + 1; r < n; ++r)
+      if (std::abs(a[r * n + col]) > std::abs(a[pivot * n + col])) pivot = r;
+    if (std::abs(a[pivot * n + col]) < 1e-12) return false;
+    if (pivot != col) {
+      for (int k = 0; k < n; ++k) std::swap(a[col * n + k], a[pivot * n + k]);
+      std::swap(b[col], b[pivot]);
+    }
+    for (int r = col + 1; r < n; ++r) {
+      const double f = a[r * n + col] / a[col * n + col];
+      for (int k = col; k < n; ++k) a[r * n + k] -= f * a[col * n + k];
+      b[r] -= f * b[col];
+    }
+  }
+  for (int r = n - 1; r >= 0; --r) {
+    for (int k = r + 1; k < n; ++k) b[r] -= a[r * n + k] * b[k];
+    b[r] /= a[r * n + r];
+  }
+  return true;
+}
+
+}  // namespace
+
+VertexCurvature estimateCurvatureByFit(const Mesh& m) {
+  VertexCurvature c = estimateCurvature(m);  // the fallback for vertices the fit cannot serve
+  const std::size_t n = m.positions.size();
+  // Vertex adjacency (CSR) and border vertices (an edge used by one triangle).
+  std::vector<std::uint32_t> start(n + 1, 0), adj;
+  {
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> edges;
+    edges.reserve(m.triangles.size() * 6);
+    for (const glm::uvec3& t : m.triangles) {
+      for (int k = 0; k < 3; ++k) {
+        edges.emplace_back(t[k], t[(k + 1) % 3]);
+        edges.emplace_back(t[(k + 1) % 3], t[k]);
+      }
+    }
+    std::sort(edges.begin(), edges.end());
+    edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+    for (const auto& e : edges) ++start[e.first + 1];
+    for (std::size_t i = 0; i < n; ++i) start[i + 1] += start[i];
+    adj.resize(edges.size());
+    for (std::size_t i = 0; i < edges.size(); ++i) adj[i] = edges[i].second;
+  }
+  std::vector<bool> border(n, false);
+  {
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> half;
+    for (const glm::uvec3& t : m.triangles)
+      for (int k = 0; k < 3; ++k) half.emplace_back(std::min(t[k], t[(k + 1) % 3]), std::max(t[k], t[(k + 1) % 3]));
+    std::sort(half.begin(), half.end());
+    for (std::size_t i = 0; i < half.size(); ++i) {
+      const bool single = (i == 0 || half[i - 1] != half[i]) && (i + 1 == half.size() || half[i + 1] != half[i]);
+      if (single) border[half[i].first] = border[half[i].second] = true;
+    }
+  }
+  const std::vector<glm::vec3> normals = vertexNormals(m);
+  std::vector<std::uint32_t> stamp(n, UINT32_MAX), ring;
+  for (std::uint32_t i = 0; i < n; ++i) {
+    if (border[i]) continue;
+    ring.clear();
+    stamp[i] = i;
+    for (std::uint32_t a = start[i]; a < start[i + 1]; ++a) {
+      const std::uint32_t j = adj[a];
+      if (stamp[j] != i) stamp[j] = i, ring.push_back(j);
+    }
+    const std::size_t first_ring = ring.size();
+    for (std::size_t r = 0; r < first_ring; ++r)
+      for (std::uint32_t a = start[ring[r]]; a < start[ring[r] + 1]; ++a) {
+        const std::uint32_t j = adj[a];
+        if (stamp[j] != i) stamp[j] = i, ring.push_back(j);
+      }
+    if (ring.size() < 6) continue;
+    // Tangent frame, coordinates scaled by the mean neighbour distance for conditioning.
+    const glm::dvec3 nz = glm::normalize(glm::dvec3(normals[i]));
+    const glm::dvec3 helper = std::abs(nz.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
+    const glm::dvec3 tx = glm::normalize(glm::cross(helper, nz)), ty = glm::cross(nz, tx);
+    double h = 0;
+    for (std::uint32_t j : ring) h += glm::length(m.positions[j] - m.positions[i]);
+    h /= static_cast<double>(ring.size());
+    if (!(h > 0)) continue;
+    double ata[25] = {}, atb[5] = {};
+    for (std::uint32_t j : ring) {
+      const glm::dvec3 d = (m.positions[j] - m.positions[i]) / h;
+      const double x = glm::dot(d, tx), y = glm::dot(d, ty), z = -glm::dot(d, nz);  // + bends away from n
+      const double row[5] = {x * x, x * y, y * y, x, y};
+      for (int r = 0; r < 5; ++r) {
+        for (int k = 0; k < 5; ++k) ata[r * 5 + k] += row[r] * row[k];
+        atb[r] += row[r] * z;
+      }
+    }
+    if (!solveSmall(ata, atb, 5)) continue;
+    // Shape operator of the graph z = f(x, y) at the origin: I⁻¹ II.
+    const double fx = atb[3], fy = atb[4], fxx = 2 * atb[0], fxy = atb[1], fyy = 2 * atb[2];
+    const double w = std::sqrt(1 + fx * fx + fy * fy);
+    const double e = 1 + fx * fx, f = fx * fy, g = 1 + fy * fy;
+    const double l = fxx / w, mm = fxy / w, nn = fyy / w;
+    const double det = e * g - f * f;
+    const double s11 = (g * l - f * mm) / det, s12 = (g * mm - f * nn) / det;
+    const double s21 = (e * mm - f * l) / det, s22 = (e * nn - f * mm) / det;
+    const double mean = 0.5 * (s11 + s22), gauss = s11 * s22 - s12 * s21;
+    const double root = std::sqrt(std::max(mean * mean - gauss, 0.0));
+    // Back to mesh units (z was measured against the normal: estimateCurvature's sign).
+    c.mean[i] = static_cast<float>(mean / h);
+    c.gaussian[i] = static_cast<float>(gauss / (h * h));
+    c.k1[i] = static_cast<float>((mean + root) / h);
+    c.k2[i] = static_cast<float>((mean - root) / h);
+    c.magnitude[i] = std::max(std::abs(c.k1[i]), std::abs(c.k2[i]));
+  }
+  return c;
+}
+
 double curvatureFeatureSize(const Mesh& m, const VertexCurvature& c, double percentile) {
   if (!(percentile > 0.0 && percentile < 100.0)) {
     throw makeError("curvature feature size: percentile ", percentile, "; expected (0, 100)");

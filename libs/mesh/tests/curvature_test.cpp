@@ -1,5 +1,6 @@
 // Object-space curvature against analytic surfaces: spheres of several radii (regular and
 // jittered), a torus (K and H vary over it) and a paraboloid at its apex.
+#include <algorithm>
 #include <numbers>
 #include <random>
 
@@ -88,6 +89,61 @@ TEST(Curvature, ParaboloidApexAndFlatPlane) {
   }
   EXPECT_EQ(curvatureFeatureSize(flat, f), 0.0);
   test::expectErrorNaming([&] { curvatureFeatureSize(flat, f, 100.0); }, "percentile", "100");
+}
+
+TEST(CurvatureFit, AgreesWithTheCotangentSignsAndTheAnalyticSphereAndTorus) {
+  for (double r : {0.01, 1.0, 250.0}) {
+    const Mesh m = test::uvSphere(r, 48, 96);
+    const VertexCurvature fit = estimateCurvatureByFit(m), cot = estimateCurvature(m);
+    const std::vector<double> h(m.positions.size(), 1.0 / r), k(m.positions.size(), 1.0 / (r * r));
+    EXPECT_LT(relativeMedianError(fit.mean, h), 0.005) << "r = " << r;  // same sign convention
+    EXPECT_LT(relativeMedianError(fit.gaussian, k), 0.01) << "r = " << r;
+    EXPECT_LT(relativeMedianError(fit.magnitude, std::vector<double>(cot.magnitude.begin(), cot.magnitude.end())), 0.02)
+        << "r = " << r;
+  }
+  const double big = 3.0, small = 1.0;
+  std::vector<double> cosV;
+  const Mesh t = test::torus(big, small, 120, 60, &cosV);
+  const VertexCurvature c = estimateCurvatureByFit(t);
+  double worst_k1 = 0, worst_k2 = 0;
+  for (std::size_t i = 0; i < cosV.size(); ++i) {
+    // |k1| = 1/r around the tube, |k2| = |cos v / (R + r cos v)| around the axis.
+    const double around_axis = std::abs(cosV[i] / (big + small * cosV[i]));
+    const double a = std::abs(c.k1[i]), b = std::abs(c.k2[i]);
+    worst_k1 = std::max(worst_k1, std::abs(std::max(a, b) - 1.0 / small));
+    worst_k2 = std::max(worst_k2, std::abs(std::min(a, b) - around_axis));
+  }
+  EXPECT_LT(worst_k1, 0.02);  // O(h²) with h = 2π/60 along the tube
+  EXPECT_LT(worst_k2, 0.02);
+}
+
+TEST(CurvatureFit, StaysAccurateOnAJitteredSphereWhereCotangentsFail) {
+  Mesh m = test::uvSphere(1.0, 40, 80);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> jitter(-0.5, 0.5);
+  for (glm::dvec3& p : m.positions) {
+    // 30 % of an edge in every direction, back onto the sphere: many obtuse triangles.
+    const double edge = std::numbers::pi / 40;
+    p = glm::normalize(p + 0.6 * edge * glm::dvec3(jitter(rng), jitter(rng), jitter(rng)));
+  }
+  const VertexCurvature fit = estimateCurvatureByFit(m), cot = estimateCurvature(m);
+  auto p90 = [](const std::vector<float>& v) {
+    std::vector<double> e;
+    for (float x : v) e.push_back(std::abs(x - 1.0));
+    std::sort(e.begin(), e.end());
+    return e[e.size() * 9 / 10];
+  };
+  EXPECT_LT(p90(fit.magnitude), 0.05);
+  EXPECT_GT(p90(cot.magnitude), 0.5) << "the case is hard for cotangents (else the test proves nothing)";
+}
+
+TEST(CurvatureFit, FlatAndTinyMeshesFallBackWithoutNan) {
+  const Mesh flat = test::heightGrid(10, 10, 1.0, [](double, double) { return 0.0; });
+  for (float k : estimateCurvatureByFit(flat).magnitude) ASSERT_NEAR(k, 0.0f, 1e-6f);
+  Mesh tri;
+  tri.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+  tri.triangles = {{0, 1, 2}};
+  for (float k : estimateCurvatureByFit(tri).magnitude) ASSERT_TRUE(std::isfinite(k));
 }
 
 }  // namespace

@@ -37,7 +37,7 @@ std::vector<std::string> gbufferDefines(const scene::Scene& s, const scene::Obje
   if (s.usesShading()) d.emplace_back("SURFACE");
   if (wrinkled(o)) d.emplace_back("WRINKLE");
   if (o.lines.enabled) {
-    d.emplace_back(o.lines.curvature == scene::CurvatureSource::Object ? "OBJECT_CURVATURE" : "SCREEN_CURVATURE");
+    d.emplace_back(scene::perVertex(o.lines.curvature) ? "OBJECT_CURVATURE" : "SCREEN_CURVATURE");
   }
   return d;
 }
@@ -150,7 +150,7 @@ InkRenderer::InkRenderer(const scene::Scene& s, const std::vector<scene::LoadedO
     const scene::Object& o = s.objects[i];
     const std::vector<std::string> defines = gbufferDefines(s, o);
     GpuObject g;
-    const bool per_vertex = o.lines.enabled && o.lines.curvature == scene::CurvatureSource::Object;
+    const bool per_vertex = o.lines.enabled && scene::perVertex(o.lines.curvature);
     g.mesh = GpuMesh(a.mesh, a.bounds.centre(), per_vertex ? &a.curvature : nullptr);
     g.model_bounds = a.bounds;
     g.model_feature_size = a.feature_size;

@@ -213,7 +213,9 @@ LineParams readLines(Reader r) {
   LineParams p;
   p.enabled = r.boolean("enabled", p.enabled);
   p.curvature = r.choice<CurvatureSource>("curvature", p.curvature,
-                                          {{"object", CurvatureSource::Object}, {"screen", CurvatureSource::Screen}});
+                                          {{"quadric", CurvatureSource::Quadric},
+                                           {"cotangent", CurvatureSource::Cotangent},
+                                           {"screen", CurvatureSource::Screen}});
   p.curve_factor = r.number("curve_factor", p.curve_factor, 0, 100);
   p.threshold = r.number("threshold", p.threshold, -10, 1);
   p.soft_width = r.number("soft_width", p.soft_width, 0, 1);
@@ -451,7 +453,9 @@ json toJson(const Scene& s) {
                        {"scale", toArray(o.transform.scale)}};
     const LineParams& l = o.lines;
     jo["lines"] = {{"enabled", l.enabled},
-                   {"curvature", l.curvature == CurvatureSource::Object ? "object" : "screen"},
+                   {"curvature", l.curvature == CurvatureSource::Quadric     ? "quadric"
+                                  : l.curvature == CurvatureSource::Cotangent ? "cotangent"
+                                                                              : "screen"},
                    {"curve_factor", l.curve_factor},
                    {"threshold", l.threshold},
                    {"soft_width", l.soft_width},

@@ -45,9 +45,10 @@ ObjectAsset prepareAsset(mesh::Mesh m, const Object& o, const std::string& where
   if (!wrinkled) m.uvs.clear();
   if (m.normals.size() != m.positions.size()) m.normals = mesh::vertexNormals(m);
   if (o.lines.enabled) {  // the feature size serves both curvature sources
-    const mesh::VertexCurvature c = mesh::estimateCurvature(m);
+    const mesh::VertexCurvature c = o.lines.curvature == CurvatureSource::Quadric ? mesh::estimateCurvatureByFit(m)
+                                                                                  : mesh::estimateCurvature(m);
     asset.feature_size = mesh::curvatureFeatureSize(m, c);
-    if (o.lines.curvature == CurvatureSource::Object) {
+    if (perVertex(o.lines.curvature)) {
       asset.curvature.resize(c.magnitude.size());
       for (std::size_t i = 0; i < c.magnitude.size(); ++i) {
         asset.curvature[i] = static_cast<float>(c.magnitude[i] * asset.feature_size);
@@ -68,12 +69,12 @@ std::string where(std::size_t index, const char* key) { return "objects." + std:
 LoadedObject AssetCache::get(const Scene& scene, std::size_t index) {
   const Object& o = scene.objects.at(index);
   const bool wrinkled = !o.wrinkle.texture.empty() && o.shading.enabled;
-  const bool object_curvature = o.lines.enabled;  // feature size is needed for both sources
-  const bool per_vertex = o.lines.enabled && o.lines.curvature == CurvatureSource::Object;
+  const bool object_curvature = o.lines.enabled;  // the feature size serves every source
+  const int curvature = o.lines.enabled ? static_cast<int>(o.lines.curvature) : -1;
   const std::filesystem::path source = scene.resolve(o.mesh.empty() ? o.dem : o.mesh);
   const std::string key = source.string() + "|" + std::to_string(o.z_scale) + "|" + std::to_string(o.max_vertices) +
                           "|" + std::to_string(o.recentre) + "|" + std::to_string(object_curvature) +
-                          std::to_string(per_vertex) + "|" +
+                          std::to_string(curvature) + "|" +
                           (wrinkled ? (o.wrinkle.uv == UvSource::Mesh ? "uv-mesh" : "uv-planar") : "no-uv");
   std::shared_ptr<const ObjectAsset>& slot = meshes_[key];
   std::shared_ptr<const image::Image> wrinkle;

@@ -24,6 +24,14 @@ struct VertexCurvature {
 //! contribute nothing.
 VertexCurvature estimateCurvature(const Mesh& mesh);
 
+//! Principal curvatures from a quadric z = a x² + b xy + c y² + d x + e y fitted by least
+//! squares to the two-ring of each vertex in its tangent frame (degree-2 jet fitting, as
+//! CGAL's Monge_via_jet_fitting does). Slower than the cotangent estimator but robust on
+//! irregular meshes, where cotangent weights of obtuse triangles give outliers. Vertices
+//! with fewer than six two-ring neighbours, and border vertices, fall back as in
+//! estimateCurvature. `mean` and `gaussian` are (k1 + k2) / 2 and k1·k2 of the fit.
+VertexCurvature estimateCurvatureByFit(const Mesh& mesh);
+
 //! A length that makes curvature dimensionless: 1 / (the `percentile` of |k| over the
 //! vertices, area-weighted), as rtsc does, so `curve_factor` means the same on any mesh.
 //! percentile in (0, 100); returns 0 for a flat mesh.

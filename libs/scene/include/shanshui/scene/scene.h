@@ -23,14 +23,16 @@ struct Transform {
 };
 
 enum class CurvatureSource {
-  Object,  //!< per-vertex, precomputed on load (cotangent Laplacian), interpolated
-  Screen,  //!< per-pixel |fwidth(N)| / |fwidth(P)|, as seed 001 does
+  Quadric,    //!< per vertex, a quadric fitted to the two-ring (robust), precomputed on load
+  Cotangent,  //!< per vertex, cotangent Laplacian and angle defect (fast, fragile on irregular meshes)
+  Screen,     //!< per pixel |fwidth(N)| / |fwidth(P)|, as seed 001 does
 };
+inline bool perVertex(CurvatureSource s) { return s != CurvatureSource::Screen; }
 
 //! Feature lines from curvature (seed 001 Eq. 1; SPEC.md section 6).
 struct LineParams {
   bool enabled = true;
-  CurvatureSource curvature = CurvatureSource::Object;
+  CurvatureSource curvature = CurvatureSource::Quadric;
   //! R_CurveFactor on dimensionless curvature k·feature_size (k = 1 at the mesh's 90th
   //! percentile of |k|), so the same value gives the same line density on any mesh; [0, 100].
   double curve_factor = 0.8;
