@@ -61,6 +61,18 @@ TEST(Scene, SampleSceneRoundTripsThroughJson) {
   EXPECT_EQ(toJson(parseScene(toJson(c), "d", ".")), toJson(c));
 }
 
+TEST(Scene, SavedScenesLoadBackTheSame) {
+  test::TempDir dir;
+  Scene s = loadScene(test::sourceDir() / "samples/scenes/default.json", {"objects.0.lines.curve_factor=1.25"});
+  s.base_dir = dir.path();
+  s.objects[0].dem = (test::sourceDir() / "samples/terrain/mount_st_helens.dem").string();
+  saveScene(s, dir / "saved.json");
+  const Scene back = loadScene(dir / "saved.json");
+  EXPECT_EQ(toJson(back), toJson(s));
+  EXPECT_EQ(back.objects[0].lines.curve_factor, 1.25);
+  EXPECT_THROW(saveScene(s, dir / "no_such_dir" / "x.json"), Error);
+}
+
 TEST(Scene, OverridesTakeDottedPathsAndJsonValues) {
   json j = kMinimal;
   applyOverride(j, "objects.0.lines.curve_factor=2.5");
