@@ -14,6 +14,7 @@
 #include "shanshui/render/ink_renderer.h"
 #include "shanshui/scene/scene.h"
 #include "shanshui/scene/scene_assets.h"
+#include "gl_test.h"
 #include "test_meshes.h"
 #include "test_support.h"
 
@@ -22,13 +23,7 @@ namespace {
 
 using nlohmann::json;
 
-class Ink : public ::testing::Test {
- protected:
-  static void SetUpTestSuite() { context_ = GlContext::create({.kind = ContextKind::Headless}); }
-  static void TearDownTestSuite() { context_.reset(); }
-  static std::unique_ptr<GlContext> context_;
-};
-std::unique_ptr<GlContext> Ink::context_;
+class Ink : public test::HeadlessGl {};
 
 // A one-object scene around a mesh given in memory (the file name is never read).
 scene::Scene sceneWith(const json& object_overrides, const json& top = json::object()) {

@@ -6,19 +6,14 @@
 #include "shanshui/render/mesh_preview.h"
 #include "shanshui/render/shader_library.h"
 #include "shanshui/render/shader_program.h"
+#include "gl_test.h"
 #include "test_meshes.h"
 #include "test_support.h"
 
 namespace shanshui::render {
 namespace {
 
-class Headless : public ::testing::Test {
- protected:
-  static void SetUpTestSuite() { context_ = GlContext::create({.kind = ContextKind::Headless}); }
-  static void TearDownTestSuite() { context_.reset(); }
-  static std::unique_ptr<GlContext> context_;
-};
-std::unique_ptr<GlContext> Headless::context_;
+using Headless = test::HeadlessGl;
 
 bool isPaper(const image::Image& img, int x, int y, const glm::vec3& paper) {
   for (int c = 0; c < 3; ++c) {
