@@ -39,7 +39,7 @@ Texture2D Texture2D::fromImage(const image::Image& img, GLenum internal_format) 
   return t;
 }
 
-Texture2D Texture2D::tiledFromImage(const image::Image& img, GLenum internal_format) {
+Texture2D Texture2D::tiledFromImage(const image::Image& img, GLenum internal_format, GLenum min_filter) {
   if (img.empty()) throw makeError("cannot upload an empty image");
   int levels = 1;
   while ((std::max(img.width, img.height) >> levels) > 0) ++levels;
@@ -48,7 +48,7 @@ Texture2D Texture2D::tiledFromImage(const image::Image& img, GLenum internal_for
   glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
   glTextureSubImage2D(t.id_, 0, 0, 0, img.width, img.height, GL_RGBA, GL_FLOAT, rgba.pixels.data());
   glGenerateTextureMipmap(t.id_);
-  glTextureParameteri(t.id_, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_NEAREST);  // half the fetches of trilinear
+  glTextureParameteri(t.id_, GL_TEXTURE_MIN_FILTER, min_filter);
   glTextureParameteri(t.id_, GL_TEXTURE_WRAP_S, GL_REPEAT);
   glTextureParameteri(t.id_, GL_TEXTURE_WRAP_T, GL_REPEAT);
   SHANSHUI_GL_CHECK("Texture2D tiled upload");

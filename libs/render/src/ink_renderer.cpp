@@ -164,7 +164,9 @@ InkRenderer::InkRenderer(const scene::Scene& s, const std::vector<scene::LoadedO
     if (it == gbuffer_programs_.end()) gbuffer_programs_.push_back({defines, Program()});
     objects_.push_back(std::move(g));
   }
-  if (shading_) noise_ = Texture2D::tiledFromImage(erosionNoise(256, s.seed), GL_RG8);
+  // Value noise is smooth at texel scale: one texel of the right mip level is enough when
+  // minified (a quarter of the bilinear fetches); magnified it is still filtered.
+  if (shading_) noise_ = Texture2D::tiledFromImage(erosionNoise(256, s.seed), GL_RG8, GL_NEAREST_MIPMAP_NEAREST);
   glCreateVertexArrays(1, &empty_vao_);
   glCreateBuffers(1, &params_buffer_);
   buildPrograms();

@@ -16,8 +16,11 @@ class Texture2D {
   Texture2D(int width, int height, GLenum internal_format, int levels = 1);
   //! Uploads an Image (1-4 channels, float) into a texture of the given format.
   static Texture2D fromImage(const image::Image& img, GLenum internal_format = GL_RGBA8);
-  //! A repeating, trilinear-mipmapped texture for surface detail (wrinkles, noise).
-  static Texture2D tiledFromImage(const image::Image& img, GLenum internal_format);
+  //! A repeating, mipmapped texture for surface detail (wrinkles, noise). The default
+  //! minification filter is bilinear in the nearest mip level: half the fetches of trilinear,
+  //! which matters on a software rasteriser; GL_NEAREST_MIPMAP_NEAREST for smooth content.
+  static Texture2D tiledFromImage(const image::Image& img, GLenum internal_format,
+                                  GLenum min_filter = GL_LINEAR_MIPMAP_NEAREST);
   ~Texture2D();
   Texture2D(Texture2D&& other) noexcept;
   Texture2D& operator=(Texture2D&& other) noexcept;
