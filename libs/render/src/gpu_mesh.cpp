@@ -1,5 +1,7 @@
 #include "shanshui/render/gpu_mesh.h"
 
+#include <algorithm>
+#include <cstdint>
 #include <utility>
 #include <vector>
 
@@ -8,7 +10,9 @@
 
 namespace shanshui::render {
 
-GpuMesh::GpuMesh(const mesh::Mesh& m, const glm::dvec3& centre, const std::vector<float>* scalar) {
+GpuMesh::GpuMesh(const mesh::Mesh& m, const glm::dvec3& centre, const std::vector<float>* scalar,
+                 bool sorted_orders)
+    : sorted_(sorted_orders) {
   if (m.triangles.empty()) throw makeError("cannot draw a mesh without triangles");
   std::vector<glm::vec3> positions(m.positions.size());
   for (std::size_t i = 0; i < positions.size(); ++i) positions[i] = glm::vec3(m.positions[i] - centre);
@@ -17,8 +21,26 @@ GpuMesh::GpuMesh(const mesh::Mesh& m, const glm::dvec3& centre, const std::vecto
   glCreateBuffers(5, buffers_);
   glNamedBufferStorage(buffers_[0], static_cast<GLsizeiptr>(positions.size() * sizeof(glm::vec3)), positions.data(), 0);
   glNamedBufferStorage(buffers_[1], static_cast<GLsizeiptr>(normals.size() * sizeof(glm::vec3)), normals.data(), 0);
-  glNamedBufferStorage(buffers_[2], static_cast<GLsizeiptr>(m.triangles.size() * sizeof(glm::uvec3)),
-                       m.triangles.data(), 0);
+  if (sorted_orders) {
+    // The original order, then the triangles sorted by centroid along +x, −x, +y, −y, +z, −z.
+    std::vector<glm::uvec3> all(m.triangles);
+    all.reserve(m.triangles.size() * 7);
+    std::vector<std::pair<double, std::uint32_t>> keyed(m.triangles.size());
+    for (int axis = 0; axis < 3; ++axis) {
+      for (std::size_t t = 0; t < m.triangles.size(); ++t) {
+        const glm::uvec3& tri = m.triangles[t];
+        keyed[t] = {m.positions[tri.x][axis] + m.positions[tri.y][axis] + m.positions[tri.z][axis],
+                    static_cast<std::uint32_t>(t)};
+      }
+      std::sort(keyed.begin(), keyed.end());
+      for (const auto& k : keyed) all.push_back(m.triangles[k.second]);
+      for (auto it = keyed.rbegin(); it != keyed.rend(); ++it) all.push_back(m.triangles[it->second]);
+    }
+    glNamedBufferStorage(buffers_[2], static_cast<GLsizeiptr>(all.size() * sizeof(glm::uvec3)), all.data(), 0);
+  } else {
+    glNamedBufferStorage(buffers_[2], static_cast<GLsizeiptr>(m.triangles.size() * sizeof(glm::uvec3)),
+                         m.triangles.data(), 0);
+  }
   glCreateVertexArrays(1, &vao_);
   for (GLuint a = 0; a < 2; ++a) {
     glVertexArrayVertexBuffer(vao_, a, buffers_[a], 0, sizeof(glm::vec3));
@@ -56,7 +78,7 @@ void GpuMesh::release() {
 GpuMesh::~GpuMesh() { release(); }
 
 GpuMesh::GpuMesh(GpuMesh&& o) noexcept
-    : vao_(std::exchange(o.vao_, 0)), indexCount_(std::exchange(o.indexCount_, 0)) {
+    : vao_(std::exchange(o.vao_, 0)), indexCount_(std::exchange(o.indexCount_, 0)), sorted_(o.sorted_) {
   for (int i = 0; i < 5; ++i) buffers_[i] = std::exchange(o.buffers_[i], 0);
 }
 
@@ -65,9 +87,26 @@ GpuMesh& GpuMesh::operator=(GpuMesh&& o) noexcept {
     release();
     vao_ = std::exchange(o.vao_, 0);
     indexCount_ = std::exchange(o.indexCount_, 0);
+    sorted_ = o.sorted_;
     for (int i = 0; i < 5; ++i) buffers_[i] = std::exchange(o.buffers_[i], 0);
   }
   return *this;
+}
+
+void GpuMesh::drawFrontToBack(const glm::vec3& view_dir) const {
+  SHANSHUI_CHECK(sorted_);
+  // Looking along +x, the nearest triangles have the smallest x: the ascending order.
+  int best = 0;
+  float best_dot = -2.0f;
+  const glm::vec3 d = glm::normalize(view_dir);
+  for (int k = 0; k < 6; ++k) {
+    glm::vec3 axis(0.0f);
+    axis[k / 2] = (k % 2 == 0) ? 1.0f : -1.0f;
+    if (glm::dot(axis, d) > best_dot) best_dot = glm::dot(axis, d), best = k;
+  }
+  glBindVertexArray(vao_);
+  const std::size_t offset = static_cast<std::size_t>(indexCount_) * sizeof(std::uint32_t) * static_cast<std::size_t>(1 + best);
+  glDrawElements(GL_TRIANGLES, indexCount_, GL_UNSIGNED_INT, reinterpret_cast<const void*>(offset));
 }
 
 void GpuMesh::draw() const {

@@ -151,7 +151,7 @@ InkRenderer::InkRenderer(const scene::Scene& s, const std::vector<scene::LoadedO
     const std::vector<std::string> defines = gbufferDefines(s, o);
     GpuObject g;
     const bool per_vertex = o.lines.enabled && scene::perVertex(o.lines.curvature);
-    g.mesh = GpuMesh(a.mesh, a.bounds.centre(), per_vertex ? &a.curvature : nullptr);
+    g.mesh = GpuMesh(a.mesh, a.bounds.centre(), per_vertex ? &a.curvature : nullptr, true);
     g.model_bounds = a.bounds;
     g.model_feature_size = a.feature_size;
     if (wrinkled(o)) {
@@ -350,7 +350,9 @@ const Framebuffer& InkRenderer::render(const OrbitCamera& camera, int width, int
       p.set("u_wrinkle", 1);
       p.set("u_repeat", static_cast<float>(o.wrinkle.repeat));
     }
-    g.mesh.draw();
+    // Front to back, so hidden fragments fail the depth test before they are shaded.
+    const glm::dvec3 forward = glm::inverse(glm::dmat3(g.model)) * (camera.target - camera.eye());
+    g.mesh.drawFrontToBack(glm::vec3(forward));
   }
   if (timing) timer_.end();
   SHANSHUI_GL_CHECK("gbuffer pass");

@@ -59,6 +59,33 @@ TEST_F(Headless, SphereCoversItsAnalyticDiscAndIsLitFromAbove) {
   }
 }
 
+TEST_F(Headless, FrontToBackOrdersDrawTheSameDepthAsTheFileOrder) {
+  const mesh::Mesh m = test::uvSphere(1.0, 24, 48);
+  const GpuMesh plain(m, glm::dvec3(0.0)), sorted(m, glm::dvec3(0.0), nullptr, true);
+  const Program p({"lambert.vert", "lambert.frag"});
+  const Framebuffer a(96, 96, {GL_RGBA8}, true), b(96, 96, {GL_RGBA8}, true);
+  for (const glm::vec3 view : {glm::vec3(1, 0.2f, 0), glm::vec3(0, -1, 0.3f), glm::vec3(0.1f, 0, -1)}) {
+    OrbitCamera cam;
+    cam.distance = 4.0;
+    cam.azimuth_deg = glm::degrees(std::atan2(-view.y, -view.x));
+    cam.elevation_deg = glm::degrees(std::asin(-view.z / glm::length(view)));
+    p.use();
+    p.set("u_model", glm::mat4(1.0f));
+    p.set("u_normal_matrix", glm::mat3(1.0f));
+    p.set("u_view_projection", cam.projection(1.0) * cam.view());
+    p.set("u_light_dir", glm::vec3(0, 0, 1));
+    glEnable(GL_DEPTH_TEST);
+    for (const Framebuffer* fb : {&a, &b}) {
+      fb->bind();
+      glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+      if (fb == &a) plain.draw();
+      else sorted.drawFrontToBack(view);
+    }
+    EXPECT_EQ(a.depth().download(1).pixels, b.depth().download(1).pixels);
+    EXPECT_EQ(a.colour(0).download(3).pixels, b.colour(0).download(3).pixels);
+  }
+}
+
 TEST_F(Headless, FloatTextureRoundTripsExactly) {
   image::Image img(13, 7, 4);
   for (std::size_t i = 0; i < img.pixels.size(); ++i) img.pixels[i] = static_cast<float>(i) * 0.37f - 5.0f;

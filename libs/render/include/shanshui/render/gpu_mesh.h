@@ -16,7 +16,8 @@ class GpuMesh {
   //! in UTM metres keep their precision. Normals are computed when the mesh has none.
   //! UVs, when the mesh has them, go to attribute 2; a per-vertex scalar (curvature), when
   //! given, to attribute 3.
-  GpuMesh(const mesh::Mesh& m, const glm::dvec3& centre, const std::vector<float>* scalar = nullptr);
+  GpuMesh(const mesh::Mesh& m, const glm::dvec3& centre, const std::vector<float>* scalar = nullptr,
+          bool sorted_orders = false);
   ~GpuMesh();
   GpuMesh(GpuMesh&& other) noexcept;
   GpuMesh& operator=(GpuMesh&& other) noexcept;
@@ -25,6 +26,12 @@ class GpuMesh {
 
   //! Attribute 0: position (vec3), 1: normal (vec3).
   void draw() const;
+
+  //! Draws the triangles roughly front to back for a camera looking along `view_dir`
+  //! (model space), so early depth tests reject hidden fragments before they are shaded:
+  //! six orders, by the centroids' position along ±x, ±y, ±z, are kept and the one closest
+  //! to the view direction is used. Needs the mesh built with sorted_orders.
+  void drawFrontToBack(const glm::vec3& view_dir) const;
   std::size_t triangleCount() const { return static_cast<std::size_t>(indexCount_ / 3); }
 
  private:
@@ -32,6 +39,7 @@ class GpuMesh {
   GLuint vao_ = 0;
   GLuint buffers_[5] = {0, 0, 0, 0, 0};
   GLsizei indexCount_ = 0;
+  bool sorted_ = false;  //!< the element buffer holds the six sorted orders after the original
 };
 
 }  // namespace shanshui::render
