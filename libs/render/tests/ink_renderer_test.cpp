@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <fstream>
 #include <memory>
 
 #include <nlohmann/json.hpp>
@@ -12,6 +13,7 @@
 #include "shanshui/image/image_io.h"
 #include "shanshui/render/gl_context.h"
 #include "shanshui/render/ink_renderer.h"
+#include "shanshui/render/shader_library.h"
 #include "shanshui/scene/scene.h"
 #include "shanshui/scene/scene_assets.h"
 #include "gl_test.h"
@@ -207,6 +209,70 @@ TEST_F(Ink, SmallObjectsGetNormalLinesOnly) {
   EXPECT_LT(far_px, 5000.0);
   EXPECT_GT(near_share, 0.95);  // curvature lines everywhere
   EXPECT_LT(far_share, 0.6);    // only the rim
+}
+
+TEST_F(Ink, ShadersReloadFromADirectoryAndABrokenOneKeepsTheOld) {
+  test::TempDir dir;
+  for (const std::string& name : shaderNames()) {
+    std::ofstream(dir / name) << shaderSource(name);
+  }
+  setShaderDirectory(dir.path());
+  const scene::Scene s = sceneWith({{"lines", {{"enabled", false}}}, {"shading", {{"enabled", false}}}});
+  InkRenderer r(s, prepare(s, test::uvSphere(1.0)));
+  const OrbitCamera cam = sceneCamera(s, r.worldBounds(), 1.0, {0, 20, 1.0});
+  auto centre = [&] {
+    const image::Image img = r.render(cam, 32, 32).colour(0).download(3);
+    return glm::vec3(img.at(16, 16, 0), img.at(16, 16, 1), img.at(16, 16, 2));
+  };
+  const glm::vec3 before = centre();
+  // Edited on disk: the ink pass paints every object pixel red.
+  std::string text(shaderSource("ink.frag"));
+  const std::string tail = "#endif\n}\n";
+  ASSERT_EQ(text.rfind(tail), text.size() - tail.size());
+  text.insert(text.size() - 2, "  o_colour = vec4(1.0, 0.0, 0.0, 1.0);\n");
+  std::ofstream(dir / "ink.frag") << text;
+  r.reloadShaders();
+  EXPECT_EQ(centre(), glm::vec3(1, 0, 0));
+  // A broken edit: the error names the file, and the last good programs keep drawing.
+  std::ofstream(dir / "ink.frag") << "#version 450 core\nvoid main() { this is not glsl; }\n";
+  try {
+    r.reloadShaders();
+    ADD_FAILURE() << "a broken shader compiled";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("ink.frag"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(centre(), glm::vec3(1, 0, 0));
+  setShaderDirectory({});
+  r.reloadShaders();
+  EXPECT_EQ(centre(), before);
+}
+
+TEST_F(Ink, ExtremeInputsGiveFinitePicturesOrClearErrors) {
+  auto finite = [](const image::Image& img) {
+    return std::all_of(img.pixels.begin(), img.pixels.end(), [](float v) { return std::isfinite(v) && v >= 0 && v <= 1; });
+  };
+  const scene::Scene s = sceneWith({});
+  // One triangle; a flat plane (feature size 0: no curvature lines, no NaN); a sphere
+  // far from the origin kept in file coordinates; a 1x1 and a very wide output.
+  mesh::Mesh tri;
+  tri.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+  tri.triangles = {{0, 1, 2}};
+  const mesh::Mesh flat = test::heightGrid(20, 20, 1.0, [](double, double) { return 0.0; });
+  for (const mesh::Mesh* m : std::initializer_list<const mesh::Mesh*>{&tri, &flat}) {
+    InkRenderer r(s, prepare(s, *m));
+    const image::Image img = r.renderImage({-60, 25, 1.0});
+    EXPECT_TRUE(finite(img));
+  }
+  const scene::Scene far = sceneWith({{"recentre", false}});
+  InkRenderer r(far, prepare(far, test::uvSphere(1.0, 24, 48, glm::dvec3(1e4, -2e4, 50))));
+  for (const auto& [w, h] : {std::pair{1, 1}, std::pair{4096, 2}, std::pair{3, 700}}) {
+    const OrbitCamera cam = sceneCamera(far, r.worldBounds(), static_cast<double>(w) / h, {10, 10, 1.0});
+    EXPECT_TRUE(finite(r.render(cam, w, h).colour(0).download(3))) << w << "x" << h;
+  }
+  // Degenerate triangles only: the mesh is refused on upload, naming the problem.
+  mesh::Mesh empty;
+  empty.positions = {{0, 0, 0}};
+  EXPECT_THROW(InkRenderer(s, prepare(s, empty)), Error);
 }
 
 TEST_F(Ink, SampleSceneMatchesItsGoldenImage) {
