@@ -48,7 +48,7 @@ int main(int argc, char** argv) {
   std::string input, output, size, stats_path;
   std::vector<std::string> sets;
   int frames = 1;
-  double orbit = 360.0;
+  double orbit = 360.0, fps = 24.0;
   bool verbose = false;
   app.add_option("scene", input, "scene (.json), or a mesh (.obj .ply .off) or DEM (.dem .asc) to render alone")
       ->required();
@@ -56,12 +56,15 @@ int main(int argc, char** argv) {
   app.add_option("--size", size, "output size WxH (default: the scene's output.width x output.height)");
   app.add_option("--frames", frames, "render N frames along camera.path, or an orbit without one")->default_val(1);
   app.add_option("--orbit", orbit, "degrees turned around +Z over the frames (no camera.path)")->default_val(360.0);
+  app.add_option("--fps", fps, "frames per second of a sequence: frame i is at time i / fps (spinning objects)")
+      ->default_val(24.0);
   app.add_option("--set", sets, "override a scene key, dotted path = JSON value (repeatable)");
   app.add_option("--stats", stats_path, "write JSON statistics: passes built, per frame time and pass GPU times");
   app.add_flag("-v,--verbose", verbose, "print the GL platform and load times");
   return tools::runTool(app, argc, argv, [&] {
     if (frames < 1 || frames > 100000) throw makeError("--frames: ", frames, " is out of range; expected [1, 100000]");
     if (!std::isfinite(orbit)) throw makeError("--orbit: must be finite");
+    if (!(fps > 0 && fps <= 1e4)) throw makeError("--fps: ", fps, " is out of range; expected (0, 10000]");
     if (size.size()) {
       const Size2 s = parseSize(size, "--size");
       sets.push_back("output.width=" + std::to_string(s.width));
@@ -89,10 +92,12 @@ int main(int argc, char** argv) {
     stats["frames"] = nlohmann::json::array();
     for (int i = 0; i < frames; ++i) {
       render::FrameStats fs;
-      const image::Image img = renderer.renderImage(render::frameKey(sc, i, frames, orbit), &fs);
+      const double time = i / fps;
+      const image::Image img = renderer.renderImage(render::frameKey(sc, i, frames, orbit), &fs, time);
       const std::filesystem::path path = framePath(output, i, frames);
       image::saveImage(img, path);
-      nlohmann::json f = {{"index", i}, {"file", path.string()}, {"frame_ms", fs.frame_ms}, {"cached", fs.cached}};
+      nlohmann::json f = {{"index", i}, {"time", time}, {"file", path.string()}, {"frame_ms", fs.frame_ms},
+                          {"cached", fs.cached}};
       f["passes"] = nlohmann::json::object();
       for (const auto& p : fs.passes) f["passes"][p.name] = p.gpu_ms;
       stats["frames"].push_back(f);

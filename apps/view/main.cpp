@@ -281,7 +281,9 @@ int main(int argc, char** argv) {
       }
       if (width > 0 && height > 0) {
         if (orbit != 0.0) state.camera.azimuth_deg += orbit;
-        const render::Framebuffer& fb = renderer->render(state.camera, width, height, &stats);
+        // Spinning objects run on the clock (scripted runs: 1/24 s per frame).
+        const double time = frames > 0 ? frame / 24.0 : glfwGetTime();
+        const render::Framebuffer& fb = renderer->render(state.camera, width, height, &stats, true, time);
         if (!stats.cached) last_drawn = stats;
         glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
         glBlitNamedFramebuffer(fb.id(), 0, 0, 0, width, height, 0, 0, width, height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
@@ -349,8 +351,8 @@ int main(int argc, char** argv) {
         glfwSwapBuffers(window);
         if (last) break;
       }
-      if (frames > 0) glfwPollEvents();
-      else glfwWaitEventsTimeout(0.05);
+      if (frames > 0 || sc.hasAnimation()) glfwPollEvents();
+      else glfwWaitEventsTimeout(0.05);  // nothing moves: wake for input only
     }
     ImGui_ImplOpenGL3_Shutdown();
     ImGui_ImplGlfw_Shutdown();

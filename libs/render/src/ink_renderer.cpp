@@ -127,7 +127,7 @@ image::Image erosionNoise(int size, std::uint64_t seed) {
 
 std::string InkRenderer::structureKey(const scene::Scene& s) {
   std::ostringstream k;
-  k << s.objects.size() << "|" << s.usesLines() << s.usesShading() << s.usesWrinkles() << "|"
+  k << s.objects.size() << "|" << s.usesLines() << s.usesShading() << s.usesWrinkles() << s.hasAnimation() << "|"
     << static_cast<int>(s.canvas.type) << s.diffusion.enabled() << "|" << s.seed;
   for (const scene::Object& o : s.objects) {
     k << "|" << s.resolve(o.mesh.empty() ? o.dem : o.mesh).string() << "," << o.z_scale << "," << o.max_vertices << ","
@@ -250,6 +250,8 @@ void InkRenderer::setScene(const scene::Scene& s) {
 void InkRenderer::ensureTargets(int width, int height) {
   if (final_.width() == width && final_.height() == height) return;
   gbuffer_ = Framebuffer(width, height, {GL_RGBA16F, GL_RGBA8}, true);
+  if (scene_.hasAnimation()) static_gbuffer_ = Framebuffer(width, height, {GL_RGBA16F, GL_RGBA8}, true);
+  static_layer_key_.clear();
   std::vector<GLenum> out{GL_RGBA8};
   if (debug_outputs_) out.insert(out.end(), {GL_RG16F, GL_R16F});
   final_ = Framebuffer(width, height, out, false);
@@ -300,41 +302,33 @@ std::string InkRenderer::requestKey(const OrbitCamera& c, int width, int height)
   return k.str();
 }
 
-const Framebuffer& InkRenderer::render(const OrbitCamera& camera, int width, int height, FrameStats* stats,
-                                       bool timing) {
-  const auto start = std::chrono::steady_clock::now();
-  ensureTargets(width, height);
-  std::string key = requestKey(camera, width, height);
-  if (key == last_key_) {
-    if (stats) *stats = FrameStats{true, std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count(), {}};
-    return final_;
+void InkRenderer::drawObjects(const Framebuffer& target, bool clear, int which, const OrbitCamera& camera,
+                              const glm::mat4& view_projection, double time) {
+  target.bind();
+  if (clear) {
+    const float zero[4] = {0, 0, 0, 0}, far_depth = 1.0f;
+    glClearNamedFramebufferfv(target.id(), GL_COLOR, 0, zero);
+    glClearNamedFramebufferfv(target.id(), GL_COLOR, 1, zero);
+    glClearNamedFramebufferfv(target.id(), GL_DEPTH, 0, &far_depth);
   }
-  const double aspect = static_cast<double>(width) / height;
-  const glm::mat4 view_projection = camera.projection(aspect) * camera.view();
-  const glm::vec3 eye(camera.eye());
-  uploadObjectParams(camera, height);
-  glBindVertexArray(empty_vao_);
-
-  // G-buffer: normal + curvature, surface detail + object id, depth.
-  if (timing) timer_.begin("gbuffer");
-  gbuffer_.bind();
-  const float zero[4] = {0, 0, 0, 0}, far_depth = 1.0f;
-  glClearNamedFramebufferfv(gbuffer_.id(), GL_COLOR, 0, zero);
-  glClearNamedFramebufferfv(gbuffer_.id(), GL_COLOR, 1, zero);
-  glClearNamedFramebufferfv(gbuffer_.id(), GL_DEPTH, 0, &far_depth);
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
   glDisable(GL_CULL_FACE);
   glDisable(GL_BLEND);
   for (std::size_t i = 0; i < objects_.size(); ++i) {
+    const scene::Object& o = scene_.objects[i];
+    if ((which == kStaticObjects && o.animated()) || (which == kAnimatedObjects && !o.animated())) continue;
     const GpuObject& g = objects_[i];
+    // A spinning object turns about the vertical axis through its centre (the origin of
+    // its uploaded coordinates).
+    const glm::dmat4 model =
+        o.animated() ? glm::rotate(g.model, glm::radians(o.spin_deg_per_s * time), glm::dvec3(0, 0, 1)) : g.model;
     const Program& p = gbuffer_programs_[static_cast<std::size_t>(g.program)].program;
     p.use();
-    p.set("u_model", glm::mat4(g.model));
-    p.set("u_normal_matrix", glm::mat3(glm::transpose(glm::inverse(glm::dmat3(g.model)))));
+    p.set("u_model", glm::mat4(model));
+    p.set("u_normal_matrix", glm::mat3(glm::transpose(glm::inverse(glm::dmat3(model)))));
     p.set("u_view_projection", view_projection);
     p.set("u_object_id", static_cast<float>(i + 1) / 255.0f);
-    const scene::Object& o = scene_.objects[i];
     if (o.lines.enabled && o.lines.curvature == scene::CurvatureSource::Screen) {
       p.set("u_feature_size", static_cast<float>(g.feature_size));
     }
@@ -351,10 +345,52 @@ const Framebuffer& InkRenderer::render(const OrbitCamera& camera, int width, int
       p.set("u_repeat", static_cast<float>(o.wrinkle.repeat));
     }
     // Front to back, so hidden fragments fail the depth test before they are shaded.
-    const glm::dvec3 forward = glm::inverse(glm::dmat3(g.model)) * (camera.target - camera.eye());
+    const glm::dvec3 forward = glm::inverse(glm::dmat3(model)) * (camera.target - camera.eye());
     g.mesh.drawFrontToBack(glm::vec3(forward));
   }
-  if (timing) timer_.end();
+}
+
+const Framebuffer& InkRenderer::render(const OrbitCamera& camera, int width, int height, FrameStats* stats,
+                                       bool timing, double time) {
+  const auto start = std::chrono::steady_clock::now();
+  ensureTargets(width, height);
+  const bool animated = scene_.hasAnimation();
+  const std::string static_key = requestKey(camera, width, height);
+  std::string key = static_key;
+  if (animated) key += "|t=" + std::to_string(time);
+  if (key == last_key_) {
+    if (stats) *stats = FrameStats{true, std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count(), {}};
+    return final_;
+  }
+  const double aspect = static_cast<double>(width) / height;
+  const glm::mat4 view_projection = camera.projection(aspect) * camera.view();
+  const glm::vec3 eye(camera.eye());
+  uploadObjectParams(camera, height);
+
+  // G-buffer: normal + curvature, surface detail + object id, depth. With animated
+  // objects the static ones are drawn once into their own layer (again only when the
+  // camera, size or parameters change) and copied under the animated ones each frame.
+  if (!animated) {
+    if (timing) timer_.begin("gbuffer");
+    drawObjects(gbuffer_, true, kAllObjects, camera, view_projection, time);
+    if (timing) timer_.end();
+  } else {
+    if (static_key != static_layer_key_) {
+      if (timing) timer_.begin("gbuffer_static");
+      drawObjects(static_gbuffer_, true, kStaticObjects, camera, view_projection, time);
+      if (timing) timer_.end();
+      static_layer_key_ = static_key;
+    }
+    if (timing) timer_.begin("gbuffer_animated");
+    for (int i = 0; i < 2; ++i) {
+      glCopyImageSubData(static_gbuffer_.colour(i).id(), GL_TEXTURE_2D, 0, 0, 0, 0, gbuffer_.colour(i).id(), GL_TEXTURE_2D,
+                         0, 0, 0, 0, width, height, 1);
+    }
+    glCopyImageSubData(static_gbuffer_.depth().id(), GL_TEXTURE_2D, 0, 0, 0, 0, gbuffer_.depth().id(), GL_TEXTURE_2D, 0, 0,
+                       0, 0, width, height, 1);
+    drawObjects(gbuffer_, false, kAnimatedObjects, camera, view_projection, time);
+    if (timing) timer_.end();
+  }
   SHANSHUI_GL_CHECK("gbuffer pass");
 
   // One image pass: lines, shading and composite.
@@ -407,10 +443,10 @@ image::Image InkRenderer::worldPositions() const {
   return out;
 }
 
-image::Image InkRenderer::renderImage(const scene::CameraKey& key, FrameStats* stats) {
+image::Image InkRenderer::renderImage(const scene::CameraKey& key, FrameStats* stats, double time) {
   const int w = scene_.output.width, h = scene_.output.height;
   const OrbitCamera cam = sceneCamera(scene_, world_bounds_, static_cast<double>(w) / h, key);
-  const Framebuffer& fb = render(cam, w, h, stats, true);
+  const Framebuffer& fb = render(cam, w, h, stats, true, time);
   return fb.colour(0).download(3);
 }
 

@@ -43,6 +43,13 @@ bool Scene::usesLines() const {
   return false;
 }
 
+bool Scene::hasAnimation() const {
+  for (const Object& o : objects) {
+    if (o.animated()) return true;
+  }
+  return false;
+}
+
 bool Scene::usesShading() const {
   for (const Object& o : objects) {
     if (o.shading.enabled) return true;
@@ -279,6 +286,7 @@ Object readObject(Reader r) {
     o.transform.scale = t.vec3("scale", o.transform.scale, 1e-6, 1e6);
     t.finish();
   }
+  o.spin_deg_per_s = r.number("spin", o.spin_deg_per_s, -36000, 36000);
   o.lines = readLines(r.child("lines"));
   o.shading = readShading(r.child("shading"));
   o.wrinkle = readWrinkle(r.child("wrinkle"));
@@ -448,6 +456,7 @@ json toJson(const Scene& s) {
       jo["max_vertices"] = o.max_vertices;
     }
     jo["recentre"] = o.recentre;
+    jo["spin"] = o.spin_deg_per_s;
     jo["transform"] = {{"translate", toArray(o.transform.translate)},
                        {"rotate", toArray(o.transform.rotate_deg)},
                        {"scale", toArray(o.transform.scale)}};

@@ -49,15 +49,19 @@ class InkRenderer {
   void setScene(const scene::Scene& s);
   const scene::Scene& scene() const { return scene_; }
 
-  //! Renders the view into an internal RGBA8 framebuffer and returns it; an identical
-  //! request (camera, size, parameters) returns the cached image without running a pass.
-  //! With timing, waits for the GPU and fills stats->passes with GPU times.
+  //! Renders the view at `time` (seconds, for spinning objects) into an internal RGBA8
+  //! framebuffer and returns it. Seed 002's render states: an identical request (camera,
+  //! size, parameters, and time when something is animated) returns the cached image
+  //! without running a pass; with animated objects the static ones are drawn into a cached
+  //! layer ("gbuffer_static", only when the camera, size or parameters change) and the
+  //! animated ones over a copy of it ("gbuffer_animated"). With timing, waits for the GPU and
+  //! fills stats->passes with GPU times.
   const Framebuffer& render(const OrbitCamera& camera, int width, int height, FrameStats* stats = nullptr,
-                            bool timing = true);
+                            bool timing = true, double time = 0.0);
 
   //! Renders a frame of the scene's own camera (key) at the scene's output size and reads it
   //! back: RGB, row 0 at the top.
-  image::Image renderImage(const scene::CameraKey& key, FrameStats* stats = nullptr);
+  image::Image renderImage(const scene::CameraKey& key, FrameStats* stats = nullptr, double time = 0.0);
 
   //! Recompiles every program from the current shader sources; on a compile error the old
   //! programs stay and the error is thrown.
@@ -99,6 +103,9 @@ class InkRenderer {
     Program program;
   };
 
+  enum { kAllObjects, kStaticObjects, kAnimatedObjects };
+  void drawObjects(const Framebuffer& target, bool clear, int which, const OrbitCamera& camera,
+                   const glm::mat4& view_projection, double time);
   void buildPrograms();
   void ensureTargets(int width, int height);
   void uploadObjectParams(const OrbitCamera& camera, int height);
@@ -118,7 +125,8 @@ class InkRenderer {
   std::size_t params_capacity_ = 0;
   std::optional<Texture2D> noise_;
 
-  Framebuffer gbuffer_, final_;
+  Framebuffer gbuffer_, static_gbuffer_, final_;
+  std::string static_layer_key_;  //!< request the static layer was drawn for
   GpuTimer timer_;
   std::string last_key_;
   glm::dmat4 last_inverse_view_projection_{1.0};

@@ -88,6 +88,10 @@ struct Object {
   //! true: the mesh is moved so its bounding-box centre is the model origin.
   bool recentre = true;
   Transform transform;
+  //! Degrees per second the object turns about the vertical axis through its centre; an
+  //! object with a spin is animated and drawn over the cached static layer; [-36000, 36000].
+  double spin_deg_per_s = 0.0;
+  bool animated() const { return spin_deg_per_s != 0.0; }
   LineParams lines;
   ShadingParams shading;
   WrinkleParams wrinkle;
@@ -155,6 +159,7 @@ struct Scene {
   bool usesWrinkles() const;
   bool usesLines() const;
   bool usesShading() const;
+  bool hasAnimation() const;
 };
 
 //! One parameter the parser accepts: its dotted path (objects.* for every object), kind
