@@ -511,7 +511,19 @@ json toJson(const Scene& s) {
 }
 
 void saveScene(const Scene& s, const std::filesystem::path& path) {
-  const std::string text = toJson(s).dump(2) + "\n";
+  // File paths are rewritten relative to where the scene is saved, so it loads from there.
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::absolute(path).parent_path();
+  Scene saved = s;
+  auto rebase = [&](std::string& p) {
+    if (!p.empty()) p = fs::proximate(fs::absolute(s.resolve(p)).lexically_normal(), dir).generic_string();
+  };
+  for (Object& o : saved.objects) {
+    rebase(o.mesh);
+    rebase(o.dem);
+    rebase(o.wrinkle.texture);
+  }
+  const std::string text = toJson(saved).dump(2) + "\n";
   writeAtomically(path, [&](const std::filesystem::path& tmp) {
     std::ofstream out(tmp);
     out << text;

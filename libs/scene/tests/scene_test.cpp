@@ -68,9 +68,21 @@ TEST(Scene, SavedScenesLoadBackTheSame) {
   s.objects[0].dem = (test::sourceDir() / "samples/terrain/mount_st_helens.dem").string();
   saveScene(s, dir / "saved.json");
   const Scene back = loadScene(dir / "saved.json");
-  EXPECT_EQ(toJson(back), toJson(s));
+  json a = toJson(back), b = toJson(s);
+  a["objects"][0].erase("dem");  // written relative to the saved file
+  b["objects"][0].erase("dem");
+  EXPECT_EQ(a, b);
+  EXPECT_TRUE(std::filesystem::equivalent(back.resolve(back.objects[0].dem), s.objects[0].dem));
   EXPECT_EQ(back.objects[0].lines.curve_factor, 1.25);
   EXPECT_THROW(saveScene(s, dir / "no_such_dir" / "x.json"), Error);
+  // Relative paths follow the file: saved elsewhere, the scene still finds its inputs.
+  const Scene sample = loadScene(test::sourceDir() / "samples/scenes/default.json");
+  std::filesystem::create_directories(dir / "deeper" / "still");
+  saveScene(sample, dir / "deeper" / "still" / "moved.json");
+  const Scene moved = loadScene(dir / "deeper" / "still" / "moved.json");
+  EXPECT_TRUE(std::filesystem::equivalent(moved.resolve(moved.objects[0].dem), sample.resolve(sample.objects[0].dem)));
+  EXPECT_TRUE(std::filesystem::equivalent(moved.resolve(moved.objects[0].wrinkle.texture),
+                                          sample.resolve(sample.objects[0].wrinkle.texture)));
 }
 
 TEST(Scene, OverridesTakeDottedPathsAndJsonValues) {

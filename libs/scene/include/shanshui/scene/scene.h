@@ -190,7 +190,8 @@ void applyOverride(nlohmann::json& j, const std::string& assignment);
 //! gives s back.
 nlohmann::json toJson(const Scene& s);
 
-//! Writes toJson(s) atomically (for the viewer's Save).
+//! Writes toJson(s) atomically (for the viewer's Save), with file paths rewritten relative
+//! to the saved file's directory so that it loads from wherever it is saved.
 void saveScene(const Scene& s, const std::filesystem::path& path);
 
 //! Every parameter parseScene accepts.
