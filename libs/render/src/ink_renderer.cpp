@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <numbers>
 #include <limits>
+#include <numbers>
 #include <sstream>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -92,11 +92,9 @@ image::Image erosionNoise(int size, std::uint64_t seed) {
   const int octaves = 3;
   for (int ch = 0; ch < 2; ++ch) {
     std::vector<float> sum(static_cast<std::size_t>(size) * size, 0.0f);
-    float weight_total = 0.0f;
     for (int o = 0; o < octaves; ++o) {
       const int cells = (ch == 0 ? kErosionCells : 32) << o;  // the added noise is finer than the erosion
       const float weight = 1.0f / static_cast<float>(1 << o);
-      weight_total += weight;
       std::vector<float> lattice(static_cast<std::size_t>(cells) * cells);
       for (std::size_t i = 0; i < lattice.size(); ++i) {
         lattice[i] = static_cast<float>(streamValue(seed ^ (0x9E37u * (ch + 1)) ^ (static_cast<std::uint64_t>(o) << 40), i) >> 11) *
@@ -120,7 +118,6 @@ image::Image erosionNoise(int size, std::uint64_t seed) {
     const auto [lo, hi] = std::minmax_element(sum.begin(), sum.end());
     const float range = std::max(*hi - *lo, 1e-6f);
     for (std::size_t i = 0; i < sum.size(); ++i) img.pixels[i * 2 + ch] = (sum[i] - *lo) / range;
-    (void)weight_total;
   }
   return img;
 }

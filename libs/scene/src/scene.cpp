@@ -324,6 +324,9 @@ Scene parseWith(const json& j, const std::string& origin, const std::filesystem:
   s.seed = static_cast<std::uint64_t>(r.integer("seed", static_cast<long long>(s.seed), 0, (1LL << 53)));
   for (Reader o : r.list("objects")) s.objects.push_back(readObject(std::move(o)));
   if (s.objects.empty() && !schema) throw r.fail("objects", "a scene needs at least one object");
+  if (s.objects.size() > 255) {
+    throw r.fail("objects", std::to_string(s.objects.size()) + " objects; a scene holds at most 255 (8-bit object ids)");
+  }
   {
     Reader l = r.child("light");
     s.light.direction = l.vec3("direction", s.light.direction, -kBig, kBig);

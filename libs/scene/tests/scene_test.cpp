@@ -149,6 +149,14 @@ TEST(Scene, EveryKindOfBadValueNamesItsKeyPath) {
   }
 }
 
+TEST(Scene, AtMost255Objects) {
+  json j = {{"objects", json::array()}};
+  for (int i = 0; i < 256; ++i) j["objects"].push_back({{"mesh", "m.obj"}});
+  EXPECT_NE(errorOf(j).find("at most 255"), std::string::npos) << errorOf(j);
+  j["objects"].erase(255);
+  EXPECT_EQ(errorOf(j), "");
+}
+
 TEST(Scene, EveryKeyTheParserAcceptsIsDocumented) {
   std::ifstream in(test::sourceDir() / "docs/scene.md");
   ASSERT_TRUE(in) << "docs/scene.md";
