@@ -2,7 +2,8 @@
 // The image pass of the ink renderer: feature lines (seed 001 Eq. 1), interior shading
 // (Eqs. 2, 3, 5) and the composite on paper, in one pass over the G-buffer so each pixel is
 // read once. Variants: LINES and SHADING (some object uses them), WRINKLE (some object has a
-// wrinkle texture), DEBUG_OUTPUTS (line weight and tone as extra targets, for tests).
+// wrinkle texture), SINGLE_OBJECT (parameters without indexing), DEBUG_OUTPUTS (line weight
+// and tone as extra targets, for tests).
 #include "ink_objects.glsl"
 #ifdef SHADING
 #include "ink_gaussian_cdf.glsl"
@@ -60,7 +61,11 @@ void main() {
     o_colour = vec4(u_paper, 1.0);
     return;
   }
+#ifdef SINGLE_OBJECT
+  ObjectParams o = objects[0];  // a constant index: one load for all pixels, not a gather
+#else
   ObjectParams o = objects[id - 1];
+#endif
   float depth = texelFetch(u_depth, p, 0).r;
   vec3 position = worldPosition(p, depth);
   vec4 nc = texelFetch(u_normal_curvature, p, 0);

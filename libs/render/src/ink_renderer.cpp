@@ -199,6 +199,7 @@ void InkRenderer::buildPrograms() {
   if (lines_) d.emplace_back("LINES");
   if (shading_) d.emplace_back("SHADING");
   if (wrinkles_) d.emplace_back("WRINKLE");
+  if (objects_.size() == 1) d.emplace_back("SINGLE_OBJECT");
   if (debug_outputs_) d.emplace_back("DEBUG_OUTPUTS");
   Program ink({"fullscreen.vert", "ink.frag"}, d);
   variants["ink"].push_back(joined(d));

@@ -91,7 +91,7 @@ TEST_F(Ink, TonesFollowEquationsTwoAndThreeFromTheNormals) {
     InkRenderer r(s, prepare(s, test::uvSphere(2.0, 64, 128)));
     r.setDebugOutputs(true);
     ASSERT_EQ(r.passesBuilt(), (std::vector<std::string>{"gbuffer", "ink"}));
-    ASSERT_EQ(r.variants().at("ink"), std::vector<std::string>{"SHADING DEBUG_OUTPUTS"}) << "no line code";
+    ASSERT_EQ(r.variants().at("ink"), std::vector<std::string>{"SHADING SINGLE_OBJECT DEBUG_OUTPUTS"}) << "no line code";
     r.render(sceneCamera(s, r.worldBounds(), 1.0, {-40, 30, 1.0}), 200, 200);
     const image::Image nc = r.passTarget("gbuffer")->colour(0).download(4);
     const image::Image pos = r.worldPositions();
