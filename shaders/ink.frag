@@ -51,22 +51,24 @@ float farthestNeighbour(ivec2 p) {
 
 void main() {
   ivec2 p = ivec2(gl_FragCoord.xy);
-  vec4 surface = texelFetch(u_surface_id, p, 0);
-  int id = int(surface.a * 255.0 + 0.5);
 #ifdef DEBUG_OUTPUTS
   o_line = vec2(0.0, 1.0);
   o_tone = 1.0;
 #endif
-  if (id == 0) {
+  // Background where nothing was drawn; the colour targets are not cleared, so they are
+  // read only after this test.
+  float depth = texelFetch(u_depth, p, 0).r;
+  if (depth >= 1.0) {
     o_colour = vec4(u_paper, 1.0);
     return;
   }
+  vec4 surface = texelFetch(u_surface_id, p, 0);
+  int id = int(surface.a * 255.0 + 0.5);
 #ifdef SINGLE_OBJECT
   ObjectParams o = objects[0];  // a constant index: one load for all pixels, not a gather
 #else
   ObjectParams o = objects[id - 1];
 #endif
-  float depth = texelFetch(u_depth, p, 0).r;
   vec3 position = worldPosition(p, depth);
   vec4 nc = texelFetch(u_normal_curvature, p, 0);
   vec3 n = normalize(nc.xyz);

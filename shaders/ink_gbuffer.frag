@@ -22,7 +22,7 @@ uniform float u_feature_size;  // world units
 in vec2 v_noise_uv;
 uniform sampler2D u_noise;     // r: erosion noise, g: noise added before quantisation
 #endif
-uniform float u_object_id;     // (index + 1) / 255; 0 is the background
+uniform float u_object_id;     // (index + 1) / 255
 
 layout(location = 0) out vec4 o_normal_curvature;
 layout(location = 1) out vec4 o_surface_id;  // erosion noise, added noise, wrinkle luma, id

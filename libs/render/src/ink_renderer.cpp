@@ -304,9 +304,9 @@ void InkRenderer::drawObjects(const Framebuffer& target, bool clear, int which, 
                               const glm::mat4& view_projection, double time) {
   target.bind();
   if (clear) {
-    const float zero[4] = {0, 0, 0, 0}, far_depth = 1.0f;
-    glClearNamedFramebufferfv(target.id(), GL_COLOR, 0, zero);
-    glClearNamedFramebufferfv(target.id(), GL_COLOR, 1, zero);
+    // Only depth: the ink pass reads the colour targets where something was drawn (depth
+    // below 1), so clearing them would be wasted bandwidth.
+    const float far_depth = 1.0f;
     glClearNamedFramebufferfv(target.id(), GL_DEPTH, 0, &far_depth);
   }
   glEnable(GL_DEPTH_TEST);
