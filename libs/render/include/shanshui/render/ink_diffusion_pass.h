@@ -1,0 +1,39 @@
+// The GPU pass of the empirical ink diffusion (seed 001, Eqs. 6-8; SPEC.md section 9), in
+// compute shaders that follow the CPU reference in libs/ink step by step: ink of the
+// picture; main region from a separable city-block distance transform (two sweeps per
+// axis, cost independent of d); n boundary iterations of three gathers each; the picture
+// with the ink change painted in.
+#pragma once
+
+#include <glm/glm.hpp>
+
+#include "shanshui/ink/diffusion.h"
+#include "shanshui/render/gl_resources.h"
+#include "shanshui/render/gpu_timer.h"
+#include "shanshui/render/shader_program.h"
+
+namespace shanshui::render {
+
+class InkDiffusionPass {
+ public:
+  //! Compiles the programs; needs a current GL 4.5 context.
+  InkDiffusionPass();
+
+  //! Diffuses the ink of `colour` (an RGBA8 picture on `paper`); `absorbency` (one channel
+  //! in [0, 1], tiled over the picture) scales what each pixel absorbs. Returns the result
+  //! (RGBA8, same size). With a timer, the pass is timed as "diffusion".
+  const Texture2D& run(const Texture2D& colour, const Texture2D& absorbency, const ink::DiffusionOptions& options,
+                       const glm::vec3& paper, GpuTimer* timer = nullptr);
+
+  //! The ink fields of the last run (R32F), before and after, for tests.
+  const Texture2D& inkBefore() const { return ink0_; }
+  const Texture2D& inkAfter() const { return *after_; }
+
+ private:
+  void ensureSize(int width, int height);
+  Program extract_, rows_, columns_, demand_, supply_, apply_, output_;
+  Texture2D ink0_, main_, next_, demand_tex_, supply_tex_, distance_, source_, out_;
+  const Texture2D* after_ = nullptr;
+};
+
+}  // namespace shanshui::render

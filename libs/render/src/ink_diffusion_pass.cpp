@@ -1,0 +1,107 @@
+#include "shanshui/render/ink_diffusion_pass.h"
+
+#include <utility>
+
+#include "shanshui/render/gl_check.h"
+
+namespace shanshui::render {
+
+namespace {
+
+void bindImage(GLuint unit, const Texture2D& t, GLenum access) {
+  glBindImageTexture(unit, t.id(), 0, GL_FALSE, 0, access, t.format());
+}
+
+void barrier() { glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT); }
+
+GLuint groups(int n, int size) { return static_cast<GLuint>((n + size - 1) / size); }
+
+}  // namespace
+
+InkDiffusionPass::InkDiffusionPass()
+    : extract_({"ink_diffusion_extract.comp"}),
+      rows_({"ink_diffusion_rows.comp"}),
+      columns_({"ink_diffusion_columns.comp"}),
+      demand_({"ink_diffusion_demand.comp"}),
+      supply_({"ink_diffusion_supply.comp"}),
+      apply_({"ink_diffusion_apply.comp"}),
+      output_({"ink_diffusion_output.comp"}) {}
+
+void InkDiffusionPass::ensureSize(int width, int height) {
+  if (out_.width() == width && out_.height() == height) return;
+  for (Texture2D* t : {&ink0_, &main_, &next_, &demand_tex_, &supply_tex_, &source_}) *t = Texture2D(width, height, GL_R32F);
+  distance_ = Texture2D(width, height, GL_R32I);
+  out_ = Texture2D(width, height, GL_RGBA8);
+}
+
+const Texture2D& InkDiffusionPass::run(const Texture2D& colour, const Texture2D& absorbency,
+                                       const ink::DiffusionOptions& o, const glm::vec3& paper, GpuTimer* timer) {
+  ink::validate(o);
+  const int w = colour.width(), h = colour.height();
+  ensureSize(w, h);
+  if (timer) timer->begin("diffusion");
+  const GLuint gx = groups(w, 16), gy = groups(h, 16);
+
+  extract_.use();
+  extract_.set("u_paper", paper);
+  glBindTextureUnit(0, colour.id());
+  bindImage(0, ink0_, GL_WRITE_ONLY);
+  glDispatchCompute(gx, gy, 1);
+  barrier();
+
+  // Main region: rows, then columns (which also write the main-region ink).
+  rows_.use();
+  rows_.set("u_threshold", static_cast<float>(o.threshold));
+  bindImage(0, ink0_, GL_READ_ONLY);
+  bindImage(1, distance_, GL_READ_WRITE);
+  bindImage(2, source_, GL_READ_WRITE);
+  glDispatchCompute(groups(h, 64), 1, 1);
+  barrier();
+  columns_.use();
+  columns_.set("u_ring_steps", o.ring_steps);
+  columns_.set("u_attenuation", static_cast<float>(o.attenuation));
+  bindImage(3, main_, GL_WRITE_ONLY);
+  glDispatchCompute(groups(w, 64), 1, 1);
+  barrier();
+
+  // Boundary diffusion: n iterations, ping-pong between main_ and next_.
+  Texture2D* cur = &main_;
+  Texture2D* nxt = &next_;
+  glBindTextureUnit(0, absorbency.id());
+  for (int it = 0; it < o.iterations; ++it) {
+    demand_.use();
+    demand_.set("u_capacity", static_cast<float>(o.absorb / o.iterations));
+    demand_.set("u_residual", static_cast<float>(o.residual));
+    demand_.set("u_threshold", static_cast<float>(o.threshold));
+    bindImage(0, *cur, GL_READ_ONLY);
+    bindImage(1, ink0_, GL_READ_ONLY);
+    bindImage(2, demand_tex_, GL_READ_WRITE);
+    glDispatchCompute(gx, gy, 1);
+    barrier();
+    supply_.use();
+    supply_.set("u_residual", static_cast<float>(o.residual));
+    bindImage(3, supply_tex_, GL_READ_WRITE);
+    glDispatchCompute(gx, gy, 1);
+    barrier();
+    apply_.use();
+    bindImage(4, *nxt, GL_WRITE_ONLY);
+    glDispatchCompute(gx, gy, 1);
+    barrier();
+    std::swap(cur, nxt);
+  }
+  after_ = cur;
+
+  output_.use();
+  output_.set("u_paper", paper);
+  glBindTextureUnit(0, colour.id());
+  bindImage(0, ink0_, GL_READ_ONLY);
+  bindImage(1, *cur, GL_READ_ONLY);
+  bindImage(2, out_, GL_WRITE_ONLY);
+  glDispatchCompute(gx, gy, 1);
+  barrier();
+  if (timer) timer->end();
+  SHANSHUI_GL_CHECK("diffusion pass");
+  return out_;
+}
+
+}  // namespace shanshui::render

@@ -1,0 +1,119 @@
+// The GPU ink diffusion against the CPU reference (libs/ink) on the grid of extreme
+// parameters of SPEC.md section 9, and its own invariants.
+#include <algorithm>
+#include <cmath>
+#include <random>
+
+#include "shanshui/ink/diffusion.h"
+#include "shanshui/render/ink_diffusion_pass.h"
+#include "gl_test.h"
+#include "test_support.h"
+
+namespace shanshui::render {
+namespace {
+
+using InkGpu = test::HeadlessGl;
+
+const double kPaper[3] = {0.95, 0.93, 0.87};
+
+// A picture on paper with strokes of several greys (values exact in 8 bits), optionally
+// with strokes along the border.
+image::Image picture(int w, int h, unsigned seed, bool border) {
+  std::mt19937 rng(seed);
+  std::uniform_int_distribution<int> u(0, 99), grey(0, 120);
+  image::Image img(w, h, 3);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const int r = u(rng);
+      const bool stroke = r < 6 || (border && (x == 0 || y == h - 1));
+      const double t = stroke ? grey(rng) / 255.0 : (r < 15 ? 0.7 + 0.2 * (r % 3) : 1.0);
+      for (int c = 0; c < 3; ++c) img.at(x, y, c) = std::round(static_cast<float>(kPaper[c] * t) * 255.0f) / 255.0f;
+    }
+  return img;
+}
+
+image::Image absorbencyImage(int w, int h, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_int_distribution<int> u(0, 255);
+  image::Image a(w, h, 1);
+  for (float& v : a.pixels) v = static_cast<float>(u(rng)) / 255.0f;
+  return a;
+}
+
+TEST_F(InkGpu, MatchesTheCpuReferenceOnTheExtremeGrid) {
+  InkDiffusionPass pass;
+  const glm::vec3 paper(kPaper[0], kPaper[1], kPaper[2]);
+  double worst_max = 0, worst_mean = 0;
+  int cases = 0;
+  for (bool border : {false, true}) {
+    const image::Image img = picture(48, 36, border ? 2u : 1u, border);
+    const image::Image absorb = absorbencyImage(48, 36, 3);
+    const Texture2D colour = Texture2D::fromImage(img, GL_RGBA8), absorbency = Texture2D::fromImage(absorb, GL_R8);
+    // What the GPU sees: the 8-bit values, read back.
+    const image::Image seen = colour.download(3);
+    const std::vector<float> a(absorb.pixels.begin(), absorb.pixels.end());
+    const ink::InkField before = ink::inkFromImage(seen, kPaper);
+    for (int n : {1, 100})
+      for (double ir : {0.0, 1.0})
+        for (double f : {0.0, 1.0})
+          for (int d : {0, 64})
+            for (double ip : {0.5, 1000.0}) {
+              ink::DiffusionOptions o;
+              o.iterations = n;
+              o.residual = ir;
+              o.attenuation = f;
+              o.ring_steps = d;
+              o.absorb = ip;
+              SCOPED_TRACE(testing::Message() << "n=" << n << " Ir=" << ir << " f=" << f << " d=" << d << " Ip=" << ip
+                                              << " border=" << border);
+              pass.run(colour, absorbency, o, paper);
+              const image::Image gpu = pass.inkAfter().download(1);
+              const ink::InkField cpu = ink::diffuseInk(before, a, o);
+              double max_diff = 0, sum_diff = 0, total_gpu = 0;
+              for (std::size_t i = 0; i < cpu.ink.size(); ++i) {
+                ASSERT_TRUE(std::isfinite(gpu.pixels[i]) && gpu.pixels[i] >= 0.0f);
+                const double diff = std::abs(gpu.pixels[i] - cpu.ink[i]);
+                max_diff = std::max(max_diff, diff);
+                sum_diff += diff;
+                total_gpu += gpu.pixels[i];
+              }
+              // Float on the GPU against double on the CPU, n iterations of rounding.
+              EXPECT_LT(max_diff, 2e-5);  // measured worst: 5.6e-6
+              EXPECT_LT(sum_diff / static_cast<double>(cpu.ink.size()), 5e-6);  // measured worst: 1.3e-6
+              // The boundary stage conserves ink: compare with the main-region total.
+              const ink::InkField main = ink::mainDiffusionDistance(before, o);
+              EXPECT_NEAR(total_gpu, main.total(), 1e-5 * std::max(main.total(), 1.0));
+              worst_max = std::max(worst_max, max_diff);
+              worst_mean = std::max(worst_mean, sum_diff / static_cast<double>(cpu.ink.size()));
+              ++cases;
+            }
+  }
+  EXPECT_EQ(cases, 64);
+  RecordProperty("worst_max_abs_difference", std::to_string(worst_max));
+  RecordProperty("worst_mean_abs_difference", std::to_string(worst_mean));
+  std::printf("GPU vs CPU ink: worst max |diff| %.3g, worst mean |diff| %.3g over %d parameter sets\n", worst_max,
+              worst_mean, cases);
+}
+
+TEST_F(InkGpu, OneByOneEmptyAndFullPicturesStayFinite) {
+  InkDiffusionPass pass;
+  const glm::vec3 paper(kPaper[0], kPaper[1], kPaper[2]);
+  ink::DiffusionOptions o;
+  o.iterations = 100;
+  o.absorb = 1000;
+  for (const auto& [w, h, t] : {std::tuple{1, 1, 0.0f}, std::tuple{1, 1, 1.0f}, std::tuple{16, 9, 0.0f}, std::tuple{16, 9, 1.0f}}) {
+    image::Image img(w, h, 3);
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x)
+        for (int c = 0; c < 3; ++c) img.at(x, y, c) = static_cast<float>(kPaper[c]) * t;
+    const Texture2D colour = Texture2D::fromImage(img, GL_RGBA8), absorbency = Texture2D::fromImage(image::Image(1, 1, 1, 1.0f), GL_R8);
+    const image::Image out = pass.run(colour, absorbency, o, paper).download(3);
+    for (float v : out.pixels) ASSERT_TRUE(std::isfinite(v) && v >= 0.0f && v <= 1.0f);
+    // Nothing to diffuse into or from: the picture is unchanged.
+    const image::Image seen = colour.download(3);
+    for (std::size_t i = 0; i < out.pixels.size(); ++i) ASSERT_NEAR(out.pixels[i], seen.pixels[i], 1.0f / 255);
+  }
+}
+
+}  // namespace
+}  // namespace shanshui::render
