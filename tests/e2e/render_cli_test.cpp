@@ -147,7 +147,7 @@ TEST(RenderCli, EveryKindOfSceneErrorHasItsOwnMessageAndWritesNothing) {
        {"objects.0.wrinkle.uv", "no UVs"}},
       {scene("light.json", obj + "}], \"light\": {\"direction\": [0, 0, 0]}}"), {"light.direction", "zero"}},
       {scene("elev.json", obj + "}], \"camera\": {\"elevation\": 90}}"), {"camera.elevation", "89.9"}},
-      {scene("diff.json", obj + "}], \"diffusion\": {\"iterations\": 5}}"), {"diffusion", "not available"}},
+      {scene("diff.json", obj + "}], \"diffusion\": {\"iterations\": 5000}}"), {"diffusion.iterations", "[0, 1000]"}},
       {sampleScene() + " --set objects.3.lines.curve_factor=2", {"--set", "objects.3", "the list has 1"}},
       {sampleScene() + " --set nonsense", {"--set", "KEY=VALUE"}},
       {sampleScene() + " --set output.width=0", {"output.width", "[1, 16384]"}},

@@ -2,6 +2,7 @@
 
 #include <utility>
 
+#include "shanshui/core/error.h"
 #include "shanshui/render/gl_check.h"
 
 namespace shanshui::render {
@@ -36,8 +37,16 @@ void InkDiffusionPass::ensureSize(int width, int height) {
 
 const Texture2D& InkDiffusionPass::run(const Texture2D& colour, const Texture2D& absorbency,
                                        const ink::DiffusionOptions& o, const glm::vec3& paper, GpuTimer* timer) {
+  ensureSize(colour.width(), colour.height());
+  run(colour, absorbency, o, paper, out_, timer);
+  return out_;
+}
+
+void InkDiffusionPass::run(const Texture2D& colour, const Texture2D& absorbency, const ink::DiffusionOptions& o,
+                           const glm::vec3& paper, const Texture2D& output, GpuTimer* timer) {
   ink::validate(o);
   const int w = colour.width(), h = colour.height();
+  SHANSHUI_CHECK(output.width() == w && output.height() == h && output.format() == GL_RGBA8);
   ensureSize(w, h);
   if (timer) timer->begin("diffusion");
   const GLuint gx = groups(w, 16), gy = groups(h, 16);
@@ -96,12 +105,11 @@ const Texture2D& InkDiffusionPass::run(const Texture2D& colour, const Texture2D&
   glBindTextureUnit(0, colour.id());
   bindImage(0, ink0_, GL_READ_ONLY);
   bindImage(1, *cur, GL_READ_ONLY);
-  bindImage(2, out_, GL_WRITE_ONLY);
+  bindImage(2, output, GL_WRITE_ONLY);
   glDispatchCompute(gx, gy, 1);
   barrier();
   if (timer) timer->end();
   SHANSHUI_GL_CHECK("diffusion pass");
-  return out_;
 }
 
 }  // namespace shanshui::render

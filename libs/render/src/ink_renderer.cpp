@@ -141,6 +141,15 @@ InkRenderer::InkRenderer(const scene::Scene& s, const std::vector<scene::LoadedO
   wrinkles_ = s.usesWrinkles();
   if (objects.size() > 255) throw makeError("a scene holds at most 255 objects; this one has ", objects.size());
   passes_ = {"gbuffer", "ink"};
+  if (s.diffusion.enabled()) {
+    passes_.emplace_back("diffusion");
+    diffusion_.emplace();
+    // Until the canvas pass exists, the paper's absorbency is value noise in [0.5, 1].
+    image::Image noise = erosionNoise(256, s.seed ^ 0xAB50Bull);
+    image::Image a(noise.width, noise.height, 1);
+    for (std::size_t i = 0; i < a.pixels.size(); ++i) a.pixels[i] = 0.5f + 0.5f * noise.pixels[2 * i];
+    absorbency_ = Texture2D::fromImage(a, GL_R8);
+  }
 
   for (std::size_t i = 0; i < objects.size(); ++i) {
     const scene::ObjectAsset& a = *objects[i].geometry;
@@ -184,6 +193,7 @@ std::size_t InkRenderer::triangleCount() const {
 const Framebuffer* InkRenderer::passTarget(const std::string& pass) const {
   if (pass == "gbuffer") return &gbuffer_;
   if (pass == "ink") return &final_;
+  if (pass == "diffusion") return diffusion_ ? &diffused_ : nullptr;
   return nullptr;
 }
 
@@ -253,6 +263,7 @@ void InkRenderer::ensureTargets(int width, int height) {
   std::vector<GLenum> out{GL_RGBA8};
   if (debug_outputs_) out.insert(out.end(), {GL_RG16F, GL_R16F});
   final_ = Framebuffer(width, height, out, false);
+  if (diffusion_) diffused_ = Framebuffer(width, height, {GL_RGBA8}, false);
   last_key_.clear();
 }
 
@@ -358,7 +369,7 @@ const Framebuffer& InkRenderer::render(const OrbitCamera& camera, int width, int
   if (animated) key += "|t=" + std::to_string(time);
   if (key == last_key_) {
     if (stats) *stats = FrameStats{true, std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count(), {}};
-    return final_;
+    return diffusion_ ? diffused_ : final_;
   }
   const double aspect = static_cast<double>(width) / height;
   const glm::mat4 view_projection = camera.projection(aspect) * camera.view();
@@ -415,13 +426,18 @@ const Framebuffer& InkRenderer::render(const OrbitCamera& camera, int width, int
   if (timing) timer_.end();
   SHANSHUI_GL_CHECK("ink pass");
 
+  if (diffusion_) {
+    diffusion_->run(final_.colour(0), *absorbency_, scene_.diffusion, glm::vec3(scene_.output.paper), diffused_.colour(0),
+                    timing ? &timer_ : nullptr);
+  }
+
   FrameStats out;
   if (timing) out.passes = timer_.collect();
   else glFlush();
   out.frame_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   if (stats) *stats = std::move(out);
   last_key_ = std::move(key);
-  return final_;
+  return diffusion_ ? diffused_ : final_;
 }
 
 image::Image InkRenderer::worldPositions() const {

@@ -11,6 +11,7 @@
 
 #include "shanshui/core/error.h"
 #include "shanshui/image/image_io.h"
+#include "shanshui/ink/diffusion.h"
 #include "shanshui/render/gl_context.h"
 #include "shanshui/render/ink_renderer.h"
 #include "shanshui/render/shader_library.h"
@@ -223,6 +224,40 @@ TEST_F(Ink, AnimatedObjectsAreDrawnOverACachedStaticLayer) {
   std::size_t differ = 0;
   for (std::size_t i = 0; i < ref.pixels.size(); ++i) differ += std::abs(ref.pixels[i] - t1.pixels[i]) > 2.0f / 255;
   EXPECT_LE(differ, ref.pixels.size() / 1000);
+}
+
+TEST_F(Ink, DiffusionRunsOnlyWhenAskedAndMatchesTheCpuReference) {
+  const scene::Scene off = sceneWith({});
+  InkRenderer plain(off, prepare(off, test::uvSphere(1.0)));
+  EXPECT_EQ(plain.passesBuilt(), (std::vector<std::string>{"gbuffer", "ink"}));
+  EXPECT_EQ(plain.passTarget("diffusion"), nullptr);
+
+  const scene::Scene s = sceneWith({}, {{"diffusion", {{"ring_steps", 4}, {"iterations", 6}, {"absorb", 0.6}}}});
+  InkRenderer r(s, prepare(s, test::uvSphere(1.0)));
+  EXPECT_EQ(r.passesBuilt(), (std::vector<std::string>{"gbuffer", "ink", "diffusion"}));
+  const OrbitCamera cam = sceneCamera(s, r.worldBounds(), 1.0, {20, 30, 1.0});
+  FrameStats st;
+  const image::Image out = r.render(cam, 96, 80, &st).colour(0).download(3);
+  ASSERT_EQ(st.passes.size(), 3u);
+  EXPECT_EQ(st.passes[2].name, "diffusion");
+  // The CPU reference on the picture the ink pass made, with the same absorbency (tiled
+  // from the bottom-left in GL's rows, as the shader reads it).
+  const image::Image before = r.passTarget("ink")->colour(0).download(3);
+  const image::Image tile = r.absorbency()->download(1);
+  std::vector<float> a(96 * 80);
+  for (int y = 0; y < 80; ++y)
+    for (int x = 0; x < 96; ++x) a[static_cast<std::size_t>(y) * 96 + x] = tile.at(x % tile.width, tile.height - 1 - ((79 - y) % tile.height));
+  const double paper[3] = {s.output.paper.x, s.output.paper.y, s.output.paper.z};
+  const ink::InkField in = ink::inkFromImage(before, paper);
+  const image::Image expected = ink::applyInk(before, in, ink::diffuseInk(in, a, s.diffusion), paper);
+  double worst = 0;
+  std::size_t changed = 0;
+  for (std::size_t i = 0; i < out.pixels.size(); ++i) {
+    worst = std::max(worst, static_cast<double>(std::abs(out.pixels[i] - expected.pixels[i])));
+    changed += std::abs(out.pixels[i] - before.pixels[i]) > 2.0f / 255;
+  }
+  EXPECT_LE(worst, 1.0 / 255 + 1e-4) << "8-bit output";
+  EXPECT_GT(changed, 300u) << "the ink spread";
 }
 
 TEST_F(Ink, SmallObjectsGetNormalLinesOnly) {

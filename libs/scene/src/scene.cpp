@@ -348,9 +348,6 @@ Scene parseWith(const json& j, const std::string& origin, const std::filesystem:
     f.residual = d.number("residual", f.residual, 0, 1);
     f.iterations = static_cast<int>(d.integer("iterations", f.iterations, 0, 1000));
     f.threshold = d.number("threshold", f.threshold, 0, 1);
-    if (f.enabled() && !schema) {
-      throw d.fail(d.path(), "ink diffusion is not available in this version; set ring_steps and iterations to 0");
-    }
     d.finish();
   }
   {

@@ -24,6 +24,9 @@ class InkDiffusionPass {
   //! (RGBA8, same size). With a timer, the pass is timed as "diffusion".
   const Texture2D& run(const Texture2D& colour, const Texture2D& absorbency, const ink::DiffusionOptions& options,
                        const glm::vec3& paper, GpuTimer* timer = nullptr);
+  //! The same, writing into `output` (RGBA8, the size of `colour`).
+  void run(const Texture2D& colour, const Texture2D& absorbency, const ink::DiffusionOptions& options,
+           const glm::vec3& paper, const Texture2D& output, GpuTimer* timer = nullptr);
 
   //! The ink fields of the last run (R32F), before and after, for tests.
   const Texture2D& inkBefore() const { return ink0_; }

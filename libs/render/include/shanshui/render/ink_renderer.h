@@ -13,6 +13,7 @@
 #include "shanshui/render/gl_resources.h"
 #include "shanshui/render/gpu_mesh.h"
 #include "shanshui/render/gpu_timer.h"
+#include "shanshui/render/ink_diffusion_pass.h"
 #include "shanshui/render/shader_program.h"
 #include "shanshui/scene/scene.h"
 #include "shanshui/scene/scene_assets.h"
@@ -75,13 +76,18 @@ class InkRenderer {
 
   //! The last frame's images, for tests and debug views: "gbuffer" (colour 0: normal and
   //! dimensionless curvature; 1: erosion noise, added noise, wrinkle luma, object id / 255;
-  //! depth), "ink" (colour 0: the picture; with debug outputs 1: line weight and col_i,
-  //! 2: tone). Null for other names.
+  //! depth), "ink" (colour 0: the picture before diffusion; with debug outputs 1: line
+  //! weight and col_i, 2: tone), "diffusion" (the picture after it, when the scene
+  //! diffuses ink). Null for other names.
   const Framebuffer* passTarget(const std::string& pass) const;
 
   //! World positions of the last frame rebuilt from its depth buffer (as the ink pass does):
   //! RGBA, xyz and 1 where a surface was drawn, 0 on the background; row 0 at the top.
   image::Image worldPositions() const;
+
+  //! The paper absorbency the diffusion uses (one channel, tiled over the picture from GL's
+  //! bottom-left); null without diffusion.
+  const Texture2D* absorbency() const { return absorbency_ ? &*absorbency_ : nullptr; }
 
   //! Builds the ink pass with the DEBUG_OUTPUTS variant (line weight and tone as targets).
   void setDebugOutputs(bool on);
@@ -126,6 +132,9 @@ class InkRenderer {
   std::optional<Texture2D> noise_;
 
   Framebuffer gbuffer_, static_gbuffer_, final_;
+  Framebuffer diffused_;                        //!< the picture after ink diffusion
+  std::optional<InkDiffusionPass> diffusion_;   //!< built only when the scene diffuses ink
+  std::optional<Texture2D> absorbency_;
   std::string static_layer_key_;  //!< request the static layer was drawn for
   GpuTimer timer_;
   std::string last_key_;

@@ -12,6 +12,8 @@
 #include <glm/glm.hpp>
 #include <nlohmann/json_fwd.hpp>
 
+#include "shanshui/ink/diffusion.h"
+
 namespace shanshui::scene {
 
 //! Model to world: scale, then rotations about x, y, z (degrees), then translation.
@@ -126,14 +128,13 @@ struct Canvas {
   CanvasType type = CanvasType::None;
 };
 
-//! Seed 001 Eqs. 6-8, SPEC.md section 9. d = 0 and n = 0 turns the pass off.
-struct Diffusion {
-  int ring_steps = 0;        //!< d, [0, 256]
-  double attenuation = 0.85; //!< f, [0, 1]
-  double absorb = 0.5;       //!< I_p, [0, 1e3]
-  double residual = 0.05;    //!< I_r, [0, 1]
-  int iterations = 0;        //!< n, [0, 1000]
-  double threshold = 0.5;    //!< stroke threshold, [0, 1]
+//! Seed 001 Eqs. 6-8, SPEC.md section 9: libs/ink's options (one set of defaults), but off
+//! unless a scene asks: d = 0 and n = 0 build no pass.
+struct Diffusion : ink::DiffusionOptions {
+  Diffusion() {
+    ring_steps = 0;
+    iterations = 0;
+  }
   bool enabled() const { return ring_steps > 0 || iterations > 0; }
 };
 
