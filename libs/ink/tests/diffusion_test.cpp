@@ -6,6 +6,7 @@
 #include <random>
 
 #include "shanshui/core/error.h"
+#include "shanshui/image/image_io.h"
 #include "shanshui/ink/diffusion.h"
 #include "test_support.h"
 
@@ -198,6 +199,39 @@ TEST(Diffusion, ExtremeParametersAndImagesStayFiniteNonNegativeAndConserved) {
               ++cases;
             }
   EXPECT_EQ(cases, 6 * 32);
+}
+
+TEST(Diffusion, RealScansKeepTheInvariants) {
+  const auto scans = test::sharedTextures();
+  if (scans.empty()) GTEST_SKIP() << "no texture scans under " << test::sharedData() / "textures";
+  const double paper[3] = {1.0, 1.0, 1.0};
+  int tested = 0;
+  for (const auto& path : scans) {
+    SCOPED_TRACE(path.string());
+    image::Image img = image::loadImage(path);
+    if (img.channels < 3) {
+      image::Image rgb(img.width, img.height, 3);
+      for (int y = 0; y < img.height; ++y)
+        for (int x = 0; x < img.width; ++x)
+          for (int ch = 0; ch < 3; ++ch) rgb.at(x, y, ch) = img.at(x, y, 0);
+      img = rgb;
+    }
+    const InkField in = inkFromImage(img, paper);
+    DiffusionOptions o;
+    o.iterations = 10;
+    o.ring_steps = 6;
+    const InkField main = mainDiffusionDistance(in, o);
+    const InkField out = boundaryDiffusion(main, {}, strokes(in, o.threshold), o);
+    for (double v : out.ink) ASSERT_TRUE(std::isfinite(v) && v >= 0.0);
+    EXPECT_NEAR(out.total(), main.total(), 1e-9 * std::max(main.total(), 1.0));
+    std::vector<int> a, b;
+    mainDiffusionIterative(in, o, &a);
+    mainDiffusionDistance(in, o, &b);
+    EXPECT_EQ(a, b);
+    EXPECT_LT(maxDifference(diffuseInk(flipX(in), {}, o), flipX(diffuseInk(in, {}, o))), 1e-12);
+    ++tested;
+  }
+  EXPECT_GT(tested, 0);
 }
 
 TEST(Diffusion, PictureRoundTripChangesOnlyWhereInkChanged) {

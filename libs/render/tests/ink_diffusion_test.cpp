@@ -95,6 +95,27 @@ TEST_F(InkGpu, MatchesTheCpuReferenceOnTheExtremeGrid) {
               worst_mean, cases);
 }
 
+TEST_F(InkGpu, A4096SquarePictureStaysFiniteAndConservesInk) {
+  InkDiffusionPass pass;
+  const image::Image img = picture(4096, 4096, 11, true);
+  const Texture2D colour = Texture2D::fromImage(img, GL_RGBA8);
+  const Texture2D absorbency = Texture2D::fromImage(absorbencyImage(64, 64, 4), GL_R8);
+  ink::DiffusionOptions o;
+  o.iterations = 2;
+  o.ring_steps = 64;
+  o.absorb = 1000;  // the stiff case: far more asked than there is
+  pass.run(colour, absorbency, o, glm::vec3(kPaper[0], kPaper[1], kPaper[2]));
+  // Conservation of the boundary stage: the main region is the CPU's (exact transform).
+  const ink::InkField main = ink::mainDiffusionDistance(ink::inkFromImage(colour.download(3), kPaper), o);
+  const image::Image after = pass.inkAfter().download(1);
+  double total = 0;
+  for (float v : after.pixels) {
+    ASSERT_TRUE(std::isfinite(v) && v >= 0.0f);
+    total += v;
+  }
+  EXPECT_NEAR(total, main.total(), 1e-5 * main.total());
+}
+
 TEST_F(InkGpu, OneByOneEmptyAndFullPicturesStayFinite) {
   InkDiffusionPass pass;
   const glm::vec3 paper(kPaper[0], kPaper[1], kPaper[2]);
