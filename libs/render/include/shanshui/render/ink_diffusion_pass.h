@@ -28,8 +28,7 @@ class InkDiffusionPass {
   void run(const Texture2D& colour, const Texture2D& absorbency, const ink::DiffusionOptions& options,
            const glm::vec3& paper, const Texture2D& output, GpuTimer* timer = nullptr);
 
-  //! The ink fields of the last run (R32F), before and after, for tests.
-  const Texture2D& inkBefore() const { return ink0_; }
+  //! The ink field after the last run (R32F), for tests.
   const Texture2D& inkAfter() const { return *after_; }
 
  private:
