@@ -115,8 +115,10 @@ bool editJson(json& node, const std::string& path, const std::string& label) {
     std::snprintf(buf, sizeof buf, "%s", node.get<std::string>().c_str());
     if (ImGui::InputText(id, buf, sizeof buf, ImGuiInputTextFlags_EnterReturnsTrue)) node = std::string(buf), changed = true;
   } else if (node.is_number_integer() || (e && e->kind == "integer")) {
-    int v = node.get<int>();
-    if (ImGui::DragInt(id, &v, std::max(1.0f, speed), bounded ? static_cast<int>(lo) : 0, bounded ? static_cast<int>(hi) : 0)) {
+    // 64-bit: the seed goes up to 2^53.
+    long long v = node.get<long long>();
+    const long long vlo = e ? static_cast<long long>(e->min) : 0, vhi = e ? static_cast<long long>(e->max) : 0;
+    if (ImGui::DragScalar(id, ImGuiDataType_S64, &v, std::max(1.0f, speed), e ? &vlo : nullptr, e ? &vhi : nullptr)) {
       node = v, changed = true;
     }
   } else if (node.is_number()) {
