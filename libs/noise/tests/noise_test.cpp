@@ -1,0 +1,128 @@
+// Perlin against the published values; Gabor noise against its analytic variance and
+// orientation statistics, and on extreme parameters.
+#include <cmath>
+#include <numbers>
+
+#include "shanshui/core/error.h"
+#include "shanshui/noise/gabor.h"
+#include "shanshui/noise/perlin.h"
+#include "test_support.h"
+
+namespace shanshui::noise {
+namespace {
+
+TEST(Perlin, PublishedValuesBitExact) {
+  EXPECT_EQ(perlin(3.14, 42, 7), 0.13691995878400012);
+  EXPECT_EQ(perlin(-4.2, 10, 6), 0.14208000000000043);
+}
+
+TEST(Perlin, ZeroOnTheLatticeBoundedAndPeriodic) {
+  double lo = 0, hi = 0;
+  for (int i = 0; i < 20000; ++i) {
+    const double x = 0.37 * i, y = 0.11 * i - 40, z = 0.053 * i;
+    const double v = perlin(x, y, z);
+    lo = std::min(lo, v);
+    hi = std::max(hi, v);
+    ASSERT_NEAR(v, perlin(x + 256, y - 512, z + 256), 1e-12);
+  }
+  EXPECT_GE(lo, -1.0);
+  EXPECT_LE(hi, 1.0);
+  EXPECT_LT(lo, -0.5);
+  EXPECT_GT(hi, 0.5);
+  for (int i = -3; i < 3; ++i) EXPECT_EQ(perlin(i, 2 * i, -i), 0.0);
+  EXPECT_EQ(perlinFade(0.0), 0.0);
+  EXPECT_EQ(perlinFade(1.0), 1.0);
+  EXPECT_EQ(perlinFade(0.5), 0.5);
+}
+
+// Samples of one image of the noise on a unit grid.
+std::vector<double> sampleImage(const GaborNoise& g, int size, double offset) {
+  std::vector<double> v;
+  v.reserve(static_cast<std::size_t>(size) * size);
+  for (int y = 0; y < size; ++y)
+    for (int x = 0; x < size; ++x) v.push_back(g(offset + x, offset + y));
+  return v;
+}
+
+TEST(Gabor, VarianceWithinThreePercentOfTheAnalyticValue) {
+  for (bool isotropic : {false, true}) {
+    SCOPED_TRACE(isotropic ? "isotropic" : "anisotropic");
+    double sum = 0, sum2 = 0;
+    std::size_t n = 0;
+    double expected = 0;
+    for (std::uint64_t seed = 1; seed <= 32; ++seed) {
+      GaborOptions o;
+      o.a = 0.1;
+      o.F0 = 0.08;
+      o.impulses = 32;
+      o.isotropic = isotropic;
+      o.seed = seed;
+      const GaborNoise g(o);
+      expected = g.variance();
+      for (double v : sampleImage(g, 160, 1000.0 * static_cast<double>(seed))) sum += v, sum2 += v * v, ++n;
+    }
+    const double mean = sum / static_cast<double>(n), var = sum2 / static_cast<double>(n) - mean * mean;
+    EXPECT_NEAR(var / expected, 1.0, 0.03) << var << " vs " << expected;
+    EXPECT_NEAR(mean, 0.0, 0.05 * std::sqrt(expected));
+  }
+}
+
+// Coherence of the structure tensor averaged over `images` images of the noise: 1 for one
+// orientation, 0 for none.
+double orientationCoherence(GaborOptions o, int size, int images) {
+  double jxx = 0, jyy = 0, jxy = 0;
+  for (int k = 0; k < images; ++k) {
+    o.seed = static_cast<std::uint64_t>(k) + 1;
+    const GaborNoise g(o);
+    for (int y = 1; y + 1 < size; ++y)
+      for (int x = 1; x + 1 < size; ++x) {
+        const double gx = 0.5 * (g(x + 1, y) - g(x - 1, y)), gy = 0.5 * (g(x, y + 1) - g(x, y - 1));
+        jxx += gx * gx, jyy += gy * gy, jxy += gx * gy;
+      }
+  }
+  return std::sqrt((jxx - jyy) * (jxx - jyy) + 4 * jxy * jxy) / (jxx + jyy);
+}
+
+TEST(Gabor, AnisotropicNoiseIsOrientedAndIsotropicIsNot) {
+  GaborOptions o;
+  o.a = 0.05;
+  o.F0 = 0.1;
+  o.impulses = 32;
+  EXPECT_GT(orientationCoherence(o, 128, 8), 0.8);
+  o.isotropic = true;
+  EXPECT_LT(orientationCoherence(o, 128, 8), 0.02);
+}
+
+TEST(Gabor, SameSeedSameNoiseAnywhereAndAnyOrder) {
+  GaborOptions o;
+  const GaborNoise a(o), b(o);
+  EXPECT_EQ(a(123.25, -77.5), b(123.25, -77.5));
+  const double first = a(5e6, -3e6);
+  a(0, 0);
+  EXPECT_EQ(a(5e6, -3e6), first);
+  o.seed = 2;
+  EXPECT_NE(GaborNoise(o)(123.25, -77.5), a(123.25, -77.5));
+}
+
+TEST(Gabor, ExtremeParametersGiveFiniteValuesQuickly) {
+  for (double impulses : {1.0, 1024.0})
+    for (double a : {1e-3, 1e2})
+      for (double f0 : {0.0, 0.5}) {
+        GaborOptions o;
+        o.impulses = impulses;
+        o.a = a;
+        o.F0 = f0;
+        const GaborNoise g(o);
+        for (int i = 0; i < 50; ++i) ASSERT_TRUE(std::isfinite(g(i * 17.3, i * -4.1)));
+        ASSERT_TRUE(std::isfinite(g.variance()) && g.variance() > 0);
+      }
+  GaborOptions bad;
+  bad.impulses = 0;
+  test::expectErrorNaming([&] { validate(bad); }, "impulses", "0");
+  bad = {};
+  bad.a = -1;
+  test::expectErrorNaming([&] { validate(bad); }, "gabor.a", "-1");
+}
+
+}  // namespace
+}  // namespace shanshui::noise
