@@ -49,6 +49,35 @@ Diff difference(const std::vector<double>& a, const std::vector<double>& b) {
   return d;
 }
 
+// The sample scene rendered at size², its ink, and the GPU pass's inputs.
+struct Input {
+  image::Image picture;
+  ink::InkField ink;
+  render::Texture2D colour, absorbency;
+};
+
+Input renderInput(scene::Scene sc, const std::vector<scene::LoadedObject>& objects, int size, const double paper[3]) {
+  sc.output.width = sc.output.height = size;
+  render::InkRenderer r(sc, objects);
+  Input in;
+  in.picture = r.renderImage(render::frameKey(sc, 0, 1, 0.0));
+  in.ink = ink::inkFromImage(in.picture, paper);
+  in.colour = render::Texture2D::fromImage(in.picture, GL_RGBA8);
+  in.absorbency = render::Texture2D::fromImage(image::Image(1, 1, 1, 1.0f), GL_R8);
+  return in;
+}
+
+// Median GPU milliseconds of the pass over five runs.
+double gpuMs(render::InkDiffusionPass& pass, const Input& in, const ink::DiffusionOptions& o, const double paper[3]) {
+  std::vector<double> t;
+  for (int rep = 0; rep < 5; ++rep) {
+    render::GpuTimer timer;
+    pass.run(in.colour, in.absorbency, o, glm::vec3(paper[0], paper[1], paper[2]), &timer);
+    t.push_back(timer.collect().front().gpu_ms);
+  }
+  return median(t);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -67,12 +96,8 @@ int main(int argc, char** argv) {
 
   // 1. Main region: distance transform against the iteration, 512².
   {
-    sc.output.width = sc.output.height = 512;
-    render::InkRenderer r(sc, objects);
-    const image::Image picture = r.renderImage(render::frameKey(sc, 0, 1, 0.0));
-    const ink::InkField in = ink::inkFromImage(picture, paper);
-    const render::Texture2D colour = render::Texture2D::fromImage(picture, GL_RGBA8);
-    const render::Texture2D absorbency = render::Texture2D::fromImage(image::Image(1, 1, 1, 1.0f), GL_R8);
+    const Input input = renderInput(sc, objects, 512, paper);
+    const ink::InkField& in = input.ink;
     render::InkDiffusionPass pass;
     md << "## Main region: distance transform against the ring-by-ring iteration, 512²\n\n"
        << "CPU: the two reference implementations; GPU: the compute pass with n = 0 (the transform alone, "
@@ -92,32 +117,23 @@ int main(int argc, char** argv) {
       const double tb = ms(t);
       const Diff diff = difference(a.ink, b.ink);
       o.iterations = 0;
-      std::vector<double> gpu_ms;
-      for (int rep = 0; rep < 5; ++rep) {
-        render::GpuTimer timer;
-        pass.run(colour, absorbency, o, glm::vec3(paper[0], paper[1], paper[2]), &timer);
-        gpu_ms.push_back(timer.collect().front().gpu_ms);
-      }
+      const double gpu_ms = gpuMs(pass, input, o, paper);
       const image::Image gpu = pass.inkAfter().download(1);
       const Diff gdiff = difference(std::vector<double>(gpu.pixels.begin(), gpu.pixels.end()), a.ink);
       char line[256];
       std::snprintf(line, sizeof line, "| %d | %.1f | %.1f | %s | %.2e | %.1f | %.2e |\n", d, ta, tb, ra == rb ? "yes" : "NO",
-                    diff.max, median(gpu_ms), gdiff.max);
+                    diff.max, gpu_ms, gdiff.max);
       md << line;
       std::fputs(line, stderr);
-      csv << "main," << d << "," << ta << "," << tb << "," << (ra == rb) << "," << diff.max << "," << median(gpu_ms) << ","
-          << gdiff.max << "\n";
+      csv << "main," << d << "," << ta << "," << tb << "," << (ra == rb) << "," << diff.max << "," << gpu_ms << "," << gdiff.max
+          << "\n";
     }
   }
 
   // 2. Boundary diffusion against n = 1000, 256².
   {
-    sc.output.width = sc.output.height = 256;
-    render::InkRenderer r(sc, objects);
-    const image::Image picture = r.renderImage(render::frameKey(sc, 0, 1, 0.0));
-    const ink::InkField in = ink::inkFromImage(picture, paper);
-    const render::Texture2D colour = render::Texture2D::fromImage(picture, GL_RGBA8);
-    const render::Texture2D absorbency = render::Texture2D::fromImage(image::Image(1, 1, 1, 1.0f), GL_R8);
+    const Input input = renderInput(sc, objects, 256, paper);
+    const ink::InkField& in = input.ink;
     render::InkDiffusionPass pass;
     ink::DiffusionOptions o;
     o.iterations = 1000;
@@ -132,18 +148,13 @@ int main(int argc, char** argv) {
       auto t = Clock::now();
       const ink::InkField cpu = ink::diffuseInk(in, {}, o);
       const double tc = ms(t);
-      std::vector<double> gpu_ms;
-      for (int rep = 0; rep < 5; ++rep) {
-        render::GpuTimer timer;
-        pass.run(colour, absorbency, o, glm::vec3(paper[0], paper[1], paper[2]), &timer);
-        gpu_ms.push_back(timer.collect().front().gpu_ms);
-      }
+      const double gpu_ms = gpuMs(pass, input, o, paper);
       const Diff diff = difference(cpu.ink, reference.ink);
       char line[256];
-      std::snprintf(line, sizeof line, "| %d | %.2e | %.2e | %.1f | %.2f |\n", n, diff.mean, diff.max, tc, median(gpu_ms));
+      std::snprintf(line, sizeof line, "| %d | %.2e | %.2e | %.1f | %.2f |\n", n, diff.mean, diff.max, tc, gpu_ms);
       md << line;
       std::fputs(line, stderr);
-      csv << "boundary," << n << "," << diff.mean << "," << diff.max << "," << tc << "," << median(gpu_ms) << "\n";
+      csv << "boundary," << n << "," << diff.mean << "," << diff.max << "," << tc << "," << gpu_ms << "\n";
     }
   }
 
