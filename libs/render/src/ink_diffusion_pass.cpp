@@ -77,18 +77,21 @@ void InkDiffusionPass::run(const Texture2D& colour, const Texture2D& absorbency,
   Texture2D* cur = &main_;
   Texture2D* nxt = &next_;
   glBindTextureUnit(0, absorbency.id());
-  for (int it = 0; it < o.iterations; ++it) {
-    demand_.use();
+  // Uniforms are program state: set once, not per iteration.
+  if (o.iterations > 0) {
     demand_.set("u_capacity", static_cast<float>(o.absorb / o.iterations));
     demand_.set("u_residual", static_cast<float>(o.residual));
     demand_.set("u_threshold", static_cast<float>(o.threshold));
+    supply_.set("u_residual", static_cast<float>(o.residual));
+  }
+  for (int it = 0; it < o.iterations; ++it) {
+    demand_.use();
     bindImage(0, *cur, GL_READ_ONLY);
     bindImage(1, ink0_, GL_READ_ONLY);
     bindImage(2, demand_tex_, GL_READ_WRITE);
     glDispatchCompute(gx, gy, 1);
     barrier();
     supply_.use();
-    supply_.set("u_residual", static_cast<float>(o.residual));
     bindImage(3, supply_tex_, GL_READ_WRITE);
     glDispatchCompute(gx, gy, 1);
     barrier();
