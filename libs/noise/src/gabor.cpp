@@ -4,7 +4,6 @@
 #include <numbers>
 
 #include "shanshui/core/error.h"
-#include "shanshui/core/random.h"
 
 namespace shanshui::noise {
 
@@ -13,15 +12,7 @@ namespace {
 constexpr double kPi = std::numbers::pi;
 constexpr double kTruncation = 0.05;
 
-double unit(std::uint64_t v) { return static_cast<double>(v >> 11) * (1.0 / 9007199254740992.0); }
-
-// A per-cell seed: the cell coordinates and the global seed through SplitMix64, so nearby
-// cells get unrelated streams (a bare Morton code would correlate them).
-std::uint64_t cellSeed(std::int64_t i, std::int64_t j, std::uint64_t seed) {
-  std::uint64_t h = splitMix64(seed ^ 0x9E3779B97F4A7C15ull);
-  h = splitMix64(h ^ static_cast<std::uint64_t>(i));
-  return splitMix64(h ^ (static_cast<std::uint64_t>(j) * 0xC2B2AE3D27D4EB4Full));
-}
+double unit(std::uint32_t v) { return static_cast<double>(v >> 8) * (1.0 / 16777216.0); }
 
 template <typename T>
 void checkRange(const char* name, T v, T lo, T hi, bool lo_open) {
@@ -64,23 +55,19 @@ double GaborNoise::operator()(double x, double y) const {
   const double r = radius_;
   const double ci = std::floor(x / r), cj = std::floor(y / r);
   const double a2 = o_.a * o_.a;
+  const std::uint32_t seed = noiseSeed32(o_.seed);
   double sum = 0;
   for (int dj = -1; dj <= 1; ++dj) {
     for (int di = -1; di <= 1; ++di) {
-      const auto i = static_cast<std::int64_t>(ci) + di, j = static_cast<std::int64_t>(cj) + dj;
-      const std::uint64_t s = cellSeed(i, j, o_.seed);
-      // Poisson count by exponential inter-arrival times: exact, and no underflow for
-      // large means (Knuth's product of uniforms would reach 0).
-      std::uint64_t k = 0;
-      int count = 0;
-      for (double t = -std::log(1.0 - unit(streamValue(s, k++))); t < mean_per_cell_; ++count) {
-        t += -std::log(1.0 - unit(streamValue(s, k++)));
-      }
+      const auto i = static_cast<std::int32_t>(ci) + di, j = static_cast<std::int32_t>(cj) + dj;
+      const std::uint32_t s = noiseCellSeed(i, j, seed);
+      std::uint32_t k = 0;
+      const int count = impulseCount(mean_per_cell_, unit(noiseStream(s, k++)));
       for (int n = 0; n < count; ++n) {
-        const double px = (static_cast<double>(i) + unit(streamValue(s, k++))) * r;
-        const double py = (static_cast<double>(j) + unit(streamValue(s, k++))) * r;
-        const double w = 2 * unit(streamValue(s, k++)) - 1;
-        const double omega = o_.isotropic ? 2 * kPi * unit(streamValue(s, k++)) : o_.omega0;
+        const double px = (i + unit(noiseStream(s, k++))) * r;
+        const double py = (j + unit(noiseStream(s, k++))) * r;
+        const double w = 2 * unit(noiseStream(s, k++)) - 1;
+        const double omega = o_.isotropic ? 2 * kPi * unit(noiseStream(s, k++)) : o_.omega0;
         const double dx = x - px, dy = y - py, d2 = dx * dx + dy * dy;
         if (d2 >= r * r) continue;
         sum += w * o_.K * std::exp(-kPi * a2 * d2) * std::cos(2 * kPi * o_.F0 * (dx * std::cos(omega) + dy * std::sin(omega)));
@@ -88,6 +75,27 @@ double GaborNoise::operator()(double x, double y) const {
     }
   }
   return sum;
+}
+
+std::uint32_t noiseHash(std::uint32_t v) {
+  const std::uint32_t state = v * 747796405u + 2891336453u;
+  const std::uint32_t word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
+  return (word >> 22u) ^ word;
+}
+
+std::uint32_t noiseSeed32(std::uint64_t seed) {
+  return noiseHash(static_cast<std::uint32_t>(seed) ^ noiseHash(static_cast<std::uint32_t>(seed >> 32)));
+}
+
+std::uint32_t noiseCellSeed(std::int32_t i, std::int32_t j, std::uint32_t seed) {
+  return noiseHash(noiseHash(seed + static_cast<std::uint32_t>(i)) + static_cast<std::uint32_t>(j));
+}
+
+std::uint32_t noiseStream(std::uint32_t s, std::uint32_t k) { return noiseHash(s + 0x9E3779B9u * k); }
+
+int impulseCount(double mean, double u) {
+  const double whole = std::floor(mean);
+  return static_cast<int>(whole) + (u < mean - whole ? 1 : 0);
 }
 
 }  // namespace shanshui::noise

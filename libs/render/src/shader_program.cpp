@@ -147,6 +147,7 @@ Program& Program::operator=(Program&& other) noexcept {
 void Program::use() const { glUseProgram(id_); }
 GLint Program::location(const char* name) const { return glGetUniformLocation(id_, name); }
 void Program::set(const char* name, int v) const { glProgramUniform1i(id_, location(name), v); }
+void Program::set(const char* name, unsigned v) const { glProgramUniform1ui(id_, location(name), v); }
 void Program::set(const char* name, float v) const { glProgramUniform1f(id_, location(name), v); }
 void Program::set(const char* name, const glm::vec2& v) const { glProgramUniform2fv(id_, location(name), 1, &v.x); }
 void Program::set(const char* name, const glm::vec3& v) const {

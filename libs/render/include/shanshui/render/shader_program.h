@@ -42,6 +42,7 @@ class Program {
   GLuint id() const { return id_; }
   void use() const;
   void set(const char* name, int v) const;
+  void set(const char* name, unsigned v) const;
   void set(const char* name, float v) const;
   void set(const char* name, const glm::vec2& v) const;
   void set(const char* name, const glm::vec3& v) const;
