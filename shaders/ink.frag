@@ -2,8 +2,9 @@
 // The image pass of the ink renderer: feature lines (seed 001 Eq. 1), interior shading
 // (Eqs. 2, 3, 5) and the composite on paper, in one pass over the G-buffer so each pixel is
 // read once. Variants: LINES and SHADING (some object uses them), WRINKLE (some object has a
-// wrinkle texture), SINGLE_OBJECT (parameters without indexing), DEBUG_OUTPUTS (line weight
-// and tone as extra targets, for tests).
+// wrinkle texture), SINGLE_OBJECT (parameters without indexing), CANVAS (the paper grain,
+// when no diffusion pass comes after), DEBUG_OUTPUTS (line weight and tone as extra targets,
+// for tests).
 #include "ink_objects.glsl"
 #ifdef SHADING
 #include "ink_gaussian_cdf.glsl"
@@ -19,6 +20,10 @@ uniform vec3 u_light_dir;    // unit, towards the light
 uniform vec3 u_paper;
 uniform float u_fade;        // strength, [0, 1]
 uniform vec2 u_fade_range;   // distances where the fade starts and is full
+#ifdef CANVAS
+layout(binding = 3) uniform sampler2D u_canvas;  // unit-variance paper noise
+uniform float u_canvas_contrast;
+#endif
 
 layout(location = 0) out vec4 o_colour;
 #ifdef DEBUG_OUTPUTS
@@ -49,6 +54,14 @@ float farthestNeighbour(ivec2 p) {
   return max(max(max(a.x, a.y), max(a.z, a.w)), max(max(b.x, b.y), max(b.z, b.w)));
 }
 
+// The paper's grain over the finished colour: brightness × (1 + contrast · noise).
+vec4 onPaper(ivec2 p, vec3 colour) {
+#ifdef CANVAS
+  colour *= 1.0 + u_canvas_contrast * texelFetch(u_canvas, p, 0).r;
+#endif
+  return vec4(clamp(colour, 0.0, 1.0), 1.0);
+}
+
 void main() {
   ivec2 p = ivec2(gl_FragCoord.xy);
 #ifdef DEBUG_OUTPUTS
@@ -59,7 +72,7 @@ void main() {
   // read only after this test.
   float depth = texelFetch(u_depth, p, 0).r;
   if (depth >= 1.0) {
-    o_colour = vec4(u_paper, 1.0);
+    o_colour = onPaper(p, u_paper);
     return;
   }
   vec4 surface = texelFetch(u_surface_id, p, 0);
@@ -130,7 +143,7 @@ void main() {
   // Composite: ink on paper, lines over the interior, far surfaces fading into the paper.
   vec3 colour = mix(u_paper * o.bg_color.rgb * tone, o.line_color.rgb, line_weight);
   float fade = u_fade * smoothstep(u_fade_range.x, u_fade_range.y, distance(u_eye, position));
-  o_colour = vec4(mix(colour, u_paper, fade), 1.0);
+  o_colour = onPaper(p, mix(colour, u_paper, fade));
 #ifdef DEBUG_OUTPUTS
   o_line = vec2(line_weight, col);
   o_tone = tone;

@@ -8,6 +8,7 @@ layout(r32f, binding = 0) readonly uniform image2D u_ink;
 layout(r32f, binding = 1) readonly uniform image2D u_original;  // ink before diffusion: the strokes
 layout(r32f, binding = 2) writeonly uniform image2D u_demand;
 layout(binding = 0) uniform sampler2D u_absorbency;             // tiled over the picture
+uniform vec2 u_absorbency_map;  // absorbency = clamp(y + x · texel, 0, 1)
 uniform float u_capacity;   // I_p / n
 uniform float u_residual;
 uniform float u_threshold;
@@ -25,7 +26,8 @@ void main() {
         if ((dx == 0 && dy == 0) || any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, size))) continue;
         sum += max(0.0, imageLoad(u_ink, q).r - u_residual);
       }
-    float a = texelFetch(u_absorbency, p % textureSize(u_absorbency, 0), 0).r;
+    float a = clamp(u_absorbency_map.y + u_absorbency_map.x * texelFetch(u_absorbency, p % textureSize(u_absorbency, 0), 0).r,
+                    0.0, 1.0);
     if (sum > 0.0) demand = u_capacity * a / sum;
   }
   imageStore(u_demand, p, vec4(demand));

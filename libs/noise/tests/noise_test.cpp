@@ -1,11 +1,15 @@
 // Perlin against the published values; Gabor noise against its analytic variance and
 // orientation statistics, and on extreme parameters.
+#include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <random>
+#include <vector>
 
 #include <opencv2/core.hpp>
 
 #include "shanshui/core/error.h"
+#include "shanshui/noise/canvas.h"
 #include "shanshui/noise/gabor.h"
 #include "shanshui/noise/perlin.h"
 #include "test_support.h"
@@ -177,6 +181,77 @@ TEST(Gabor, ExtremeParametersGiveFiniteValuesQuickly) {
   bad = {};
   bad.a = -1;
   test::expectErrorNaming([&] { validate(bad); }, "gabor.a", "-1");
+}
+
+}  // namespace
+}  // namespace shanshui::noise
+
+namespace shanshui::noise {
+namespace {
+
+// A brute-force canvas: impulses scattered uniformly (exact mean count) over the image and
+// a margin of one radius, each adding w · canvasKernel; the sample variance over many
+// images against canvasSigma()².
+double simulatedCanvasVariance(const CanvasNoiseOptions& o, int images) {
+  const int n = 96;
+  const double r = o.radius, lo = -r, hi = n + r;
+  const double density = o.impulses / (std::numbers::pi * r * r);
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  double sum = 0, sum2 = 0;
+  std::size_t count = 0;
+  for (int k = 0; k < images; ++k) {
+    std::vector<double> img(static_cast<std::size_t>(n) * n, 0.0);
+    const int impulses = impulseCount(density * (hi - lo) * (hi - lo), u(rng));
+    for (int i = 0; i < impulses; ++i) {
+      const double px = lo + (hi - lo) * u(rng), py = lo + (hi - lo) * u(rng), w = 2 * u(rng) - 1;
+      const double e0 = u(rng), e1 = u(rng), e2 = u(rng);
+      for (int y = std::max(0, static_cast<int>(py - r)); y <= std::min(n - 1, static_cast<int>(py + r)); ++y)
+        for (int x = std::max(0, static_cast<int>(px - r)); x <= std::min(n - 1, static_cast<int>(px + r)); ++x)
+          img[static_cast<std::size_t>(y) * n + x] += w * canvasKernel(o, x - px, y - py, e0, e1, e2);
+    }
+    for (double v : img) {
+      sum += v;
+      sum2 += v * v;
+      ++count;
+    }
+  }
+  const double mean = sum / static_cast<double>(count);
+  return sum2 / static_cast<double>(count) - mean * mean;
+}
+
+TEST(Canvas, SigmaMatchesABruteForceCanvasForEveryPattern) {
+  CanvasNoiseOptions silk;
+  silk.silk = true;
+  silk.impulses = 24;
+  CanvasNoiseOptions felt = silk;
+  felt.isotropic = true;
+  felt.omega0 = 1.0;
+  CanvasNoiseOptions rice;
+  rice.impulses = 24;
+  CanvasNoiseOptions one_way = silk;
+  one_way.mix = 0.0;
+  one_way.omega0 = 0.7;
+  for (const auto& [name, o] : {std::pair{"silk", silk}, {"felt", felt}, {"rice paper", rice}, {"one way", one_way}}) {
+    SCOPED_TRACE(name);
+    const double sigma = canvasSigma(o);
+    EXPECT_NEAR(simulatedCanvasVariance(o, 48) / (sigma * sigma), 1.0, 0.03);
+  }
+}
+
+TEST(Canvas, PerlinMeanSquareIsStable) {
+  // The constant behind the rice paper's normalisation, against an independent estimate
+  // (a plain pseudo-random sample).
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> u(0.0, 256.0);
+  double sum = 0;
+  const int n = 400000;
+  for (int i = 0; i < n; ++i) {
+    const double v = perlin(u(rng), u(rng), u(rng));
+    sum += v * v;
+  }
+  EXPECT_NEAR(perlinMeanSquare() / (sum / n), 1.0, 0.01);
+  EXPECT_GT(perlinMeanSquare(), 0.01);
 }
 
 }  // namespace

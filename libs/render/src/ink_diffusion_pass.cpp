@@ -44,7 +44,13 @@ const Texture2D& InkDiffusionPass::run(const Texture2D& colour, const Texture2D&
 
 void InkDiffusionPass::run(const Texture2D& colour, const Texture2D& absorbency, const ink::DiffusionOptions& o,
                            const glm::vec3& paper, const Texture2D& output, GpuTimer* timer) {
+  run(colour, PaperTexture{&absorbency}, o, paper, output, timer);
+}
+
+void InkDiffusionPass::run(const Texture2D& colour, const PaperTexture& texture, const ink::DiffusionOptions& o,
+                           const glm::vec3& paper, const Texture2D& output, GpuTimer* timer) {
   ink::validate(o);
+  SHANSHUI_CHECK(texture.absorbency != nullptr);
   const int w = colour.width(), h = colour.height();
   SHANSHUI_CHECK(output.width() == w && output.height() == h && output.format() == GL_RGBA8);
   ensureSize(w, h);
@@ -76,12 +82,13 @@ void InkDiffusionPass::run(const Texture2D& colour, const Texture2D& absorbency,
   // Boundary diffusion: n iterations, ping-pong between main_ and next_.
   Texture2D* cur = &main_;
   Texture2D* nxt = &next_;
-  glBindTextureUnit(0, absorbency.id());
+  glBindTextureUnit(0, texture.absorbency->id());
   // Uniforms are program state: set once, not per iteration.
   if (o.iterations > 0) {
     demand_.set("u_capacity", static_cast<float>(o.absorb / o.iterations));
     demand_.set("u_residual", static_cast<float>(o.residual));
     demand_.set("u_threshold", static_cast<float>(o.threshold));
+    demand_.set("u_absorbency_map", texture.absorbency_map);
     supply_.set("u_residual", static_cast<float>(o.residual));
   }
   for (int it = 0; it < o.iterations; ++it) {
@@ -103,8 +110,15 @@ void InkDiffusionPass::run(const Texture2D& colour, const Texture2D& absorbency,
   }
   after_ = cur;
 
-  output_.use();
-  output_.set("u_paper", paper);
+  const Program* out = &output_;
+  if (texture.grain) {
+    if (!output_canvas_.id()) output_canvas_ = Program({"ink_diffusion_output.comp"}, {"CANVAS"});
+    out = &output_canvas_;
+    out->set("u_canvas_contrast", texture.contrast);
+    glBindTextureUnit(1, texture.grain->id());
+  }
+  out->use();
+  out->set("u_paper", paper);
   glBindTextureUnit(0, colour.id());
   bindImage(0, ink0_, GL_READ_ONLY);
   bindImage(1, *cur, GL_READ_ONLY);

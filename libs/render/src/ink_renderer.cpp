@@ -125,7 +125,7 @@ image::Image erosionNoise(int size, std::uint64_t seed) {
 std::string InkRenderer::structureKey(const scene::Scene& s) {
   std::ostringstream k;
   k << s.objects.size() << "|" << s.usesLines() << s.usesShading() << s.usesWrinkles() << s.hasAnimation() << "|"
-    << static_cast<int>(s.canvas.type) << s.diffusion.enabled() << "|" << s.seed;
+    << static_cast<int>(s.canvas.type) << static_cast<int>(s.canvas.pattern()) << s.diffusion.enabled() << "|" << s.seed;
   for (const scene::Object& o : s.objects) {
     k << "|" << s.resolve(o.mesh.empty() ? o.dem : o.mesh).string() << "," << o.z_scale << "," << o.max_vertices << ","
       << o.recentre << "," << joined(gbufferDefines(s, o));
@@ -140,11 +140,16 @@ InkRenderer::InkRenderer(const scene::Scene& s, const std::vector<scene::LoadedO
   shading_ = s.usesShading();
   wrinkles_ = s.usesWrinkles();
   if (objects.size() > 255) throw makeError("a scene holds at most 255 objects; this one has ", objects.size());
-  passes_ = {"gbuffer", "ink"};
+  const bool canvas = s.canvas.type != scene::CanvasType::None;
+  passes_ = {"gbuffer"};
+  if (canvas) passes_.emplace_back(s.canvas.type == scene::CanvasType::Static ? "canvas_static" : "canvas");
+  passes_.emplace_back("ink");
   if (s.diffusion.enabled()) {
     passes_.emplace_back("diffusion");
     diffusion_.emplace();
-    // Until the canvas pass exists, the paper's absorbency is value noise in [0.5, 1].
+  }
+  if (s.diffusion.enabled() && !canvas) {
+    // Without a canvas the paper's absorbency is value noise in [0.5, 1].
     image::Image noise = erosionNoise(256, s.seed ^ 0xAB50Bull);
     image::Image a(noise.width, noise.height, 1);
     for (std::size_t i = 0; i < a.pixels.size(); ++i) a.pixels[i] = 0.5f + 0.5f * noise.pixels[2 * i];
@@ -160,6 +165,7 @@ InkRenderer::InkRenderer(const scene::Scene& s, const std::vector<scene::LoadedO
     g.mesh = GpuMesh(a.mesh, a.bounds.centre(), per_vertex ? &a.curvature : nullptr, true);
     g.model_bounds = a.bounds;
     g.model_feature_size = a.feature_size;
+    if (canvas) g.max_triangle_area = maxTriangleArea(a.mesh);
     if (wrinkled(o)) {
       SHANSHUI_CHECK(objects[i].wrinkle != nullptr);
       g.wrinkle = Texture2D::tiledFromImage(*objects[i].wrinkle, GL_R8);
@@ -177,6 +183,7 @@ InkRenderer::InkRenderer(const scene::Scene& s, const std::vector<scene::LoadedO
   glCreateBuffers(1, &params_buffer_);
   buildPrograms();
   setScene(s);
+  if (canvas) canvas_.emplace(s.canvas, s.seed, world_bounds_);
 }
 
 InkRenderer::~InkRenderer() {
@@ -194,6 +201,7 @@ const Framebuffer* InkRenderer::passTarget(const std::string& pass) const {
   if (pass == "gbuffer") return &gbuffer_;
   if (pass == "ink") return &final_;
   if (pass == "diffusion") return diffusion_ ? &diffused_ : nullptr;
+  if (pass == "canvas") return canvas_ ? &canvas_->target() : nullptr;
   return nullptr;
 }
 
@@ -210,6 +218,8 @@ void InkRenderer::buildPrograms() {
   if (shading_) d.emplace_back("SHADING");
   if (wrinkles_) d.emplace_back("WRINKLE");
   if (objects_.size() == 1) d.emplace_back("SINGLE_OBJECT");
+  // The paper grain goes on last: here, or after the diffusion when there is one.
+  if (scene_.canvas.type != scene::CanvasType::None && !scene_.diffusion.enabled()) d.emplace_back("CANVAS");
   if (debug_outputs_) d.emplace_back("DEBUG_OUTPUTS");
   Program ink({"fullscreen.vert", "ink.frag"}, d);
   variants["ink"].push_back(joined(d));
@@ -234,6 +244,7 @@ void InkRenderer::setScene(const scene::Scene& s) {
     throw makeError("InkRenderer::setScene: the scene's files, passes or variants changed; build a new renderer");
   }
   scene_ = s;
+  if (canvas_) canvas_->setParams(s.canvas);
   world_bounds_ = {glm::dvec3(std::numeric_limits<double>::max()), glm::dvec3(std::numeric_limits<double>::lowest())};
   for (std::size_t i = 0; i < objects_.size(); ++i) {
     GpuObject& g = objects_[i];
@@ -328,10 +339,7 @@ void InkRenderer::drawObjects(const Framebuffer& target, bool clear, int which, 
     const scene::Object& o = scene_.objects[i];
     if ((which == kStaticObjects && o.animated()) || (which == kAnimatedObjects && !o.animated())) continue;
     const GpuObject& g = objects_[i];
-    // A spinning object turns about the vertical axis through its centre (the origin of
-    // its uploaded coordinates).
-    const glm::dmat4 model =
-        o.animated() ? glm::rotate(g.model, glm::radians(o.spin_deg_per_s * time), glm::dvec3(0, 0, 1)) : g.model;
+    const glm::dmat4 model = modelAt(i, time);
     const Program& p = gbuffer_programs_[static_cast<std::size_t>(g.program)].program;
     p.use();
     p.set("u_model", glm::mat4(model));
@@ -357,6 +365,14 @@ void InkRenderer::drawObjects(const Framebuffer& target, bool clear, int which, 
     const glm::dvec3 forward = glm::inverse(glm::dmat3(model)) * (camera.target - camera.eye());
     g.mesh.drawFrontToBack(glm::vec3(forward));
   }
+}
+
+glm::dmat4 InkRenderer::modelAt(std::size_t i, double time) const {
+  // A spinning object turns about the vertical axis through its centre (the origin of its
+  // uploaded coordinates).
+  const scene::Object& o = scene_.objects[i];
+  const glm::dmat4& model = objects_[i].model;
+  return o.animated() ? glm::rotate(model, glm::radians(o.spin_deg_per_s * time), glm::dvec3(0, 0, 1)) : model;
 }
 
 const Framebuffer& InkRenderer::render(const OrbitCamera& camera, int width, int height, FrameStats* stats,
@@ -402,6 +418,15 @@ const Framebuffer& InkRenderer::render(const OrbitCamera& camera, int width, int
   }
   SHANSHUI_GL_CHECK("gbuffer pass");
 
+  if (canvas_) {
+    std::vector<CanvasPass::Item> items;
+    for (std::size_t i = 0; i < objects_.size(); ++i) {
+      const GpuObject& g = objects_[i];
+      items.push_back({&g.mesh, modelAt(i, time), g.max_triangle_area, 0.5 * glm::length(g.model_bounds.size())});
+    }
+    canvas_noise_ = &canvas_->run(items, gbuffer_.depth(), camera, width, height, timing ? &timer_ : nullptr);
+  }
+
   // One image pass: lines, shading and composite.
   if (timing) timer_.begin("ink");
   glDisable(GL_DEPTH_TEST);
@@ -422,12 +447,23 @@ const Framebuffer& InkRenderer::render(const OrbitCamera& camera, int width, int
   const double to_centre = glm::length(camera.eye() - world_bounds_.centre());
   const double radius = 0.5 * glm::length(world_bounds_.size());
   ink.set("u_fade_range", glm::vec2(static_cast<float>(to_centre - 0.5 * radius), static_cast<float>(to_centre + radius)));
+  if (canvas_ && !diffusion_) {
+    glBindTextureUnit(3, canvas_noise_->id());
+    ink.set("u_canvas_contrast", static_cast<float>(scene_.canvas.contrast));
+  }
   glDrawArrays(GL_TRIANGLES, 0, 3);
   if (timing) timer_.end();
   SHANSHUI_GL_CHECK("ink pass");
 
   if (diffusion_) {
-    diffusion_->run(final_.colour(0), *absorbency_, scene_.diffusion, glm::vec3(scene_.output.paper), diffused_.colour(0),
+    PaperTexture paper{absorbency_ ? &*absorbency_ : nullptr};
+    if (canvas_) {
+      // Absorbency 0.75 + 0.25 · absorbency · noise: the unit-variance canvas keeps most
+      // pixels within [0.5, 1] at full strength, like the value noise it replaces.
+      paper = {canvas_noise_, glm::vec2(0.25 * scene_.canvas.absorbency, 0.75), canvas_noise_,
+               static_cast<float>(scene_.canvas.contrast)};
+    }
+    diffusion_->run(final_.colour(0), paper, scene_.diffusion, glm::vec3(scene_.output.paper), diffused_.colour(0),
                     timing ? &timer_ : nullptr);
   }
 

@@ -336,7 +336,20 @@ Scene parseWith(const json& j, const std::string& origin, const std::filesystem:
   readCamera(r.child("camera"), s.camera);
   {
     Reader c = r.child("canvas");
-    s.canvas.type = c.choice<CanvasType>("type", s.canvas.type, {{"none", CanvasType::None}});
+    Canvas& v = s.canvas;
+    v.type = c.choice<CanvasType>("type", v.type, {{"none", CanvasType::None}, {"rice_paper", CanvasType::RicePaper},
+                                                   {"silk", CanvasType::Silk}, {"static", CanvasType::Static}});
+    v.static_pattern = c.choice<CanvasPattern>("static_pattern", v.static_pattern,
+                                               {{"rice_paper", CanvasPattern::RicePaper}, {"silk", CanvasPattern::Silk}});
+    v.contrast = c.number("contrast", v.contrast, 0, 1);
+    v.absorbency = c.number("absorbency", v.absorbency, 0, 1);
+    v.grain = c.number("grain", v.grain, 0.5, 256);
+    v.frequency = c.number("frequency", v.frequency, 0, 2);
+    v.orientation_deg = c.number("orientation", v.orientation_deg, -360, 360);
+    v.isotropic = c.boolean("isotropic", v.isotropic);
+    v.mix = c.number("mix", v.mix, 0, 1);
+    v.perlin_frequency = c.number("perlin_frequency", v.perlin_frequency, 0, 64);
+    v.impulses = c.number("impulses", v.impulses, 1, 1024);
     c.finish();
   }
   {
@@ -499,7 +512,19 @@ json toJson(const Scene& s) {
     for (const CameraKey& k : c.path) jc["path"].push_back({{"azimuth", k.azimuth_deg}, {"elevation", k.elevation_deg}, {"zoom", k.zoom}});
   }
   j["camera"] = jc;
-  j["canvas"] = {{"type", "none"}};
+  const Canvas& v = s.canvas;
+  const char* types[] = {"none", "rice_paper", "silk", "static"};
+  j["canvas"] = {{"type", types[static_cast<int>(v.type)]},
+                 {"static_pattern", v.static_pattern == CanvasPattern::Silk ? "silk" : "rice_paper"},
+                 {"contrast", v.contrast},
+                 {"absorbency", v.absorbency},
+                 {"grain", v.grain},
+                 {"frequency", v.frequency},
+                 {"orientation", v.orientation_deg},
+                 {"isotropic", v.isotropic},
+                 {"mix", v.mix},
+                 {"perlin_frequency", v.perlin_frequency},
+                 {"impulses", v.impulses}};
   const Diffusion& d = s.diffusion;
   j["diffusion"] = {{"ring_steps", d.ring_steps}, {"attenuation", d.attenuation}, {"absorb", d.absorb},
                     {"residual", d.residual},     {"iterations", d.iterations},   {"threshold", d.threshold}};

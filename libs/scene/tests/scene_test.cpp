@@ -55,7 +55,11 @@ TEST(Scene, SampleSceneRoundTripsThroughJson) {
   j["objects"][0]["lines"]["curvature"] = "screen";
   j["camera"]["target"] = {1, 2, 3};
   j["objects"][0]["transform"]["rotate"] = {0, 0, 45};
+  j["canvas"] = {{"type", "static"}, {"static_pattern", "silk"}, {"impulses", 16}, {"isotropic", true}};
   const Scene c = parseScene(j, "c", ".");
+  EXPECT_EQ(c.canvas.type, CanvasType::Static);
+  EXPECT_EQ(c.canvas.pattern(), CanvasPattern::Silk);
+  EXPECT_EQ(c.canvas.impulses, 16);
   EXPECT_EQ(c.objects[0].lines.curvature, CurvatureSource::Screen);
   EXPECT_EQ(*c.camera.target, glm::dvec3(1, 2, 3));
   EXPECT_EQ(toJson(parseScene(toJson(c), "d", ".")), toJson(c));
@@ -138,7 +142,10 @@ TEST(Scene, EveryKindOfBadValueNamesItsKeyPath) {
       {"camera.path", json::array({{{"zoom", 0}}}), "camera.path.0.zoom"},
       {"output.paper", json::array({0.5, 0.5, 1.5}), "output.paper.2"},
       {"seed", -1, "seed"},
-      {"canvas.type", "silk", "not one of: none"},
+      {"canvas.type", "linen", "not one of: none, rice_paper, silk, static"},
+      {"canvas.impulses", 0.5, "out of range; expected [1, 1024]"},
+      {"canvas.grain", 0, "out of range"},
+      {"canvas.static_pattern", "none", "not one of: rice_paper, silk"},
   };
   for (const Case& c : cases) {
     SCOPED_TRACE(c.path);

@@ -14,6 +14,17 @@
 
 namespace shanshui::render {
 
+//! The paper under the ink, beyond its colour: an absorbency image (one channel, tiled over
+//! the picture) read through clamp(offset + scale · value, 0, 1), and optionally the
+//! canvas grain (unit-variance noise the size of the picture) that multiplies the result
+//! by 1 + contrast · grain.
+struct PaperTexture {
+  const Texture2D* absorbency = nullptr;
+  glm::vec2 absorbency_map{1.0f, 0.0f};  //!< scale, offset
+  const Texture2D* grain = nullptr;
+  float contrast = 0.0f;
+};
+
 class InkDiffusionPass {
  public:
   //! Compiles the programs; needs a current GL 4.5 context.
@@ -27,6 +38,9 @@ class InkDiffusionPass {
   //! The same, writing into `output` (RGBA8, the size of `colour`).
   void run(const Texture2D& colour, const Texture2D& absorbency, const ink::DiffusionOptions& options,
            const glm::vec3& paper, const Texture2D& output, GpuTimer* timer = nullptr);
+  //! The same with a textured paper (PaperTexture::absorbency must be set).
+  void run(const Texture2D& colour, const PaperTexture& texture, const ink::DiffusionOptions& options,
+           const glm::vec3& paper, const Texture2D& output, GpuTimer* timer = nullptr);
 
   //! The ink field after the last run (R32F), for tests.
   const Texture2D& inkAfter() const { return *after_; }
@@ -34,6 +48,7 @@ class InkDiffusionPass {
  private:
   void ensureSize(int width, int height);
   Program extract_, rows_, columns_, demand_, supply_, apply_, output_;
+  Program output_canvas_;  //!< built on first use with a canvas grain
   Texture2D ink0_, main_, next_, demand_tex_, supply_tex_, distance_, source_, out_;
   const Texture2D* after_ = nullptr;
 };

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "shanshui/render/camera.h"
+#include "shanshui/render/canvas_pass.h"
 #include "shanshui/render/gl_resources.h"
 #include "shanshui/render/gpu_mesh.h"
 #include "shanshui/render/gpu_timer.h"
@@ -78,16 +79,20 @@ class InkRenderer {
   //! dimensionless curvature; 1: erosion noise, added noise, wrinkle luma, object id / 255;
   //! depth), "ink" (colour 0: the picture before diffusion; with debug outputs 1: line
   //! weight and col_i, 2: tone), "diffusion" (the picture after it, when the scene
-  //! diffuses ink). Null for other names.
+  //! diffuses ink), "canvas" (colour 0: the canvas noise, R32F, unit variance; when the
+  //! scene has one). Null for other names.
   const Framebuffer* passTarget(const std::string& pass) const;
 
   //! World positions of the last frame rebuilt from its depth buffer (as the ink pass does):
   //! RGBA, xyz and 1 where a surface was drawn, 0 on the background; row 0 at the top.
   image::Image worldPositions() const;
 
-  //! The paper absorbency the diffusion uses (one channel, tiled over the picture from GL's
-  //! bottom-left); null without diffusion.
+  //! The paper absorbency the diffusion uses when the scene has no canvas (value noise, one
+  //! channel, tiled over the picture from GL's bottom-left); null otherwise.
   const Texture2D* absorbency() const { return absorbency_ ? &*absorbency_ : nullptr; }
+
+  //! The canvas pass, when the scene has a canvas.
+  const CanvasPass* canvas() const { return canvas_ ? &*canvas_ : nullptr; }
 
   //! Builds the ink pass with the DEBUG_OUTPUTS variant (line weight and tone as targets).
   void setDebugOutputs(bool on);
@@ -101,6 +106,7 @@ class InkRenderer {
     glm::dvec3 centre{0.0};            //!< world, of the bounding sphere
     double radius = 1.0;               //!< world bounding-sphere radius
     double feature_size = 0.0;         //!< world units
+    double max_triangle_area = 0.0;    //!< model units, for the canvas
     int program = 0;                   //!< index into gbuffer_programs_
     std::optional<Texture2D> wrinkle;
   };
@@ -115,6 +121,7 @@ class InkRenderer {
   void buildPrograms();
   void ensureTargets(int width, int height);
   void uploadObjectParams(const OrbitCamera& camera, int height);
+  glm::dmat4 modelAt(std::size_t object, double time) const;
   std::string requestKey(const OrbitCamera& camera, int width, int height) const;
 
   scene::Scene scene_;
@@ -135,6 +142,8 @@ class InkRenderer {
   Framebuffer diffused_;                        //!< the picture after ink diffusion
   std::optional<InkDiffusionPass> diffusion_;   //!< built only when the scene diffuses ink
   std::optional<Texture2D> absorbency_;
+  std::optional<CanvasPass> canvas_;            //!< built only when the scene has a canvas
+  const Texture2D* canvas_noise_ = nullptr;     //!< the last frame's canvas
   std::string static_layer_key_;  //!< request the static layer was drawn for
   GpuTimer timer_;
   std::string last_key_;

@@ -122,10 +122,33 @@ struct Camera {
   std::vector<CameraKey> path;   //!< optional; used by --frames
 };
 
-enum class CanvasType { None };  // Gabor/Perlin canvases come with issue 7
+//! Paper (seed 001 Eqs. 9-17, SPEC.md section 8): none; rice paper (Perlin) or silk (two
+//! Gabor noises, the second with swapped coordinates) attached to the scene, so it moves
+//! with it and keeps a flat look; or `static`, the same pattern fixed to the screen (the
+//! "shower door" baseline).
+enum class CanvasType { None, RicePaper, Silk, Static };
+enum class CanvasPattern { RicePaper, Silk };
 
+//! Lengths are in pixels of a 1024-pixel-tall frame (they scale with the output height).
 struct Canvas {
   CanvasType type = CanvasType::None;
+  CanvasPattern static_pattern = CanvasPattern::RicePaper;  //!< what `static` shows
+  double contrast = 0.06;         //!< paper brightness × (1 + contrast · unit-variance noise), [0, 1]
+  double absorbency = 1.0;        //!< how much the canvas varies the ink absorbency, [0, 1]
+  double grain = 6.0;             //!< kernel radius r (the quads' half side), [0.5, 256]
+  double frequency = 0.1;         //!< F0, Gabor cycles per pixel, [0, 2]
+  double orientation_deg = 0.0;   //!< ω0, the weave direction, [-360, 360]
+  bool isotropic = false;         //!< random orientation per impulse instead of ω0
+  double mix = 0.5;               //!< weight of the swapped-coordinate Gabor (silk), [0, 1]
+  double perlin_frequency = 1.5;  //!< rice paper: Perlin cycles per grain radius, [0, 64]
+  double impulses = 64.0;         //!< N′, expected impulses per kernel disc, [1, 1024]
+
+  //! The pattern drawn: rice paper or silk (static: static_pattern); meaningless for None.
+  CanvasPattern pattern() const {
+    return type == CanvasType::Silk || (type == CanvasType::Static && static_pattern == CanvasPattern::Silk)
+               ? CanvasPattern::Silk
+               : CanvasPattern::RicePaper;
+  }
 };
 
 //! Seed 001 Eqs. 6-8, SPEC.md section 9: libs/ink's options (one set of defaults), but off

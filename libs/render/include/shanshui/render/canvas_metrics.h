@@ -1,0 +1,50 @@
+// Measures of the canvas's temporal coherence and flatness (SPEC.md section 8): the
+// warping error between consecutive frames, with the known depth and cameras instead of
+// optical flow, and the screen-space peak frequency and contrast of a canvas image.
+#pragma once
+
+#include <glm/glm.hpp>
+
+#include "shanshui/image/image.h"
+#include "shanshui/render/camera.h"
+
+namespace shanshui::render {
+
+class InkRenderer;
+
+//! One rendered view for the warping error: a one-channel image, the world position seen
+//! at each pixel (RGBA: xyz, and 1 where known), and the camera that saw it.
+struct WarpView {
+  image::Image values;
+  image::Image positions;
+  OrbitCamera camera;
+};
+
+//! The world positions of the renderer's last frame: the surface from the depth buffer,
+//! and where nothing was drawn the view ray's exit through the canvas's background dome
+//! (none without a dynamic canvas: those pixels stay unknown).
+image::Image viewPositions(const InkRenderer& renderer, const OrbitCamera& camera);
+
+struct WarpError {
+  double mse = 0.0;        //!< mean squared difference over the compared pixels
+  double variance = 0.0;   //!< of the current values over the same pixels
+  double coverage = 0.0;   //!< fraction of pixels compared
+  double relative() const { return variance > 0 ? mse / variance : 0.0; }
+};
+
+//! Frame `previous` warped to `current`: each current pixel's position is projected into
+//! the previous view and the previous values sampled there bilinearly; pixels that fall
+//! outside it, or whose point the previous view saw something else at (view depths more
+//! than 2 % apart: an occlusion), are left out.
+WarpError warpingError(const WarpView& previous, const WarpView& current);
+
+struct SpectrumPeak {
+  double frequency = 0.0;  //!< cycles per pixel: centroid of the radial power above half its maximum
+  double contrast = 0.0;   //!< standard deviation
+};
+
+//! The peak of the radially averaged power spectrum (Hann-windowed) of a one-channel image,
+//! and its contrast.
+SpectrumPeak spectrumPeak(const image::Image& img);
+
+}  // namespace shanshui::render

@@ -1,0 +1,93 @@
+// The paper canvas (seed 001 Eqs. 9-17, SPEC.md section 8): noise kernels scattered by a
+// geometry shader on every visible triangle and on a background dome, so the paper moves
+// with the scene yet keeps its grain size on screen; or, for `static`, the same kernels
+// fixed to the screen. The result is unit-variance noise in a float target that the ink
+// pass turns into paper brightness and the diffusion into absorbency.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "shanshui/noise/canvas.h"
+#include "shanshui/render/camera.h"
+#include "shanshui/render/gl_resources.h"
+#include "shanshui/render/gpu_mesh.h"
+#include "shanshui/render/gpu_timer.h"
+#include "shanshui/render/shader_program.h"
+#include "shanshui/scene/scene.h"
+
+namespace shanshui::render {
+
+class CanvasPass {
+ public:
+  //! One mesh to cover: the mesh, its model matrix (uploaded coordinates to world), its
+  //! largest triangle's area and bounding radius about the origin (uploaded units; they
+  //! size the geometry shader's work).
+  struct Item {
+    const GpuMesh* mesh = nullptr;
+    glm::dmat4 model{1.0};
+    double max_triangle_area = 0.0;
+    double radius = 0.0;
+  };
+
+  //! Programs for the scene's canvas type (not None). The background dome is centred on
+  //! `world_bounds` with 20 times its radius.
+  CanvasPass(const scene::Canvas& canvas, std::uint64_t seed, const mesh::Bounds& world_bounds);
+
+  //! New parameters (same type and pattern).
+  void setParams(const scene::Canvas& canvas);
+
+  //! Draws the canvas of the view into the target (width × height, R32F) and returns it.
+  //! `depth` is the G-buffer's. The static canvas is drawn only when the size or the
+  //! parameters change.
+  const Texture2D& run(const std::vector<Item>& items, const Texture2D& depth, const OrbitCamera& camera, int width,
+                       int height, GpuTimer* timer);
+
+  //! The last canvas drawn.
+  const Framebuffer& target() const { return target_; }
+
+  //! The noise options in pixels for an output `height` pixels tall.
+  noise::CanvasNoiseOptions noiseOptions(int height) const;
+  //! Pass name for statistics: "canvas" or "canvas_static".
+  const char* passName() const { return dynamic_ ? "canvas" : "canvas_static"; }
+  //! Kernels one geometry-shader invocation can emit, and the per-triangle cap.
+  int quadsPerInvocation() const { return quads_; }
+  int cap() const { return quads_ * kInvocations; }
+  glm::dvec3 domeCentre() const { return dome_centre_; }
+  double domeRadius() const { return dome_radius_; }
+
+  static constexpr int kInvocations = 32;
+
+ private:
+  void setKernel(const Program& p, const noise::CanvasNoiseOptions& o) const;
+  //! Writes the dome triangles the camera can see into the element buffer; index count.
+  GLsizei uploadVisibleDome(const glm::dmat4& model_view_projection);
+
+  scene::Canvas canvas_;
+  std::uint32_t seed_ = 0;
+  bool dynamic_ = true;
+  int quads_ = 0;
+  Program single_, multi_, static_;  //!< geometry shader with 1 or kInvocations invocations; static
+  std::vector<glm::vec3> dome_positions_;  //!< relative to dome_centre_
+  std::vector<glm::uvec3> dome_triangles_;
+  GLuint dome_vao_ = 0, dome_buffers_[2] = {0, 0};  //!< positions, visible triangles
+  glm::dvec3 dome_centre_{0.0};
+  double dome_radius_ = 1.0;
+  Framebuffer target_;
+  GLuint empty_vao_ = 0;
+  std::string static_key_;
+
+ public:
+  ~CanvasPass();
+  CanvasPass(const CanvasPass&) = delete;
+  CanvasPass& operator=(const CanvasPass&) = delete;
+};
+
+//! A sphere of radius 1 around the origin: an icosahedron with each face split into 4,
+//! `levels` times (20 · 4^levels triangles).
+mesh::Mesh icosphere(int levels);
+
+//! The largest triangle area of a mesh.
+double maxTriangleArea(const mesh::Mesh& m);
+
+}  // namespace shanshui::render

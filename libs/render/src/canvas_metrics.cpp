@@ -1,0 +1,139 @@
+#include "shanshui/render/canvas_metrics.h"
+
+#include <cmath>
+#include <numbers>
+
+#include <opencv2/core.hpp>
+
+#include "shanshui/core/error.h"
+#include "shanshui/render/ink_renderer.h"
+
+namespace shanshui::render {
+
+namespace {
+
+glm::dmat4 viewProjection(const OrbitCamera& c, double aspect) {
+  return glm::dmat4(c.projection(aspect)) * glm::dmat4(c.view());
+}
+
+}  // namespace
+
+image::Image viewPositions(const InkRenderer& renderer, const OrbitCamera& camera) {
+  image::Image out = renderer.worldPositions();
+  const CanvasPass* canvas = renderer.canvas();
+  if (!canvas || canvas->passName() != std::string("canvas")) return out;
+  const double aspect = static_cast<double>(out.width) / out.height;
+  const glm::dmat4 inverse = glm::inverse(viewProjection(camera, aspect));
+  const glm::dvec3 eye = camera.eye(), centre = canvas->domeCentre();
+  const double radius = canvas->domeRadius();
+  for (int y = 0; y < out.height; ++y)
+    for (int x = 0; x < out.width; ++x) {
+      if (out.at(x, y, 3) > 0) continue;
+      const glm::dvec4 far = inverse * glm::dvec4((x + 0.5) / out.width * 2 - 1, 1 - (y + 0.5) / out.height * 2, 1, 1);
+      const glm::dvec3 dir = glm::normalize(glm::dvec3(far) / far.w - eye);
+      // |eye + t dir − centre| = radius, the far root (the eye is inside the dome).
+      const glm::dvec3 oc = eye - centre;
+      const double b = glm::dot(oc, dir), c = glm::dot(oc, oc) - radius * radius;
+      const double disc = b * b - c;
+      if (disc < 0) continue;
+      const glm::dvec3 p = eye + (-b + std::sqrt(disc)) * dir;
+      for (int k = 0; k < 3; ++k) out.at(x, y, k) = static_cast<float>(p[k]);
+      out.at(x, y, 3) = 1.0f;
+    }
+  return out;
+}
+
+WarpError warpingError(const WarpView& previous, const WarpView& current) {
+  const int w = current.values.width, h = current.values.height;
+  SHANSHUI_CHECK(previous.values.width == w && previous.values.height == h);
+  const double aspect = static_cast<double>(w) / h;
+  const glm::dmat4 prev_vp = viewProjection(previous.camera, aspect);
+  const glm::dvec3 prev_eye = previous.camera.eye();
+  const glm::dvec3 forward = glm::normalize(previous.camera.target - prev_eye);
+  double sum = 0, sum2 = 0, err = 0;
+  std::size_t n = 0;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      if (current.positions.at(x, y, 3) <= 0) continue;
+      const glm::dvec3 p(current.positions.at(x, y, 0), current.positions.at(x, y, 1), current.positions.at(x, y, 2));
+      const glm::dvec4 clip = prev_vp * glm::dvec4(p, 1.0);
+      if (clip.w <= 0) continue;
+      // Pixel coordinates in the previous image, row 0 at the top, centres at +0.5.
+      const double u = (clip.x / clip.w * 0.5 + 0.5) * w - 0.5, v = (0.5 - clip.y / clip.w * 0.5) * h - 0.5;
+      if (u < 0 || v < 0 || u > w - 1 || v > h - 1) continue;
+      const int ui = std::min(static_cast<int>(u), w - 2), vi = std::min(static_cast<int>(v), h - 2);
+      const double fu = u - ui, fv = v - vi;
+      // Occlusion: the previous view must have seen (about) this point there.
+      const int nu = static_cast<int>(std::lround(u)), nv = static_cast<int>(std::lround(v));
+      if (previous.positions.at(nu, nv, 3) <= 0) continue;
+      const glm::dvec3 q(previous.positions.at(nu, nv, 0), previous.positions.at(nu, nv, 1), previous.positions.at(nu, nv, 2));
+      const double dp = glm::dot(p - prev_eye, forward), dq = glm::dot(q - prev_eye, forward);
+      if (std::abs(dp - dq) > 0.02 * dp) continue;
+      auto at = [&](int i, int j) { return static_cast<double>(previous.values.at(i, j, 0)); };
+      const double warped = (at(ui, vi) * (1 - fu) + at(ui + 1, vi) * fu) * (1 - fv) +
+                            (at(ui, vi + 1) * (1 - fu) + at(ui + 1, vi + 1) * fu) * fv;
+      const double c = current.values.at(x, y, 0);
+      err += (c - warped) * (c - warped);
+      sum += c;
+      sum2 += c * c;
+      ++n;
+    }
+  WarpError out;
+  if (n == 0) return out;
+  const double mean = sum / static_cast<double>(n);
+  out.mse = err / static_cast<double>(n);
+  out.variance = sum2 / static_cast<double>(n) - mean * mean;
+  out.coverage = static_cast<double>(n) / (static_cast<double>(w) * h);
+  return out;
+}
+
+SpectrumPeak spectrumPeak(const image::Image& img) {
+  const int w = img.width, h = img.height;
+  cv::Mat m(h, w, CV_64F);
+  double sum = 0, sum2 = 0;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const double v = img.at(x, y, 0);
+      sum += v;
+      sum2 += v * v;
+    }
+  const double mean = sum / (static_cast<double>(w) * h);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const double hx = 0.5 - 0.5 * std::cos(2 * std::numbers::pi * (x + 0.5) / w);
+      const double hy = 0.5 - 0.5 * std::cos(2 * std::numbers::pi * (y + 0.5) / h);
+      m.at<double>(y, x) = (img.at(x, y, 0) - mean) * hx * hy;
+    }
+  cv::Mat f;
+  cv::dft(m, f, cv::DFT_COMPLEX_OUTPUT);
+  // Radial bins of 1/min(w, h) cycles per pixel up to Nyquist.
+  const int bins = std::min(w, h) / 2;
+  std::vector<double> power(static_cast<std::size_t>(bins), 0.0), count(static_cast<std::size_t>(bins), 0.0);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const double fx = (x <= w / 2 ? x : x - w) / static_cast<double>(w), fy = (y <= h / 2 ? y : y - h) / static_cast<double>(h);
+      const int b = static_cast<int>(std::hypot(fx, fy) * std::min(w, h));
+      if (b <= 0 || b >= bins) continue;  // the mean and beyond Nyquist
+      const cv::Vec2d c = f.at<cv::Vec2d>(y, x);
+      power[static_cast<std::size_t>(b)] += c[0] * c[0] + c[1] * c[1];
+      count[static_cast<std::size_t>(b)] += 1;
+    }
+  // The peak as the centroid of the radial profile where it is above half its maximum: a
+  // single periodogram is noisy bin to bin, the centroid of the peak's top is not.
+  std::vector<double> mean_power(static_cast<std::size_t>(bins), 0.0);
+  double top = 0;
+  for (std::size_t b = 1; b < mean_power.size(); ++b) {
+    mean_power[b] = count[b] > 0 ? power[b] / count[b] : 0.0;
+    top = std::max(top, mean_power[b]);
+  }
+  double weighted = 0, total = 0;
+  for (std::size_t b = 1; b < mean_power.size(); ++b) {
+    if (mean_power[b] < 0.5 * top) continue;
+    weighted += (static_cast<double>(b) + 0.5) * mean_power[b];
+    total += mean_power[b];
+  }
+  const double peak = total > 0 ? weighted / total : 0.0;
+  return {peak / std::min(w, h), std::sqrt(std::max(sum2 / (static_cast<double>(w) * h) - mean * mean, 0.0))};
+}
+
+}  // namespace shanshui::render

@@ -1,0 +1,246 @@
+#include "shanshui/render/canvas_pass.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <numbers>
+#include <sstream>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "shanshui/core/error.h"
+#include "shanshui/noise/gabor.h"
+#include "shanshui/render/gl_check.h"
+
+namespace shanshui::render {
+
+namespace {
+
+// Components of one vertex the geometry shader emits: gl_Position, g_offset, g_impulse.
+constexpr int kComponentsPerVertex = 4 + 2 + 4;
+
+// The background dome: 20 · 4⁶ = 81920 triangles keep one triangle's kernels within the
+// geometry shader's cap at the default density for fields of view down to ~20°.
+constexpr int kDomeLevels = 6;
+constexpr double kDomeScale = 20.0;
+
+int maxQuadsPerInvocation() {
+  GLint vertices = 0, components = 0;
+  glGetIntegerv(GL_MAX_GEOMETRY_OUTPUT_VERTICES, &vertices);
+  glGetIntegerv(GL_MAX_GEOMETRY_TOTAL_OUTPUT_COMPONENTS, &components);
+  return std::max(1, std::min(vertices / 4, components / (4 * kComponentsPerVertex)));
+}
+
+}  // namespace
+
+mesh::Mesh icosphere(int levels) {
+  mesh::Mesh m;
+  const double t = (1 + std::sqrt(5.0)) / 2;
+  m.positions = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0}, {0, -1, t}, {0, 1, t},
+                 {0, -1, -t}, {0, 1, -t}, {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
+  m.triangles = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
+                 {11, 10, 2}, {10, 7, 6}, {7, 1, 8},   {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
+                 {3, 8, 9},  {4, 9, 5},  {2, 4, 11},  {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
+  for (auto& p : m.positions) p = glm::normalize(p);
+  for (int level = 0; level < levels; ++level) {
+    std::map<std::pair<unsigned, unsigned>, unsigned> midpoints;
+    auto midpoint = [&](unsigned a, unsigned b) {
+      const auto key = std::minmax(a, b);
+      const auto [it, fresh] = midpoints.try_emplace(key, static_cast<unsigned>(m.positions.size()));
+      if (fresh) m.positions.push_back(glm::normalize(m.positions[a] + m.positions[b]));
+      return it->second;
+    };
+    std::vector<glm::uvec3> next;
+    next.reserve(m.triangles.size() * 4);
+    for (const glm::uvec3& f : m.triangles) {
+      const unsigned ab = midpoint(f.x, f.y), bc = midpoint(f.y, f.z), ca = midpoint(f.z, f.x);
+      next.insert(next.end(), {{f.x, ab, ca}, {ab, f.y, bc}, {ca, bc, f.z}, {ab, bc, ca}});
+    }
+    m.triangles = std::move(next);
+  }
+  return m;
+}
+
+double maxTriangleArea(const mesh::Mesh& m) {
+  double best = 0;
+  for (const glm::uvec3& f : m.triangles) {
+    const glm::dvec3 a = m.positions[f.x], b = m.positions[f.y], c = m.positions[f.z];
+    best = std::max(best, 0.5 * glm::length(glm::cross(b - a, c - a)));
+  }
+  return best;
+}
+
+CanvasPass::CanvasPass(const scene::Canvas& canvas, std::uint64_t seed, const mesh::Bounds& world_bounds)
+    : canvas_(canvas), seed_(noise::noiseSeed32(seed ^ 0xCA57A5ull)), dynamic_(canvas.type != scene::CanvasType::Static) {
+  SHANSHUI_CHECK(canvas.type != scene::CanvasType::None);
+  std::vector<std::string> defines;
+  if (canvas.pattern() == scene::CanvasPattern::Silk) defines.emplace_back("CANVAS_SILK");
+  if (dynamic_) {
+    quads_ = maxQuadsPerInvocation();
+    auto program = [&](int invocations) {
+      std::vector<std::string> d = defines;
+      d.push_back("INVOCATIONS=" + std::to_string(invocations));
+      d.push_back("QUADS=" + std::to_string(quads_));
+      return Program({"canvas.vert", "canvas.geom", "canvas.frag"}, d);
+    };
+    single_ = program(1);
+    multi_ = program(kInvocations);
+    dome_centre_ = world_bounds.centre();
+    dome_radius_ = kDomeScale * std::max(0.5 * glm::length(world_bounds.size()), 1e-6);
+    mesh::Mesh dome = icosphere(kDomeLevels);
+    for (auto& p : dome.positions) {
+      p *= dome_radius_;
+      dome_positions_.emplace_back(p);
+    }
+    dome_triangles_ = std::move(dome.triangles);
+    glCreateVertexArrays(1, &dome_vao_);
+    glCreateBuffers(2, dome_buffers_);
+    glNamedBufferStorage(dome_buffers_[0], static_cast<GLsizeiptr>(dome_positions_.size() * sizeof(glm::vec3)),
+                         dome_positions_.data(), 0);
+    glNamedBufferStorage(dome_buffers_[1], static_cast<GLsizeiptr>(dome_triangles_.size() * sizeof(glm::uvec3)), nullptr,
+                         GL_DYNAMIC_STORAGE_BIT);
+    glVertexArrayVertexBuffer(dome_vao_, 0, dome_buffers_[0], 0, sizeof(glm::vec3));
+    glEnableVertexArrayAttrib(dome_vao_, 0);
+    glVertexArrayAttribFormat(dome_vao_, 0, 3, GL_FLOAT, GL_FALSE, 0);
+    glVertexArrayAttribBinding(dome_vao_, 0, 0);
+    glVertexArrayElementBuffer(dome_vao_, dome_buffers_[1]);
+  } else {
+    static_ = Program({"fullscreen.vert", "canvas_static.frag"}, defines);
+    glCreateVertexArrays(1, &empty_vao_);
+  }
+}
+
+CanvasPass::~CanvasPass() {
+  if (empty_vao_) glDeleteVertexArrays(1, &empty_vao_);
+  if (dome_vao_) glDeleteVertexArrays(1, &dome_vao_);
+  if (dome_buffers_[0]) glDeleteBuffers(2, dome_buffers_);
+}
+
+GLsizei CanvasPass::uploadVisibleDome(const glm::dmat4& model_view_projection) {
+  // Most of the dome is off screen, and every triangle costs kInvocations geometry-shader
+  // runs: only those not wholly outside one clip plane are drawn.
+  std::vector<glm::uvec3> visible;
+  std::vector<glm::vec4> clip(dome_positions_.size());
+  const glm::mat4 m(model_view_projection);
+  for (std::size_t i = 0; i < clip.size(); ++i) clip[i] = m * glm::vec4(dome_positions_[i], 1.0f);
+  for (const glm::uvec3& f : dome_triangles_) {
+    const glm::vec4 a = clip[f.x], b = clip[f.y], c = clip[f.z];
+    auto outside = [&](int axis, float sign) {
+      return sign * a[axis] > a.w && sign * b[axis] > b.w && sign * c[axis] > c.w;
+    };
+    if (a.w <= 0 && b.w <= 0 && c.w <= 0) continue;
+    if (outside(0, 1) || outside(0, -1) || outside(1, 1) || outside(1, -1)) continue;
+    visible.push_back(f);
+  }
+  glNamedBufferSubData(dome_buffers_[1], 0, static_cast<GLsizeiptr>(visible.size() * sizeof(glm::uvec3)), visible.data());
+  return static_cast<GLsizei>(visible.size() * 3);
+}
+
+void CanvasPass::setParams(const scene::Canvas& canvas) {
+  SHANSHUI_CHECK(canvas.type == canvas_.type && canvas.pattern() == canvas_.pattern());
+  canvas_ = canvas;
+  static_key_.clear();
+}
+
+noise::CanvasNoiseOptions CanvasPass::noiseOptions(int height) const {
+  const double scale = height / 1024.0;
+  noise::CanvasNoiseOptions o;
+  o.silk = canvas_.pattern() == scene::CanvasPattern::Silk;
+  o.radius = canvas_.grain * scale;
+  o.F0 = canvas_.frequency / scale;
+  o.omega0 = canvas_.orientation_deg * std::numbers::pi / 180;
+  o.isotropic = canvas_.isotropic;
+  o.mix = canvas_.mix;
+  o.perlin_frequency = canvas_.perlin_frequency;
+  o.impulses = canvas_.impulses;
+  return o;
+}
+
+void CanvasPass::setKernel(const Program& p, const noise::CanvasNoiseOptions& o) const {
+  // σ is a quadrature over the disc: computed once per parameter set.
+  static std::map<std::string, double> sigmas;
+  std::ostringstream key;
+  key.precision(17);
+  key << o.silk << o.radius << "," << o.F0 << "," << o.omega0 << "," << o.isotropic << "," << o.mix << ","
+      << o.perlin_frequency << "," << o.impulses;
+  auto it = sigmas.find(key.str());
+  if (it == sigmas.end()) it = sigmas.emplace(key.str(), noise::canvasSigma(o)).first;
+  p.set("u_kernel", glm::vec4(o.radius, noise::canvasBandwidth(o), o.F0, o.omega0));
+  p.set("u_kernel_misc", glm::vec4(o.mix, o.perlin_frequency / o.radius, o.isotropic ? 1.0f : 0.0f, 1.0 / it->second));
+  p.set("u_density", static_cast<float>(o.impulses / (std::numbers::pi * o.radius * o.radius)));
+  p.set("u_seed", seed_);
+}
+
+const Texture2D& CanvasPass::run(const std::vector<Item>& items, const Texture2D& depth, const OrbitCamera& camera,
+                                 int width, int height, GpuTimer* timer) {
+  if (target_.width() != width || target_.height() != height) {
+    target_ = Framebuffer(width, height, {GL_R32F}, false);
+    static_key_.clear();
+  }
+  const noise::CanvasNoiseOptions o = noiseOptions(height);
+  if (!dynamic_) {
+    const std::string key = std::to_string(width) + "x" + std::to_string(height);
+    if (key == static_key_) return target_.colour(0);
+    if (timer) timer->begin(passName());
+    target_.bind();
+    glDisable(GL_DEPTH_TEST);
+    glDisable(GL_BLEND);
+    static_.use();
+    setKernel(static_, o);
+    glBindVertexArray(empty_vao_);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    if (timer) timer->end();
+    SHANSHUI_GL_CHECK("canvas_static pass");
+    static_key_ = key;
+    return target_.colour(0);
+  }
+
+  if (timer) timer->begin(passName());
+  target_.bind();
+  const float zero = 0.0f;
+  glClearNamedFramebufferfv(target_.id(), GL_COLOR, 0, &zero);
+  glDisable(GL_DEPTH_TEST);
+  glDisable(GL_CULL_FACE);
+  glEnable(GL_DEPTH_CLAMP);  // the dome lies beyond the far plane
+  glEnable(GL_BLEND);
+  glBlendFunc(GL_ONE, GL_ONE);
+  glBlendEquation(GL_FUNC_ADD);
+  glBindTextureUnit(0, depth.id());
+  const double aspect = static_cast<double>(width) / height;
+  const glm::dmat4 view_projection = glm::dmat4(camera.projection(aspect)) * glm::dmat4(camera.view());
+  const double pixels_per_unit_at_1 = 0.5 * height / std::tan(glm::radians(camera.fov_y_deg) * 0.5);
+  const double density = o.impulses / (std::numbers::pi * o.radius * o.radius);
+  for (const Program* p : {&single_, &multi_}) {
+    setKernel(*p, o);
+    p->set("u_viewport", glm::vec2(width, height));
+    p->set("u_radius", static_cast<float>(o.radius));
+  }
+  for (const Item& item : items) {
+    // One invocation is enough when no triangle can need more kernels than it emits: the
+    // largest triangle, facing the camera at the nearest point of the mesh's bounds.
+    const glm::dvec3 centre(item.model * glm::dvec4(0, 0, 0, 1));
+    const double scale2 = std::pow(std::abs(glm::determinant(glm::dmat3(item.model))), 2.0 / 3.0);
+    const double nearest = std::max(glm::length(camera.eye() - centre) - item.radius, camera.near_plane);
+    const double worst = density * item.max_triangle_area * scale2 * std::pow(pixels_per_unit_at_1 / nearest, 2);
+    const Program& p = worst <= quads_ ? single_ : multi_;
+    p.use();
+    p.set("u_model_view_projection", glm::mat4(view_projection * item.model));
+    p.set("u_background", 0);
+    item.mesh->draw();
+  }
+  const glm::dmat4 dome_mvp = view_projection * glm::translate(glm::dmat4(1.0), dome_centre_);
+  if (const GLsizei indices = uploadVisibleDome(dome_mvp)) {
+    multi_.use();
+    multi_.set("u_model_view_projection", glm::mat4(dome_mvp));
+    multi_.set("u_background", 1);
+    glBindVertexArray(dome_vao_);
+    glDrawElements(GL_TRIANGLES, indices, GL_UNSIGNED_INT, nullptr);
+  }
+  glDisable(GL_BLEND);
+  glDisable(GL_DEPTH_CLAMP);
+  if (timer) timer->end();
+  SHANSHUI_GL_CHECK("canvas pass");
+  return target_.colour(0);
+}
+
+}  // namespace shanshui::render

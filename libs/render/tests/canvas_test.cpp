@@ -1,0 +1,224 @@
+// The paper canvas (SPEC.md section 8): the static canvas against a CPU sum of the same
+// kernels, unit variance and the analytic peak frequency of the dynamic canvas, its
+// steadiness through a dolly and at the geometry shader's cap, its coherence under a
+// camera move against the static baseline, and what the renderer builds and caches.
+#include <cmath>
+#include <memory>
+
+#include <nlohmann/json.hpp>
+
+#include "shanshui/noise/canvas.h"
+#include "shanshui/noise/gabor.h"
+#include "shanshui/render/canvas_metrics.h"
+#include "shanshui/render/ink_renderer.h"
+#include "shanshui/scene/scene.h"
+#include "shanshui/scene/scene_assets.h"
+#include "gl_test.h"
+#include "test_meshes.h"
+#include "test_support.h"
+
+namespace shanshui::render {
+namespace {
+
+using nlohmann::json;
+using CanvasGl = test::HeadlessGl;
+
+constexpr int kSize = 256;
+
+// A flat square of 64 × 64 cells seen from straight above, filling the frame, with lines
+// and shading off so only the paper is left.
+struct PlaneScene {
+  scene::Scene s;
+  std::unique_ptr<InkRenderer> renderer;
+
+  explicit PlaneScene(const json& canvas, std::uint64_t seed = 1, int cells = 64) {
+    json j = {{"seed", seed},
+              {"objects", json::array({{{"mesh", "memory.obj"},
+                                        {"lines", {{"enabled", false}}},
+                                        {"shading", {{"enabled", false}}}}})},
+              {"camera", {{"elevation", 89.0}, {"azimuth", 0.0}, {"zoom", 1.6}}},
+              {"canvas", canvas},
+              {"output", {{"width", kSize}, {"height", kSize}, {"fade", 0.0}}}};
+    s = scene::parseScene(j, "test", ".");
+    const mesh::Mesh m = test::heightGrid(cells + 1, cells + 1, 1.0 / cells, [](double, double) { return 0.0; });
+    renderer = std::make_unique<InkRenderer>(
+        s, std::vector<scene::LoadedObject>{{std::make_shared<const scene::ObjectAsset>(scene::prepareAsset(m, s.objects[0])), nullptr}});
+  }
+  OrbitCamera camera(double zoom = 1.6, double azimuth = 0.0) const {
+    return sceneCamera(s, renderer->worldBounds(), 1.0, {azimuth, 89.0, zoom});
+  }
+  image::Image canvasAt(const OrbitCamera& cam) {
+    renderer->render(cam, kSize, kSize);
+    return renderer->passTarget("canvas")->colour(0).download(1);
+  }
+};
+
+double variance(const image::Image& img) {
+  double s = 0, s2 = 0;
+  for (float v : img.pixels) {
+    s += v;
+    s2 += static_cast<double>(v) * v;
+  }
+  const double n = static_cast<double>(img.pixels.size());
+  return s2 / n - (s / n) * (s / n);
+}
+
+// shaders/canvas_static.frag on the CPU: cells of the radius, impulses from the same
+// hashes, libs/noise's kernel, divided by σ.
+double staticCanvas(const noise::CanvasNoiseOptions& o, std::uint32_t seed, double x, double y) {
+  const double r = o.radius, mean = o.impulses / std::numbers::pi;
+  const double ci = std::floor(x / r), cj = std::floor(y / r);
+  double sum = 0;
+  for (int dj = -1; dj <= 1; ++dj)
+    for (int di = -1; di <= 1; ++di) {
+      const auto i = static_cast<std::int32_t>(ci) + di, j = static_cast<std::int32_t>(cj) + dj;
+      const std::uint32_t s = noise::noiseCellSeed(i, j, seed);
+      auto u = [&](std::uint32_t k) { return static_cast<double>(noise::noiseStream(s, k) >> 8) / 16777216.0; };
+      const int count = noise::impulseCount(mean, u(0));
+      for (int n = 0; n < count; ++n) {
+        const std::uint32_t k = 1u + static_cast<std::uint32_t>(n) * 6u;
+        const double px = (i + u(k)) * r, py = (j + u(k + 1)) * r, w = 2 * u(k + 2) - 1;
+        sum += w * noise::canvasKernel(o, x - px, y - py, u(k + 3), u(k + 4), u(k + 5));
+      }
+    }
+  return sum / noise::canvasSigma(o);
+}
+
+TEST_F(CanvasGl, StaticCanvasMatchesACpuSumOfTheSameKernels) {
+  for (const char* pattern : {"silk", "rice_paper"}) {
+    SCOPED_TRACE(pattern);
+    PlaneScene p({{"type", "static"}, {"static_pattern", pattern}, {"grain", 24}, {"frequency", 0.03}, {"impulses", 16}});
+    const image::Image gpu = p.canvasAt(p.camera());
+    const noise::CanvasNoiseOptions o = p.renderer->canvas()->noiseOptions(kSize);
+    const std::uint32_t seed = noise::noiseSeed32(p.s.seed ^ 0xCA57A5ull);
+    int close = 0, checked = 0;
+    double worst = 0;
+    for (int row = 0; row < kSize; row += 3)
+      for (int x = 0; x < kSize; x += 3) {
+        // gl_FragCoord: pixel centres, y from the bottom.
+        const double ref = staticCanvas(o, seed, x + 0.5, kSize - 1 - row + 0.5);
+        const double d = std::abs(ref - gpu.at(x, row, 0));
+        worst = std::max(worst, d);
+        close += d < 1e-3;
+        ++checked;
+      }
+    // Float rounding can move a kernel across its 5 % edge at a rare pixel.
+    EXPECT_GE(close, static_cast<int>(0.998 * checked));
+    EXPECT_LT(worst, 0.2);
+  }
+}
+
+TEST_F(CanvasGl, DynamicCanvasHasUnitVariance) {
+  for (const char* pattern : {"silk", "rice_paper"}) {
+    SCOPED_TRACE(pattern);
+    double var = 0;
+    const int seeds = 4;
+    for (int seed = 1; seed <= seeds; ++seed) {
+      PlaneScene p({{"type", pattern}, {"grain", 16}}, static_cast<std::uint64_t>(seed));
+      var += variance(p.canvasAt(p.camera())) / seeds;
+    }
+    EXPECT_NEAR(var, 1.0, 0.06);
+  }
+}
+
+TEST_F(CanvasGl, OneWaySilkPeaksAtItsThreadFrequency) {
+  // Without the swapped twin silk is a Gabor noise whose spectrum peaks at F0: 0.05 cycles
+  // per pixel of a 1024-pixel frame is 0.2 here. The kernel is narrow in frequency (a =
+  // 0.06 per pixel), so the ring average's peak sits within 1 % of F0.
+  PlaneScene p({{"type", "silk"}, {"grain", 64}, {"frequency", 0.05}, {"mix", 0.0}});
+  EXPECT_NEAR(spectrumPeak(p.canvasAt(p.camera())).frequency, 0.2, 0.2 * 0.05);
+}
+
+TEST_F(CanvasGl, ContrastAndGrainHoldThroughADolly) {
+  // The kernels keep their pixel size and density while the camera moves from 0.5× to 2×
+  // the distance: the 2-D look of paper. Counts change continuously (the last kernel of a
+  // triangle fades in), so no step in contrast either.
+  PlaneScene p({{"type", "silk"}, {"grain", 32}, {"frequency", 0.04}, {"mix", 0.0}}, 1, 24);
+  std::vector<SpectrumPeak> peaks;
+  for (double zoom = 0.8; zoom <= 3.21; zoom *= 1.26) peaks.push_back(spectrumPeak(p.canvasAt(p.camera(zoom))));
+  double frequency = 0, contrast = 0;
+  for (const SpectrumPeak& s : peaks) {
+    frequency += s.frequency / static_cast<double>(peaks.size());
+    contrast += s.contrast / static_cast<double>(peaks.size());
+  }
+  for (const SpectrumPeak& s : peaks) {
+    EXPECT_NEAR(s.frequency / frequency, 1.0, 0.05);
+    EXPECT_NEAR(s.contrast / contrast, 1.0, 0.10);
+  }
+}
+
+TEST_F(CanvasGl, TrianglesBeyondTheCapKeepTheirContrast) {
+  // Two triangles fill the frame: each needs far more kernels than the geometry shader can
+  // emit, so it gets the cap with raised weights.
+  double var = 0;
+  for (int seed = 1; seed <= 4; ++seed) {
+    PlaneScene p({{"type", "silk"}, {"grain", 4}, {"impulses", 128}}, static_cast<std::uint64_t>(seed), 1);
+    const OrbitCamera cam = p.camera(2.5);
+    ASSERT_GT(kSize * kSize * 0.5 * 128 / (std::numbers::pi * 1.0), p.renderer->canvas()->cap());
+    const image::Image c = p.canvasAt(cam);
+    for (float v : c.pixels) ASSERT_TRUE(std::isfinite(v));
+    var += variance(c) / 4;
+  }
+  EXPECT_NEAR(var, 1.0, 0.15);
+}
+
+TEST_F(CanvasGl, DynamicCanvasFollowsTheSceneAndTheStaticOneDoesNot) {
+  // Threads at 0.08 cycles per pixel: far enough below Nyquist for bilinear warping.
+  auto error = [](const char* type) {
+    PlaneScene p({{"type", type}, {"static_pattern", "silk"}, {"grain", 32}, {"frequency", 0.02}});
+    const OrbitCamera a = p.camera(1.6, 0.0), b = p.camera(1.6, 2.0);
+    WarpView va{p.canvasAt(a), {}, a};
+    va.positions = viewPositions(*p.renderer, a);
+    WarpView vb{p.canvasAt(b), {}, b};
+    vb.positions = viewPositions(*p.renderer, b);
+    const WarpError e = warpingError(va, vb);
+    EXPECT_GT(e.coverage, 0.8) << type;
+    return e.relative();
+  };
+  const double dynamic = error("silk"), fixed = error("static");
+  EXPECT_GT(fixed, 0.3);
+  EXPECT_LT(dynamic, 0.1 * fixed);
+}
+
+TEST_F(CanvasGl, PassesAreBuiltAndCachedAsTheCanvasNeeds) {
+  PlaneScene silk(json{{"type", "silk"}});
+  EXPECT_EQ(silk.renderer->passesBuilt(), (std::vector<std::string>{"gbuffer", "canvas", "ink"}));
+  PlaneScene fixed(json{{"type", "static"}});
+  EXPECT_EQ(fixed.renderer->passesBuilt(), (std::vector<std::string>{"gbuffer", "canvas_static", "ink"}));
+  // The static canvas does not depend on the camera: drawn once per size.
+  FrameStats first, second;
+  fixed.renderer->render(fixed.camera(1.6, 0.0), kSize, kSize, &first);
+  fixed.renderer->render(fixed.camera(1.6, 5.0), kSize, kSize, &second);
+  auto ran = [](const FrameStats& f, const std::string& name) {
+    return std::any_of(f.passes.begin(), f.passes.end(), [&](const PassTime& p) { return p.name == name; });
+  };
+  EXPECT_TRUE(ran(first, "canvas_static"));
+  EXPECT_FALSE(ran(second, "canvas_static"));
+  EXPECT_TRUE(ran(second, "ink"));
+  // The paper's brightness follows the noise: the picture of a blank plane has contrast.
+  const image::Image picture = fixed.renderer->passTarget("ink")->colour(0).download(1);
+  EXPECT_GT(variance(picture), 1e-4);
+}
+
+TEST_F(CanvasGl, TheCanvasSetsTheInkAbsorbency) {
+  // A dark square's ink bleeds into the paper as far as the paper absorbs: with the
+  // canvas's variation off, every paper pixel absorbs alike.
+  auto diffused = [](double absorbency) {
+    json j = {{"objects", json::array({{{"mesh", "memory.obj"}, {"lines", {{"enabled", false}}}}})},
+              {"canvas", {{"type", "rice_paper"}, {"absorbency", absorbency}, {"contrast", 0.0}}},
+              {"diffusion", {{"ring_steps", 2}, {"iterations", 5}}},
+              {"output", {{"width", 128}, {"height", 128}}}};
+    const scene::Scene s = scene::parseScene(j, "test", ".");
+    const mesh::Mesh m = test::uvSphere(1.0, 24, 48);
+    InkRenderer r(s, {{std::make_shared<const scene::ObjectAsset>(scene::prepareAsset(m, s.objects[0])), nullptr}});
+    EXPECT_EQ(r.passesBuilt(), (std::vector<std::string>{"gbuffer", "canvas", "ink", "diffusion"}));
+    return r.renderImage({0, 20, 1.0});
+  };
+  const image::Image flat = diffused(0.0), varied = diffused(1.0);
+  double diff = 0;
+  for (std::size_t i = 0; i < flat.pixels.size(); ++i) diff = std::max(diff, static_cast<double>(std::abs(flat.pixels[i] - varied.pixels[i])));
+  EXPECT_GT(diff, 2.0 / 255);
+}
+
+}  // namespace
+}  // namespace shanshui::render

@@ -1,0 +1,36 @@
+#version 450 core
+// The static canvas (the "shower door" baseline): the same kernels as the dynamic canvas
+// but fixed to the screen, scattered over cells of the kernel's radius (as gaborNoise does)
+// and evaluated at the pixel centre.
+#include "noise_gabor.glsl"
+#ifndef CANVAS_SILK
+#include "noise_perlin.glsl"
+#endif
+#include "canvas_kernel.glsl"
+
+uniform float u_density;  // λ, kernels per square pixel
+uniform uint u_seed;
+layout(location = 0) out float o_canvas;
+
+void main() {
+  vec2 p = gl_FragCoord.xy;
+  float r = u_kernel.x;
+  float mean = u_density * r * r;
+  vec2 c = floor(p / r);
+  float sum = 0.0;
+  for (int dj = -1; dj <= 1; ++dj) {
+    for (int di = -1; di <= 1; ++di) {
+      ivec2 cell = ivec2(c) + ivec2(di, dj);
+      uint s = noiseCellSeed(cell, u_seed);
+      int count = impulseCount(mean, noiseUnit(noiseStream(s, 0u)));
+      for (int n = 0; n < count; ++n) {
+        uint k = 1u + uint(n) * 6u;
+        vec2 centre = (vec2(cell) + vec2(noiseUnit(noiseStream(s, k)), noiseUnit(noiseStream(s, k + 1u)))) * r;
+        float w = 2.0 * noiseUnit(noiseStream(s, k + 2u)) - 1.0;
+        vec3 e = vec3(noiseUnit(noiseStream(s, k + 3u)), noiseUnit(noiseStream(s, k + 4u)), noiseUnit(noiseStream(s, k + 5u)));
+        sum += w * canvasKernel(p - centre, e);
+      }
+    }
+  }
+  o_canvas = sum * u_kernel_misc.w;
+}
