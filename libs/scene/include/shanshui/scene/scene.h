@@ -141,7 +141,7 @@ struct Canvas {
   bool isotropic = false;         //!< random orientation per impulse instead of ω0
   double mix = 0.5;               //!< weight of the swapped-coordinate Gabor (silk), [0, 1]
   double perlin_frequency = 1.5;  //!< rice paper: Perlin cycles per grain radius, [0, 64]
-  double impulses = 64.0;         //!< N′, expected impulses per kernel disc, [1, 1024]
+  double impulses = 32.0;         //!< N′, expected impulses per kernel disc, [1, 1024]
 
   //! The pattern drawn: rice paper or silk (static: static_pattern); meaningless for None.
   CanvasPattern pattern() const {
