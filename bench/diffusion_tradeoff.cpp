@@ -90,6 +90,7 @@ int main(int argc, char** argv) {
      << "\n\nInput: the sample scene rendered without diffusion (lines, shading, wrinkles).\n\n";
 
   scene::Scene sc = scene::loadScene(std::filesystem::path(SHANSHUI_SOURCE_DIR) / "samples/scenes/default.json");
+  sc.canvas.type = scene::CanvasType::None;  // the frame of issue 6's target: lines, shading, wrinkles
   scene::AssetCache cache;
   const auto objects = cache.getAll(sc);
   const double paper[3] = {sc.output.paper.x, sc.output.paper.y, sc.output.paper.z};

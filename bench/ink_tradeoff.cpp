@@ -204,6 +204,7 @@ int main(int argc, char** argv) {
   // 3. Ink passes against a Lambert render of the same mesh, interleaved.
   const std::filesystem::path scene_path = std::filesystem::path(SHANSHUI_SOURCE_DIR) / "samples/scenes/default.json";
   scene::Scene sc = scene::loadScene(scene_path);
+  sc.canvas.type = scene::CanvasType::None;  // lines + shading against Lambert: the canvas is measured on its own
   scene::AssetCache cache;
   const auto objects = cache.getAll(sc);
   render::InkRenderer ink(sc, objects);

@@ -39,13 +39,14 @@ TEST(RenderCli, StatsListThePassesBuiltAndTheirGpuTimePerFrame) {
     EXPECT_EQ(img.height, 120);
   }
   const json s = readJson(dir / "s.json");
-  EXPECT_EQ(s["passes_built"], json({"gbuffer", "ink"}));
-  EXPECT_EQ(s["variants"]["ink"], json({"LINES SHADING WRINKLE SINGLE_OBJECT"}));
+  EXPECT_EQ(s["passes_built"], json({"gbuffer", "canvas", "ink"}));
+  EXPECT_EQ(s["variants"]["ink"], json({"LINES SHADING WRINKLE SINGLE_OBJECT CANVAS"}));
+  EXPECT_EQ(s["variants"]["canvas"].size(), 2u) << "one and 32 geometry-shader invocations, rice paper";
   EXPECT_EQ(s["variants"]["gbuffer"], json({"SURFACE WRINKLE OBJECT_CURVATURE"}));
   ASSERT_EQ(s["frames"].size(), 3u);
   for (const json& f : s["frames"]) {
     EXPECT_FALSE(f["cached"].get<bool>());
-    EXPECT_EQ(passNames(f), std::set<std::string>({"gbuffer", "ink"}));
+    EXPECT_EQ(passNames(f), std::set<std::string>({"gbuffer", "canvas", "ink"}));
     double sum = 0;
     for (const auto& [k, v] : f["passes"].items()) {
       EXPECT_GE(v.get<double>(), 0.0) << k;
@@ -62,7 +63,7 @@ TEST(RenderCli, ASceneWithoutWrinklesCanvasOrDiffusionRunsNoneOfThem) {
   test::TempDir dir;
   const auto r = run(bin("shanshui-render") + " " + sampleScene() + " -o " + quote(dir / "f.png") +
                      " --size 96x64 --frames 2 --orbit 0 --set camera.path='[]' --stats " + quote(dir / "s.json") +
-                     " --set objects.0.max_vertices=5000 --set objects.0.wrinkle.texture='\"\"'");
+                     " --set objects.0.max_vertices=5000 --set objects.0.wrinkle.texture='\"\"' --set canvas.type=none");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const json s = readJson(dir / "s.json");
   for (const json& j : s["passes_built"]) {
@@ -90,12 +91,12 @@ TEST(RenderCli, LinesOnlyAndShadingOnlyBuildOnlyTheirShaderCode) {
                " --set objects.0.shading.enabled=false");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const json a = readJson(dir / "a.json");
-  EXPECT_EQ(a["variants"]["ink"], json({"LINES SINGLE_OBJECT"}));
+  EXPECT_EQ(a["variants"]["ink"], json({"LINES SINGLE_OBJECT CANVAS"}));
   EXPECT_EQ(a["variants"]["gbuffer"], json({"OBJECT_CURVATURE"})) << "no noise, no wrinkle texture, no UVs";
   r = run(base + " -o " + quote(dir / "b.png") + " --stats " + quote(dir / "b.json") + " --set objects.0.lines.enabled=false");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const json b = readJson(dir / "b.json");
-  EXPECT_EQ(b["variants"]["ink"], json({"SHADING WRINKLE SINGLE_OBJECT"}));
+  EXPECT_EQ(b["variants"]["ink"], json({"SHADING WRINKLE SINGLE_OBJECT CANVAS"}));
   EXPECT_EQ(b["variants"]["gbuffer"], json({"SURFACE WRINKLE"}));  // no curvature of either kind
 }
 

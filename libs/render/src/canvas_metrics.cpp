@@ -126,14 +126,17 @@ SpectrumPeak spectrumPeak(const image::Image& img) {
     mean_power[b] = count[b] > 0 ? power[b] / count[b] : 0.0;
     top = std::max(top, mean_power[b]);
   }
-  double weighted = 0, total = 0;
+  double weighted = 0, total = 0, all_weighted = 0, all_total = 0;
   for (std::size_t b = 1; b < mean_power.size(); ++b) {
+    all_weighted += (static_cast<double>(b) + 0.5) * mean_power[b];
+    all_total += mean_power[b];
     if (mean_power[b] < 0.5 * top) continue;
     weighted += (static_cast<double>(b) + 0.5) * mean_power[b];
     total += mean_power[b];
   }
   const double peak = total > 0 ? weighted / total : 0.0;
-  return {peak / std::min(w, h), std::sqrt(std::max(sum2 / (static_cast<double>(w) * h) - mean * mean, 0.0))};
+  const double mean_frequency = all_total > 0 ? all_weighted / all_total : 0.0;
+  return {peak / std::min(w, h), mean_frequency / std::min(w, h), std::sqrt(std::max(sum2 / (static_cast<double>(w) * h) - mean * mean, 0.0))};
 }
 
 }  // namespace shanshui::render

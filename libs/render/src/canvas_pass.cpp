@@ -73,18 +73,10 @@ double maxTriangleArea(const mesh::Mesh& m) {
 CanvasPass::CanvasPass(const scene::Canvas& canvas, std::uint64_t seed, const mesh::Bounds& world_bounds)
     : canvas_(canvas), seed_(noise::noiseSeed32(seed ^ 0xCA57A5ull)), dynamic_(canvas.type != scene::CanvasType::Static) {
   SHANSHUI_CHECK(canvas.type != scene::CanvasType::None);
-  std::vector<std::string> defines;
-  if (canvas.pattern() == scene::CanvasPattern::Silk) defines.emplace_back("CANVAS_SILK");
+  if (canvas.pattern() == scene::CanvasPattern::Silk) defines_.emplace_back("CANVAS_SILK");
+  if (dynamic_) quads_ = maxQuadsPerInvocation();
+  reloadShaders();
   if (dynamic_) {
-    quads_ = maxQuadsPerInvocation();
-    auto program = [&](int invocations) {
-      std::vector<std::string> d = defines;
-      d.push_back("INVOCATIONS=" + std::to_string(invocations));
-      d.push_back("QUADS=" + std::to_string(quads_));
-      return Program({"canvas.vert", "canvas.geom", "canvas.frag"}, d);
-    };
-    single_ = program(1);
-    multi_ = program(kInvocations);
     dome_centre_ = world_bounds.centre();
     dome_radius_ = kDomeScale * std::max(0.5 * glm::length(world_bounds.size()), 1e-6);
     mesh::Mesh dome = icosphere(kDomeLevels);
@@ -105,9 +97,39 @@ CanvasPass::CanvasPass(const scene::Canvas& canvas, std::uint64_t seed, const me
     glVertexArrayAttribBinding(dome_vao_, 0, 0);
     glVertexArrayElementBuffer(dome_vao_, dome_buffers_[1]);
   } else {
-    static_ = Program({"fullscreen.vert", "canvas_static.frag"}, defines);
     glCreateVertexArrays(1, &empty_vao_);
   }
+}
+
+std::vector<std::string> CanvasPass::definesFor(int invocations) const {
+  std::vector<std::string> d = defines_;
+  if (dynamic_) {
+    d.push_back("INVOCATIONS=" + std::to_string(invocations));
+    d.push_back("QUADS=" + std::to_string(quads_));
+  }
+  return d;
+}
+
+std::vector<std::string> CanvasPass::variants() const {
+  std::vector<std::string> out;
+  for (int invocations : dynamic_ ? std::vector<int>{1, kInvocations} : std::vector<int>{1}) {
+    std::string s;
+    for (const std::string& x : definesFor(invocations)) s += (s.empty() ? "" : " ") + x;
+    out.push_back(s);
+  }
+  return out;
+}
+
+void CanvasPass::reloadShaders() {
+  if (!dynamic_) {
+    static_ = Program({"fullscreen.vert", "canvas_static.frag"}, definesFor(1));
+    static_key_.clear();
+    return;
+  }
+  const std::vector<std::string> files{"canvas.vert", "canvas.geom", "canvas.frag"};
+  Program single(files, definesFor(1)), multi(files, definesFor(kInvocations));  // both built before either is replaced
+  single_ = std::move(single);
+  multi_ = std::move(multi);
 }
 
 CanvasPass::~CanvasPass() {
@@ -161,12 +183,12 @@ void CanvasPass::setKernel(const Program& p, const noise::CanvasNoiseOptions& o)
   static std::map<std::string, double> sigmas;
   std::ostringstream key;
   key.precision(17);
-  key << o.silk << o.radius << "," << o.F0 << "," << o.omega0 << "," << o.isotropic << "," << o.mix << ","
+  key << o.silk << "," << o.radius << "," << o.F0 << "," << o.omega0 << "," << o.isotropic << "," << o.mix << ","
       << o.perlin_frequency << "," << o.impulses;
   auto it = sigmas.find(key.str());
   if (it == sigmas.end()) it = sigmas.emplace(key.str(), noise::canvasSigma(o)).first;
   p.set("u_kernel", glm::vec4(o.radius, noise::canvasBandwidth(o), o.F0, o.omega0));
-  p.set("u_kernel_misc", glm::vec4(o.mix, o.perlin_frequency / o.radius, o.isotropic ? 1.0f : 0.0f, 1.0 / it->second));
+  p.set("u_kernel_misc", glm::vec4(o.mix, o.perlin_frequency / o.radius, o.isotropic ? 1.0f : 0.0f, 1.0 / std::max(it->second, 1e-30)));
   p.set("u_density", static_cast<float>(o.impulses / (std::numbers::pi * o.radius * o.radius)));
   p.set("u_seed", seed_);
 }
@@ -205,6 +227,11 @@ const Texture2D& CanvasPass::run(const std::vector<Item>& items, const Texture2D
   glEnable(GL_BLEND);
   glBlendFunc(GL_ONE, GL_ONE);
   glBlendEquation(GL_FUNC_ADD);
+  // The geometry shader reads the G-buffer's depth. GL orders rendering before sampling
+  // without one, but llvmpipe runs geometry shaders while the previous pass may still be
+  // rasterising, and kernels then vanish at random; the barrier makes it wait (cheap
+  // elsewhere).
+  glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
   glBindTextureUnit(0, depth.id());
   const double aspect = static_cast<double>(width) / height;
   const glm::dmat4 view_projection = glm::dmat4(camera.projection(aspect)) * glm::dmat4(camera.view());

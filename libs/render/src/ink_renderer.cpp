@@ -183,7 +183,10 @@ InkRenderer::InkRenderer(const scene::Scene& s, const std::vector<scene::LoadedO
   glCreateBuffers(1, &params_buffer_);
   buildPrograms();
   setScene(s);
-  if (canvas) canvas_.emplace(s.canvas, s.seed, world_bounds_);
+  if (canvas) {
+    canvas_.emplace(s.canvas, s.seed, world_bounds_);
+    variants_[canvas_->passName()] = canvas_->variants();
+  }
 }
 
 InkRenderer::~InkRenderer() {
@@ -237,7 +240,13 @@ void InkRenderer::setDebugOutputs(bool on) {
   final_ = Framebuffer();  // targets are remade with or without the extra outputs
 }
 
-void InkRenderer::reloadShaders() { buildPrograms(); }
+void InkRenderer::reloadShaders() {
+  buildPrograms();
+  if (canvas_) {
+    canvas_->reloadShaders();
+    variants_[canvas_->passName()] = canvas_->variants();
+  }
+}
 
 void InkRenderer::setScene(const scene::Scene& s) {
   if (structureKey(s) != structureKey(scene_)) {

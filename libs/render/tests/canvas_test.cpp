@@ -147,6 +147,17 @@ TEST_F(CanvasGl, ContrastAndGrainHoldThroughADolly) {
   }
 }
 
+TEST_F(CanvasGl, TheSameViewGivesTheSameCanvas) {
+  // The geometry shader reads the G-buffer's depth: without a barrier llvmpipe can run it
+  // before that pass has finished rasterising, and kernels go missing at random.
+  PlaneScene p({{"type", "silk"}, {"grain", 32}}, 1, 24);
+  for (double zoom : {1.0, 1.6, 2.5}) {
+    const image::Image a = p.canvasAt(p.camera(zoom));
+    p.renderer->render(p.camera(zoom * 1.001), kSize, kSize);  // something else in between
+    EXPECT_EQ(p.canvasAt(p.camera(zoom)).pixels, a.pixels) << zoom;
+  }
+}
+
 TEST_F(CanvasGl, TrianglesBeyondTheCapKeepTheirContrast) {
   // Two triangles fill the frame: each needs far more kernels than the geometry shader can
   // emit, so it gets the cap with raised weights.
@@ -160,6 +171,26 @@ TEST_F(CanvasGl, TrianglesBeyondTheCapKeepTheirContrast) {
     var += variance(c) / 4;
   }
   EXPECT_NEAR(var, 1.0, 0.15);
+}
+
+TEST_F(CanvasGl, ExtremeParametersGiveFiniteCanvases) {
+  // Kernels far below a pixel and as large as the frame, one and 1024 per disc, no
+  // thread frequency: finite everywhere, and done (the static canvas at N′ = 1024 sums
+  // ~3000 kernels per pixel, hence the small frame).
+  struct Case {
+    double grain, impulses, frequency;
+  };
+  for (const char* type : {"silk", "rice_paper", "static"}) {
+    for (const Case& c : {Case{0.5, 1024, 0}, Case{256, 1, 2}, Case{0.5, 1, 0}, Case{256, 1024, 0}}) {
+      SCOPED_TRACE(std::string(type) + " grain " + std::to_string(c.grain) + " N' " + std::to_string(c.impulses));
+      PlaneScene p({{"type", type}, {"grain", c.grain}, {"impulses", c.impulses}, {"frequency", c.frequency}}, 1, 8);
+      p.renderer->render(p.camera(), 48, 48);
+      const image::Image canvas = p.renderer->passTarget("canvas")->colour(0).download(1);
+      const image::Image picture = p.renderer->passTarget("ink")->colour(0).download(3);
+      for (float v : canvas.pixels) ASSERT_TRUE(std::isfinite(v));
+      for (float v : picture.pixels) ASSERT_TRUE(v >= 0.0f && v <= 1.0f);
+    }
+  }
 }
 
 TEST_F(CanvasGl, DynamicCanvasFollowsTheSceneAndTheStaticOneDoesNot) {

@@ -40,6 +40,7 @@ WarpError warpingError(const WarpView& previous, const WarpView& current);
 
 struct SpectrumPeak {
   double frequency = 0.0;  //!< cycles per pixel: centroid of the radial power above half its maximum
+  double mean_frequency = 0.0;  //!< cycles per pixel: power-weighted mean over all rings (broad spectra)
   double contrast = 0.0;   //!< standard deviation
 };
 

@@ -37,6 +37,12 @@ class CanvasPass {
   //! New parameters (same type and pattern).
   void setParams(const scene::Canvas& canvas);
 
+  //! Recompiles the programs from the current shader sources (hot reload); on an error
+  //! the old ones stay and the error is thrown.
+  void reloadShaders();
+  //! The defines of each program built.
+  std::vector<std::string> variants() const;
+
   //! Draws the canvas of the view into the target (width × height, R32F) and returns it.
   //! `depth` is the G-buffer's. The static canvas is drawn only when the size or the
   //! parameters change.
@@ -60,10 +66,12 @@ class CanvasPass {
 
  private:
   void setKernel(const Program& p, const noise::CanvasNoiseOptions& o) const;
+  std::vector<std::string> definesFor(int invocations) const;
   //! Writes the dome triangles the camera can see into the element buffer; index count.
   GLsizei uploadVisibleDome(const glm::dmat4& model_view_projection);
 
   scene::Canvas canvas_;
+  std::vector<std::string> defines_;  //!< the pattern's
   std::uint32_t seed_ = 0;
   bool dynamic_ = true;
   int quads_ = 0;
