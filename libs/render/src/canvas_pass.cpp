@@ -219,8 +219,8 @@ const Texture2D& CanvasPass::run(const std::vector<Item>& items, const Texture2D
 
   if (timer) timer->begin(passName());
   target_.bind();
-  const float zero = 0.0f;
-  glClearNamedFramebufferfv(target_.id(), GL_COLOR, 0, &zero);
+  const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};  // GL reads four components whatever the format
+  glClearNamedFramebufferfv(target_.id(), GL_COLOR, 0, zero);
   glDisable(GL_DEPTH_TEST);
   glDisable(GL_CULL_FACE);
   glEnable(GL_DEPTH_CLAMP);  // the dome lies beyond the far plane
