@@ -1,0 +1,314 @@
+// The stability suite (SPEC.md section 12; CTest label `stability`): every tool on stiff
+// and extreme inputs — 1×1, flat, constant, NaN, huge, tiny, degenerate, border-touching —
+// and extreme parameters. Each case must end either with a clear error (non-zero exit, one
+// line naming the file or parameter, no output written) or with a finite result that
+// keeps the stage's invariants. Every case is a row of the summary table the suite writes
+// to stability/stability.md (and .csv) in the build directory.
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <sstream>
+#include <fstream>
+#include <functional>
+#include <mutex>
+#include <nlohmann/json.hpp>
+
+#include "shanshui/image/image_io.h"
+#include "shanshui/mesh/mesh_io.h"
+#include "test_support.h"
+
+namespace shanshui {
+namespace {
+
+using test::quote;
+using test::run;
+
+struct Row {
+  std::string stage, name, outcome;
+};
+
+std::vector<Row>& table() {
+  static std::vector<Row> rows;
+  return rows;
+}
+
+// When a test process ends, its rows go to stability/<stage>.tsv in the build directory and
+// stability.md and .csv are rebuilt from every stage's file present (CTest runs each test
+// in its own process, some at once: the summary is written to a temporary name and
+// renamed, and the last process to finish leaves the whole table).
+class TableWriter : public ::testing::Environment {
+ public:
+  void TearDown() override {
+    namespace fs = std::filesystem;
+    const fs::path dir = test::binDir().parent_path() / "stability";
+    fs::create_directories(dir);
+    std::map<std::string, std::vector<const Row*>> by_stage;
+    for (const Row& r : table()) by_stage[r.stage].push_back(&r);
+    for (const auto& [stage, rows] : by_stage) {
+      std::ofstream out(dir / (stage + ".tsv"));
+      for (const Row* r : rows) out << r->stage << "\t" << r->name << "\t" << r->outcome << "\n";
+    }
+    std::vector<fs::path> files;
+    for (const auto& e : fs::directory_iterator(dir))
+      if (e.path().extension() == ".tsv") files.push_back(e.path());
+    std::sort(files.begin(), files.end());
+    const std::string tag = std::to_string(::getpid());
+    {
+      std::ofstream md(dir / ("stability.md." + tag)), csv(dir / ("stability.csv." + tag));
+      md << "# Stability suite\n\nEvery case ends with a clear error (non-zero exit, one line naming the file or "
+            "parameter, nothing written) or a finite result that keeps the stage's invariants.\n\n"
+            "| stage | case | outcome |\n|---|---|---|\n";
+      csv << "stage,case,outcome\n";
+      for (const fs::path& f : files) {
+        std::ifstream in(f);
+        std::string line;
+        while (std::getline(in, line)) {
+          const auto a = line.find('\t'), b = line.find('\t', a + 1);
+          if (a == std::string::npos || b == std::string::npos) continue;
+          const std::string stage = line.substr(0, a), name = line.substr(a + 1, b - a - 1), outcome = line.substr(b + 1);
+          md << "| " << stage << " | " << name << " | " << outcome << " |\n";
+          std::string quoted = outcome;
+          for (std::size_t i = 0; (i = quoted.find('"', i)) != std::string::npos; i += 2) quoted.insert(i, "\"");
+          csv << stage << "," << name << ",\"" << quoted << "\"\n";
+        }
+      }
+    }
+    fs::rename(dir / ("stability.md." + tag), dir / "stability.md");
+    fs::rename(dir / ("stability.csv." + tag), dir / "stability.csv");
+  }
+};
+const auto* const kTableWriter = ::testing::AddGlobalTestEnvironment(new TableWriter);
+
+std::string bin(const char* name) { return quote(test::binDir() / name); }
+
+// The lines of a program's output that report an error (progress lines may come first).
+std::vector<std::string> errorLines(const std::string& s) {
+  std::vector<std::string> out;
+  std::istringstream in(s);
+  for (std::string line; std::getline(in, line);)
+    if (line.find("error") != std::string::npos) out.push_back(line);
+  return out;
+}
+
+// What a successful run must satisfy; returns a short description of the result.
+using Check = std::function<std::string(const std::filesystem::path& output)>;
+
+std::string meshIsFinite(const std::filesystem::path& p) {
+  const mesh::PolygonSoup soup = mesh::readPolygonSoup(p);
+  EXPECT_GT(soup.faces.size(), 0u) << p;
+  for (const auto& v : soup.positions) {
+    EXPECT_TRUE(std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z)) << p;
+  }
+  for (const auto& f : soup.faces)
+    for (std::size_t i : f) EXPECT_LT(i, soup.positions.size()) << p;
+  return std::to_string(soup.positions.size()) + " vertices, " + std::to_string(soup.faces.size()) + " faces, all finite";
+}
+
+Check imageIsFinite(int width, int height) {
+  return [=](const std::filesystem::path& p) {
+    const image::Image img = image::loadImage(p);
+    if (width > 0) {
+      EXPECT_EQ(img.width, width) << p;
+      EXPECT_EQ(img.height, height) << p;
+    }
+    for (float v : img.pixels) EXPECT_TRUE(std::isfinite(v) && v >= 0.0f && v <= 1.0f) << p;
+    return std::to_string(img.width) + "x" + std::to_string(img.height) + ", values finite in [0, 1]";
+  };
+}
+
+// Runs `args` (with "-o OUTPUT" appended) and classifies the outcome; `names` is what an
+// error message must contain (the input's file name or the parameter).
+void runCase(const std::string& stage, const std::string& name, const std::string& command, const std::filesystem::path& output,
+             const std::string& names, const Check& check) {
+  SCOPED_TRACE(stage + ": " + name);
+  std::filesystem::remove(output);
+  const auto r = run(command + " -o " + quote(output));
+  std::string outcome;
+  if (r.exit_code != 0) {
+    const std::vector<std::string> errors = errorLines(r.output);
+    EXPECT_EQ(errors.size(), 1u) << r.output;
+    const std::string message = errors.empty() ? r.output : errors.front();
+    EXPECT_NE(message.find(names), std::string::npos) << "the message should name '" << names << "': " << r.output;
+    EXPECT_FALSE(std::filesystem::exists(output)) << "an error left an output behind";
+    outcome = "clear error: " + message;
+    // Paths of this machine stay out of the table.
+    const auto slash = outcome.find('/');
+    if (slash != std::string::npos) {
+      const auto end = outcome.find_first_of(":' ", slash);
+      const std::string path = outcome.substr(slash, end == std::string::npos ? std::string::npos : end - slash);
+      outcome.replace(slash, path.size(), std::filesystem::path(path).filename().string());
+    }
+  } else {
+    EXPECT_TRUE(std::filesystem::exists(output)) << r.output;
+    outcome = std::filesystem::exists(output) ? "finite result: " + check(output) : "NO OUTPUT";
+  }
+  for (char& c : outcome)
+    if (c == '|' || c == '\n') c = ' ';
+  table().push_back({stage, name, outcome});
+}
+
+void writeText(const std::filesystem::path& p, const std::string& text) { std::ofstream(p) << text; }
+
+std::string grid(int cols, int rows, double cell, const std::string& values) {
+  std::ostringstream g;
+  g << "ncols " << cols << "\nnrows " << rows << "\nxllcorner 500000\nyllcorner 4000000\ncellsize " << cell
+    << "\nNODATA_value -9999\n"
+    << values;
+  return g.str();
+}
+
+TEST(Stability, TerrainOnStiffHeightfields) {
+  test::TempDir dir;
+  image::saveImage(image::Image(1, 1, 1, 0.5f), dir / "one.png");
+  image::saveImage(image::Image(2, 2, 1, 0.5f), dir / "two.png");
+  image::saveImage(image::Image(64, 48, 1, 0.0f), dir / "flat.png", image::PixelDepth::UInt16);
+  image::Image spike(33, 33, 1, 0.0f);
+  spike.at(0, 0, 0) = 1.0f;  // a spike in the corner: touches the border
+  image::saveImage(spike, dir / "spike.png", image::PixelDepth::UInt16);
+  writeText(dir / "nan.asc", grid(3, 3, 10, "1 2 3\n4 nan 6\n7 8 9\n"));
+  writeText(dir / "inf.asc", grid(3, 3, 10, "1 2 3\n4 inf 6\n7 8 9\n"));
+  writeText(dir / "holes.asc", grid(4, 3, 10, "1 -9999 3 4\n-9999 -9999 -9999 -9999\n9 10 -9999 12\n"));
+  writeText(dir / "huge.asc", grid(2, 2, 10, "1e300 -1e300\n1e300 0\n"));
+  writeText(dir / "tiny_cells.asc", grid(3, 3, 1e-9, "1 2 3\n4 5 6\n7 8 9\n"));
+  const std::string t = bin("shanshui-terrain") + " ";
+  const auto out = dir / "t.obj";
+  runCase("terrain", "1x1 height map", t + quote(dir / "one.png"), out, "one.png", meshIsFinite);
+  runCase("terrain", "2x2 height map", t + quote(dir / "two.png"), out, "two.png", meshIsFinite);
+  runCase("terrain", "flat 64x48 (16-bit zeros)", t + quote(dir / "flat.png"), out, "flat.png", meshIsFinite);
+  runCase("terrain", "spike on the border", t + quote(dir / "spike.png") + " --z-scale 1000", out, "spike.png", meshIsFinite);
+  runCase("terrain", "NaN sample", t + quote(dir / "nan.asc"), out, "nan.asc", meshIsFinite);
+  runCase("terrain", "infinite sample", t + quote(dir / "inf.asc"), out, "inf.asc", meshIsFinite);
+  runCase("terrain", "NODATA holes and a NODATA row", t + quote(dir / "holes.asc"), out, "holes.asc", meshIsFinite);
+  runCase("terrain", "heights of ±1e300", t + quote(dir / "huge.asc"), out, "huge.asc", meshIsFinite);
+  runCase("terrain", "cells of 1e-9 m", t + quote(dir / "tiny_cells.asc"), out, "tiny_cells.asc", meshIsFinite);
+  runCase("terrain", "z-scale 0", t + quote(dir / "two.png") + " --z-scale 0", out, "--z-scale", meshIsFinite);
+  runCase("terrain", "z-scale NaN", t + quote(dir / "two.png") + " --z-scale nan", out, "--z-scale", meshIsFinite);
+  runCase("terrain", "step far beyond the grid", t + quote(dir / "flat.png") + " --step 1000000", out, "--step", meshIsFinite);
+  runCase("terrain", "max-vertices 1", t + quote(dir / "flat.png") + " --max-vertices 1", out, "--max-vertices", meshIsFinite);
+}
+
+TEST(Stability, RepairOnDegenerateMeshes) {
+  test::TempDir dir;
+  writeText(dir / "collinear.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n2 0 0\n3 0 1 2\n");
+  writeText(dir / "point.off", "OFF\n3 1 0\n1 1 1\n1 1 1\n1 1 1\n3 0 1 2\n");
+  writeText(dir / "nan.obj", "v 0 0 0\nv 1 0 0\nv nan 1 0\nv 0 1 0\nf 1 2 4\nf 2 3 4\n");
+  writeText(dir / "one.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+  writeText(dir / "huge.obj", "v -1e30 -1e30 0\nv 1e30 -1e30 0\nv 0 1e30 1e30\nf 1 2 3\n");
+  writeText(dir / "tiny.obj", "v 0 0 0\nv 1e-30 0 0\nv 0 1e-30 1e-30\nf 1 2 3\n");
+  writeText(dir / "twice.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nf 1 2 3\nf 3 2 1\n");
+  writeText(dir / "bad_index.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n");
+  const std::string r = bin("shanshui-repair") + " ";
+  const auto out = dir / "r.obj";
+  runCase("repair", "one collinear triangle", r + quote(dir / "collinear.off"), out, "collinear.off", meshIsFinite);
+  runCase("repair", "one triangle on a point", r + quote(dir / "point.off"), out, "point.off", meshIsFinite);
+  runCase("repair", "a NaN vertex", r + quote(dir / "nan.obj"), out, "nan.obj", meshIsFinite);
+  runCase("repair", "a single triangle", r + quote(dir / "one.obj"), out, "one.obj", meshIsFinite);
+  runCase("repair", "coordinates of 1e30", r + quote(dir / "huge.obj"), out, "huge.obj", meshIsFinite);
+  runCase("repair", "edges of 1e-30", r + quote(dir / "tiny.obj"), out, "tiny.obj", meshIsFinite);
+  runCase("repair", "the same face three times", r + quote(dir / "twice.obj"), out, "twice.obj", meshIsFinite);
+  runCase("repair", "an index past the vertices", r + quote(dir / "bad_index.obj"), out, "bad_index.obj", meshIsFinite);
+}
+
+TEST(Stability, TextureToolsOnStiffImages) {
+  test::TempDir dir;
+  image::saveImage(image::Image(1, 1, 1, 0.5f), dir / "one.png");
+  image::Image two(2, 1, 1, 0.0f);
+  two.at(1, 0, 0) = 1.0f;
+  image::saveImage(two, dir / "two_levels.png");
+  image::Image edge(24, 24, 1, 1.0f);
+  for (int y = 0; y < 24; ++y) edge.at(0, y, 0) = 0.0f;  // ink only on the border
+  image::saveImage(edge, dir / "border.png");
+  image::Image near_flat(16, 16, 1, 0.5f);
+  near_flat.at(3, 3, 0) = 0.5f + 1.0f / 65535;
+  image::saveImage(near_flat, dir / "near_flat.tif", image::PixelDepth::UInt16);
+  const std::string e = bin("shanshui-enhance") + " ";
+  const auto png = dir / "e.png";
+  runCase("enhance", "1x1 image", e + quote(dir / "one.png"), png, "one.png", imageIsFinite(1, 1));
+  runCase("enhance", "two pixels, two levels", e + quote(dir / "two_levels.png"), png, "two_levels.png", imageIsFinite(2, 1));
+  runCase("enhance", "ink only on the border", e + quote(dir / "border.png"), png, "border.png", imageIsFinite(24, 24));
+  runCase("enhance", "one 16-bit step of contrast", e + quote(dir / "near_flat.tif"), png, "near_flat.tif",
+          imageIsFinite(16, 16));
+  runCase("enhance", "percentiles 0:100", e + quote(dir / "border.png") + " --auto 0:100", png, "--auto", imageIsFinite(24, 24));
+  runCase("enhance", "range NaN", e + quote(dir / "border.png") + " --range nan:1", png, "--range", imageIsFinite(24, 24));
+
+  const std::string q = bin("shanshui-quilt") + " ";
+  runCase("quilt", "1x1 sample", q + quote(dir / "one.png") + " --size 8x8", png, "one.png", imageIsFinite(8, 8));
+  runCase("quilt", "sample exactly one block", q + quote(dir / "border.png") + " --size 64x40 --block 24", png, "border.png",
+          imageIsFinite(64, 40));
+  runCase("quilt", "output of one block, tileable", q + quote(dir / "border.png") + " --size 24x24 --block 24 --tileable", png,
+          "border.png", imageIsFinite(24, 24));
+  runCase("quilt", "block 3, overlap 1", q + quote(dir / "border.png") + " --size 30x30 --block 3 --overlap 1", png,
+          "border.png", imageIsFinite(30, 30));
+  runCase("quilt", "tolerance 1e9", q + quote(dir / "border.png") + " --size 48x48 --block 12 --tolerance 1e9", png,
+          "border.png", imageIsFinite(48, 48));
+  runCase("quilt", "size 0x0", q + quote(dir / "border.png") + " --size 0x0", png, "--size", imageIsFinite(0, 0));
+  runCase("quilt", "size 100000x100000", q + quote(dir / "border.png") + " --size 100000x100000 --block 12", png, "100000x100000",
+          imageIsFinite(0, 0));
+}
+
+TEST(Stability, ParameterizationOnStiffMeshes) {
+  test::TempDir dir;
+  writeText(dir / "one.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+  writeText(dir / "needle.obj", "v 0 0 0\nv 1 0 0\nv 0.5 1e-9 0\nv 0.5 1 0\nf 1 2 3\nf 1 3 4\nf 3 2 4\n");
+  writeText(dir / "tetra.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 2 3 4\nf 3 1 4\n");
+  writeText(dir / "vertical.obj", "v 0 0 0\nv 1 0 0\nv 0 0 1\nv 1 0 1\nf 1 2 4\nf 1 4 3\n");
+  const std::string p = bin("shanshui-param") + " ";
+  const auto out = dir / "p.obj";
+  for (const char* method : {"auto", "xy", "lscm", "arap"}) {
+    const std::string m = std::string(" --method ") + method;
+    runCase("param", std::string("single triangle, ") + method, p + quote(dir / "one.obj") + m, out, "one.obj", meshIsFinite);
+    runCase("param", std::string("needle triangle, ") + method, p + quote(dir / "needle.obj") + m, out, "needle.obj",
+            meshIsFinite);
+    runCase("param", std::string("closed tetrahedron, ") + method, p + quote(dir / "tetra.obj") + m, out, "tetra.obj",
+            meshIsFinite);
+    runCase("param", std::string("vertical wall, ") + method, p + quote(dir / "vertical.obj") + m, out, "vertical.obj",
+            meshIsFinite);
+  }
+}
+
+TEST(Stability, RendererOnStiffScenesAndParameters) {
+  test::TempDir dir;
+  writeText(dir / "one.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+  writeText(dir / "sliver.obj", "v 0 0 0\nv 1000 0 0\nv 500 1e-6 0\nv 500 500 1\nf 1 2 3\nf 1 3 4\n");
+  image::saveImage(image::Image(16, 16, 1, 0.0f), dir / "flat.png");
+  const std::string r = bin("shanshui-render") + " ";
+  const std::string dem = test::sourceDir().string() + "/samples/terrain/mount_st_helens.dem";
+  const std::string small = " --size 64x48 --set objects.0.max_vertices=3000";
+  const auto out = dir / "r.png";
+  runCase("render", "a single triangle", r + quote(dir / "one.obj") + " --size 64x48", out, "one.obj", imageIsFinite(64, 48));
+  runCase("render", "a sliver of 1e-6 by 1000", r + quote(dir / "sliver.obj") + " --size 64x48", out, "sliver.obj",
+          imageIsFinite(64, 48));
+  runCase("render", "a flat DEM", r + quote(dir / "flat.png") + " --size 64x48", out, "flat.png", imageIsFinite(64, 48));
+  runCase("render", "1x1 picture", r + quote(dem) + " --size 1x1 --set objects.0.max_vertices=3000", out, "", imageIsFinite(1, 1));
+  struct Set {
+    const char* name;
+    const char* sets;
+  };
+  const Set sets[] = {
+      {"curve factor 100 (the maximum), threshold 1", "objects.0.lines.curve_factor=100 --set objects.0.lines.threshold=1"},
+      {"Gaussian steps of sigma 0", "objects.0.shading.sigma=0"},
+      {"all tones 0", "objects.0.shading.tones=[0,0,0,0,0]"},
+      {"z-scale 1e-3", "objects.0.z_scale=0.001"},
+      {"zoom 1000 (camera inside the mountain)", "camera.zoom=1000"},
+      {"zoom 0.001", "camera.zoom=0.001"},
+      {"light straight up", "light.direction=[0,0,1]"},
+      {"canvas silk, N' 1024, grain 0.5", "canvas.type=silk --set canvas.impulses=1024 --set canvas.grain=0.5"},
+      {"canvas rice paper, N' 1, grain 256", "canvas.type=rice_paper --set canvas.impulses=1 --set canvas.grain=256"},
+      {"canvas contrast 1", "canvas.contrast=1"},
+      {"diffusion d 256, n 100, f 1", "diffusion.ring_steps=256 --set diffusion.iterations=100 --set diffusion.attenuation=1"},
+      {"diffusion absorb 1000, residual 0", "diffusion.iterations=10 --set diffusion.absorb=1000 --set diffusion.residual=0"},
+      {"diffusion with the canvas's absorbency at 0", "diffusion.iterations=5 --set canvas.absorbency=0"},
+  };
+  for (const Set& s : sets) {
+    runCase("render", s.name, r + quote(dem) + small + " --set " + s.sets, out, "", imageIsFinite(64, 48));
+  }
+  runCase("render", "curve factor -1", r + quote(dem) + small + " --set objects.0.lines.curve_factor=-1", out, "curve_factor",
+          imageIsFinite(64, 48));
+  runCase("render", "canvas impulses NaN", r + quote(dem) + small + " --set canvas.impulses=nan", out, "canvas.impulses",
+          imageIsFinite(64, 48));
+}
+
+}  // namespace
+}  // namespace shanshui
