@@ -15,8 +15,15 @@
 #include <mutex>
 #include <nlohmann/json.hpp>
 
+#include "shanshui/core/error.h"
 #include "shanshui/image/image_io.h"
+#include "shanshui/ink/diffusion.h"
+#include "shanshui/mesh/curvature.h"
 #include "shanshui/mesh/mesh_io.h"
+#include "shanshui/noise/canvas.h"
+#include "shanshui/noise/gabor.h"
+#include "shanshui/noise/perlin.h"
+#include "test_meshes.h"
 #include "test_support.h"
 
 namespace shanshui {
@@ -308,6 +315,147 @@ TEST(Stability, RendererOnStiffScenesAndParameters) {
           imageIsFinite(64, 48));
   runCase("render", "canvas impulses NaN", r + quote(dem) + small + " --set canvas.impulses=nan", out, "canvas.impulses",
           imageIsFinite(64, 48));
+}
+
+// Library stages: `stage` runs the case and returns a description of its finite result
+// (checking invariants with EXPECT) or throws Error, which is recorded as a clear error.
+void libraryCase(const std::string& stage, const std::string& name, const std::function<std::string()>& body) {
+  SCOPED_TRACE(stage + ": " + name);
+  std::string outcome;
+  try {
+    outcome = "finite result: " + body();
+  } catch (const Error& e) {
+    outcome = std::string("clear error: ") + e.what();
+  }
+  table().push_back({stage, name, outcome});
+}
+
+bool allFinite(const std::vector<float>& v) {
+  return std::all_of(v.begin(), v.end(), [](float x) { return std::isfinite(x); });
+}
+
+TEST(Stability, CurvatureOnStiffMeshes) {
+  // Invariants: finite curvature at every vertex; a finite feature size, 0 meaning flat.
+  auto both = [](const mesh::Mesh& m) {
+    std::string sizes;
+    for (const mesh::VertexCurvature& c : {mesh::estimateCurvature(m), mesh::estimateCurvatureByFit(m)}) {
+      EXPECT_EQ(c.magnitude.size(), m.positions.size());
+      EXPECT_TRUE(allFinite(c.magnitude) && allFinite(c.mean) && allFinite(c.gaussian));
+      const double size = mesh::curvatureFeatureSize(m, c);
+      EXPECT_TRUE(std::isfinite(size) && size >= 0) << size;
+      char text[64];
+      std::snprintf(text, sizeof text, "%s%.3g", sizes.empty() ? "" : " / ", size);
+      sizes += text;
+    }
+    return std::to_string(m.positions.size()) + " vertices, both estimators finite; feature size (cotangent / quadric, 0 = flat) " +
+           sizes;
+  };
+  mesh::Mesh one;
+  one.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+  one.triangles = {{0, 1, 2}};
+  mesh::Mesh collinear = one;
+  collinear.positions[2] = {2, 0, 0};
+  const auto flat = test::heightGrid(20, 20, 1.0, [](double, double) { return 0.0; });
+  const auto needles = test::heightGrid(40, 3, 1.0, [](double x, double y) { return 1e-7 * x * y; });
+  const auto cliff = test::heightGrid(20, 20, 1.0, [](double x, double) { return x < 10 ? 0.0 : 1e6; });
+  auto scaled = [](mesh::Mesh m, double s) {
+    for (auto& p : m.positions) p *= s;
+    return m;
+  };
+  const auto sphere = test::uvSphere(1.0, 12, 24);
+  libraryCase("curvature", "a single triangle", [&] { return both(one); });
+  libraryCase("curvature", "a collinear (zero-area) triangle", [&] { return both(collinear); });
+  libraryCase("curvature", "a flat grid (k = 0 everywhere)", [&] { return both(flat); });
+  libraryCase("curvature", "a 1e-7 twist on a thin strip", [&] { return both(needles); });
+  libraryCase("curvature", "a 1e6 cliff", [&] { return both(cliff); });
+  libraryCase("curvature", "a sphere scaled by 1e-12", [&] { return both(scaled(sphere, 1e-12)); });
+  libraryCase("curvature", "a sphere scaled by 1e12", [&] { return both(scaled(sphere, 1e12)); });
+}
+
+TEST(Stability, InkDiffusionOnStiffPictures) {
+  // Conservation and no negative ink, on pictures and options at the edges of their ranges.
+  auto field = [](int w, int h, double value, bool border_only) {
+    ink::InkField f{w, h, std::vector<double>(static_cast<std::size_t>(w) * h, border_only ? 0.0 : value)};
+    if (border_only)
+      for (int x = 0; x < w; ++x) f.ink[static_cast<std::size_t>(x)] = value;
+    return f;
+  };
+  auto diffuse = [](const ink::InkField& in, const ink::DiffusionOptions& o) {
+    const std::vector<float> absorbency(in.ink.size(), 1.0f);
+    const ink::InkField out = ink::diffuseInk(in, absorbency, o);
+    double lowest = 0;
+    for (double v : out.ink) {
+      EXPECT_TRUE(std::isfinite(v));
+      lowest = std::min(lowest, v);
+    }
+    EXPECT_GE(lowest, 0.0);
+    // The main region adds ink by design; the boundary iterations only move it.
+    ink::DiffusionOptions main_only = o;
+    main_only.iterations = 0;
+    const double before = ink::diffuseInk(in, absorbency, main_only).total();
+    EXPECT_NEAR(out.total(), before, 1e-9 * std::max(1.0, before));
+    char text[160];
+    std::snprintf(text, sizeof text, "no negative ink, boundary ink conserved (%.3g of %.3g)", out.total(), before);
+    return std::string(text);
+  };
+  ink::DiffusionOptions extreme;
+  extreme.ring_steps = 64;
+  extreme.iterations = 100;
+  extreme.attenuation = 1.0;
+  extreme.absorb = 1000.0;
+  extreme.residual = 0.0;
+  libraryCase("diffusion", "1x1 stroke, extreme options", [&] { return diffuse(field(1, 1, 1.0, false), extreme); });
+  libraryCase("diffusion", "empty 32x32", [&] { return diffuse(field(32, 32, 0.0, false), extreme); });
+  libraryCase("diffusion", "all ink 32x32", [&] { return diffuse(field(32, 32, 1.0, false), extreme); });
+  libraryCase("diffusion", "a stroke along the border", [&] { return diffuse(field(32, 32, 1.0, true), extreme); });
+  ink::DiffusionOptions bad = extreme;
+  bad.attenuation = std::nan("");
+  libraryCase("diffusion", "attenuation NaN", [&] { return diffuse(field(8, 8, 1.0, true), bad); });
+  bad = extreme;
+  bad.iterations = -1;
+  libraryCase("diffusion", "iterations -1", [&] { return diffuse(field(8, 8, 1.0, true), bad); });
+}
+
+TEST(Stability, NoiseOnExtremeParameters) {
+  auto gabor = [](double a, double F0, double impulses) {
+    noise::GaborOptions o;
+    o.a = a;
+    o.F0 = F0;
+    o.impulses = impulses;
+    const noise::GaborNoise g(o);
+    double worst = 0;
+    for (int i = 0; i < 64; ++i) {
+      const double v = g(i * 7.3 / a, i * 3.1 / a);
+      EXPECT_TRUE(std::isfinite(v));
+      worst = std::max(worst, std::abs(v));
+    }
+    EXPECT_TRUE(std::isfinite(g.variance()) && g.variance() > 0);
+    return "64 samples finite, largest " + std::to_string(worst);
+  };
+  libraryCase("noise", "Gabor N' 1", [&] { return gabor(0.05, 0.06, 1); });
+  libraryCase("noise", "Gabor N' 1024", [&] { return gabor(0.05, 0.06, 1024); });
+  libraryCase("noise", "Gabor a 1e-3 (kernels of 1000 units)", [&] { return gabor(1e-3, 0.0, 16); });
+  libraryCase("noise", "Gabor a 1e3", [&] { return gabor(1e3, 0.0, 16); });
+  libraryCase("noise", "Gabor F0 0", [&] { return gabor(0.05, 0.0, 64); });
+  libraryCase("noise", "Gabor N' 0", [&] { return gabor(0.05, 0.06, 0); });
+  libraryCase("noise", "Perlin at 1e9", [&] {
+    const double v = noise::perlin(1e9 + 0.5, -1e9 + 0.25, 3.5);
+    EXPECT_TRUE(std::isfinite(v) && std::abs(v) <= 1.0);
+    return "value " + std::to_string(v);
+  });
+  libraryCase("noise", "canvas sigma at grain 0.5 and 256, N' 1 and 1024", [&] {
+    for (double r : {0.5, 256.0})
+      for (double n : {1.0, 1024.0})
+        for (bool silk : {false, true}) {
+          noise::CanvasNoiseOptions o;
+          o.silk = silk;
+          o.radius = r;
+          o.impulses = n;
+          const double s = noise::canvasSigma(o);
+          EXPECT_TRUE(std::isfinite(s) && s > 0) << r << " " << n;
+        }
+    return std::string("sigma finite and positive for all eight");
+  });
 }
 
 }  // namespace
