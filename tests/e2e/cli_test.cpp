@@ -2,6 +2,8 @@
 #include <OpenImageIO/imageio.h>
 
 #include <fstream>
+#include <map>
+#include <sstream>
 #include <nlohmann/json.hpp>
 
 #include "shanshui/image/image_io.h"
@@ -25,7 +27,7 @@ int lines(const std::string& s) {
 
 TEST(Cli, EveryProgramHasHelpWithAnExample) {
   for (const char* p : {"shanshui-terrain", "shanshui-repair", "shanshui-render", "shanshui-view",
-                        "shanshui-enhance", "shanshui-quilt", "shanshui-param"}) {
+                        "shanshui-enhance", "shanshui-quilt", "shanshui-param", "shanshui-demo"}) {
     const auto r = run(bin(p) + " --help");
     EXPECT_EQ(r.exit_code, 0) << p;
     EXPECT_NE(r.output.find("Example"), std::string::npos) << p << ": " << r.output;
@@ -276,6 +278,70 @@ TEST(Cli, ParamRefusesWhatItCannotFlattenAndWritesNothing) {
     EXPECT_EQ(readBytes(dir / "keep.obj"), "precious");
   }
   EXPECT_FALSE(std::filesystem::exists(dir / "out.ply"));
+}
+
+}  // namespace
+}  // namespace shanshui
+
+namespace shanshui {
+namespace {
+
+// Which stages a demo run ran ("name running ...") and which it reused.
+std::map<std::string, std::string> demoStages(const std::string& output) {
+  std::map<std::string, std::string> stages;
+  std::istringstream in(output);
+  for (std::string line; std::getline(in, line);) {
+    std::istringstream words(line);
+    std::string name, what;
+    words >> name >> what;
+    if (what == "running" || what == "reused") stages[name] = what;
+  }
+  return stages;
+}
+
+TEST(Cli, DemoRunsTheChainThenReusesWhatIsUpToDate) {
+  test::TempDir dir;
+  const std::filesystem::path samples = dir / "samples", out = dir / "out";
+  for (const char* f : {"textures/rain_strokes_scan.png", "terrain/mount_st_helens.dem", "scenes/default.json"}) {
+    std::filesystem::create_directories((samples / f).parent_path());
+    std::filesystem::copy_file(test::sourceDir() / "samples" / f, samples / f);
+  }
+  // Relative paths, as `make demo` gives them.
+  const std::string demo = "cd " + quote(dir.path()) + " && " + bin("shanshui-demo") + " --quick --frames 2 --samples samples --out out";
+  auto r = run(demo);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const std::map<std::string, std::string> all_ran = {{"enhance", "running"}, {"quilt", "running"}, {"terrain", "running"},
+                                                      {"param", "running"},   {"still", "running"}, {"orbit", "running"}};
+  EXPECT_EQ(demoStages(r.output), all_ran);
+  for (const char* f : {"report.md", "mountain.png", "orbit_0000.png", "orbit_0001.png", "assets/wrinkle.png",
+                        "assets/st_helens_uv.obj", "assets/checker.png", "assets/scan.png"}) {
+    EXPECT_TRUE(std::filesystem::exists(out / f)) << f;
+  }
+  const std::string report = readBytes(out / "report.md");
+  EXPECT_NE(report.find("![mountain](mountain.png)"), std::string::npos);
+  EXPECT_NE(report.find("L2 stretch"), std::string::npos);
+  EXPECT_EQ(report.find(dir.path().string()), std::string::npos) << "the report's links are relative";
+
+  // Nothing changed: every stage is reused.
+  r = run(demo);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  for (const auto& [name, what] : demoStages(r.output)) EXPECT_EQ(what, "reused") << name;
+
+  // A new scan: its texture stages and the paintings run again, the mesh stages do not.
+  image::Image scan = image::loadImage(samples / "textures/rain_strokes_scan.png");
+  for (int x = 0; x < scan.width; ++x) scan.at(x, 0, 0) = 1.0f - scan.at(x, 0, 0);
+  image::saveImage(scan, samples / "textures/rain_strokes_scan.png");
+  r = run(demo);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_EQ(demoStages(r.output),
+            (std::map<std::string, std::string>{{"enhance", "running"}, {"quilt", "running"}, {"terrain", "reused"},
+                                                {"param", "reused"}, {"still", "running"}, {"orbit", "running"}}));
+
+  // A missing sample is named.
+  std::filesystem::remove(samples / "terrain/mount_st_helens.dem");
+  r = run(demo);
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.output.find("mount_st_helens.dem: not found"), std::string::npos) << r.output;
 }
 
 }  // namespace

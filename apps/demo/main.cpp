@@ -1,0 +1,277 @@
+// shanshui-demo: the whole chain on the bundled samples, the way a content artist runs it:
+// enhance a scanned wrinkle sample, quilt a large texture from it, mesh the DEM, give the
+// mesh UVs, paint the scene (lines, shading, wrinkles, canvas, diffusion) as a still and an
+// orbit, and write a one-page report. Each stage runs one of the shanshui programs; its key
+// is a content hash of the program, its arguments and its input files, and a stage whose
+// key and outputs are unchanged since the last run is reused instead of run again.
+#include <sys/wait.h>
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "shanshui/core/atomic_output.h"
+#include "tool_main.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+std::string readFile(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  if (!in) throw shanshui::makeError(p.string(), ": cannot read");
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+// FNV-1a, 64 bits: enough to notice a changed input (not meant against tampering).
+std::uint64_t fnv1a(const std::string& bytes, std::uint64_t h = 1469598103934665603ull) {
+  for (unsigned char c : bytes) {
+    h ^= c;
+    h *= 1099511628211ull;
+  }
+  return h;
+}
+
+std::string hex(std::uint64_t v) {
+  char buf[17];
+  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(v));
+  return buf;
+}
+
+std::string quote(const std::string& s) {
+  std::string q = "'";
+  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return q + "'";
+}
+
+struct Stage {
+  std::string name, tool;
+  std::vector<std::string> args;
+  std::vector<fs::path> inputs, outputs;
+};
+
+struct Result {
+  bool reused = false;
+  double seconds = 0.0;
+  std::string summary;  //!< the program's last output line
+};
+
+class Runner {
+ public:
+  Runner(fs::path bin_dir, fs::path out, bool force) : bin_(std::move(bin_dir)), out_(std::move(out)), force_(force) {
+    fs::create_directories(out_ / ".cache");
+    fs::create_directories(out_ / "logs");
+  }
+
+  Result run(const Stage& s) {
+    Result r;
+    const fs::path tool = bin_ / s.tool;
+    std::uint64_t key = fnv1a(readFile(tool));
+    for (const std::string& a : s.args) key = fnv1a(a + '\0', key);
+    for (const fs::path& in : s.inputs) key = fnv1a(readFile(in), key);
+    const fs::path cache = out_ / ".cache" / (s.name + ".json");
+    const fs::path log = out_ / "logs" / (s.name + ".log");
+    bool outputs_there = true;
+    for (const fs::path& o : s.outputs) outputs_there = outputs_there && fs::exists(o);
+    if (!force_ && outputs_there && fs::exists(cache)) {
+      const json c = json::parse(readFile(cache), nullptr, false);
+      if (!c.is_discarded() && c.value("key", "") == hex(key)) {
+        r.reused = true;
+        r.seconds = c.value("seconds", 0.0);
+        r.summary = c.value("summary", "");
+        std::printf("%-8s reused (inputs unchanged)\n", s.name.c_str());
+        return r;
+      }
+    }
+    std::string command = quote(tool.string());
+    for (const std::string& a : s.args) command += " " + quote(a);
+    std::printf("%-8s running %s\n", s.name.c_str(), s.tool.c_str());
+    std::fflush(stdout);
+    const auto start = std::chrono::steady_clock::now();
+    const int status = std::system((command + " > " + quote(log.string()) + " 2>&1").c_str());
+    r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const std::string text = readFile(log);
+    std::string last;
+    std::istringstream lines(text);
+    for (std::string line; std::getline(lines, line);)
+      if (!line.empty()) last = line;
+    if (status != 0 || !WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+      fs::remove(cache);
+      throw shanshui::makeError("stage ", s.name, " failed: ", last, " (log: ", log.string(), ")");
+    }
+    r.summary = last;
+    shanshui::writeAtomically(cache, [&](const fs::path& tmp) {
+      std::ofstream(tmp) << json{{"key", hex(key)}, {"seconds", r.seconds}, {"summary", r.summary}}.dump(2) << "\n";
+    });
+    return r;
+  }
+
+ private:
+  fs::path bin_, out_;
+  bool force_;
+};
+
+// The sample scene pointed at the chain's own assets: the parameterized mesh and its UVs,
+// the quilted wrinkle texture, diffusion on.
+void writeScene(const fs::path& sample_scene, const fs::path& out, bool quick) {
+  json j = json::parse(readFile(sample_scene));
+  json& o = j["objects"][0];
+  o.erase("dem");
+  o.erase("z_scale");
+  o.erase("max_vertices");
+  o["mesh"] = "st_helens_uv.obj";
+  o["wrinkle"]["texture"] = "wrinkle.png";
+  o["wrinkle"]["uv"] = "mesh";
+  j["diffusion"]["ring_steps"] = 3;
+  j["diffusion"]["iterations"] = 5;
+  if (quick) j["output"] = {{"width", 160}, {"height", 120}};
+  const std::string text = j.dump(2) + "\n";
+  if (fs::exists(out) && readFile(out) == text) return;  // same content: nothing to do
+  shanshui::writeAtomically(out, [&](const fs::path& tmp) { std::ofstream(tmp) << text; });
+}
+
+std::string jsonNumber(const fs::path& file, const std::vector<std::string>& path, int precision = 3) {
+  json j = json::parse(readFile(file), nullptr, false);
+  for (const std::string& k : path) {
+    if (!j.is_object() || !j.contains(k)) return "—";
+    j = j[k];
+  }
+  if (!j.is_number()) return j.is_string() ? j.get<std::string>() : "—";
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.*g", precision, j.get<double>());
+  return buf;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"Runs the whole shanshui chain on the bundled samples and writes the assets, the pictures and a "
+               "report (report.md) under the output directory. A second run reuses every stage whose program, "
+               "arguments and input files are unchanged.",
+               "shanshui-demo"};
+  app.footer(
+      "Example:\n"
+      "  shanshui-demo --samples samples --out out       # what `make demo` runs\n"
+      "  shanshui-demo --samples samples --out out --force   # run every stage again");
+  std::string samples = "samples", out = "out";
+  bool force = false, quick = false;
+  int frames = 12;
+  app.add_option("--samples", samples, "the samples directory (scan, DEM, scene)")->capture_default_str();
+  app.add_option("--out", out, "output directory")->capture_default_str();
+  app.add_option("--frames", frames, "frames of the orbit sequence")->check(CLI::Range(1, 3600))->capture_default_str();
+  app.add_flag("--force", force, "run every stage even when its inputs are unchanged");
+  app.add_flag("--quick", quick, "small sizes everywhere (for tests)");
+  return shanshui::tools::runTool(app, argc, argv, [&] {
+    const fs::path s(samples), o(out), assets = fs::path(out) / "assets";
+    for (const fs::path& f : {s / "textures/rain_strokes_scan.png", s / "terrain/mount_st_helens.dem", s / "scenes/default.json"}) {
+      if (!fs::exists(f)) throw shanshui::makeError(f.string(), ": not found (is --samples the samples directory?)");
+    }
+    fs::create_directories(assets);
+    const fs::path bin = fs::canonical("/proc/self/exe").parent_path();
+    Runner runner(bin, o, force);
+    const std::string size = quick ? "128x128" : "1024x1024";
+    const std::string max_vertices = quick ? "4000" : "250000";
+    const std::string orbit_size = quick ? "96x72" : "640x480";
+    std::vector<Stage> stages = {
+        {"enhance", "shanshui-enhance", {(s / "textures/rain_strokes_scan.png").string(), "-o", (assets / "wrinkle_sample.png").string()},
+         {s / "textures/rain_strokes_scan.png"}, {assets / "wrinkle_sample.png"}},
+        {"quilt", "shanshui-quilt",
+         {(assets / "wrinkle_sample.png").string(), "-o", (assets / "wrinkle.png").string(), "--size", size, "--tileable",
+          "--report", (assets / "quilt.json").string()},
+         {assets / "wrinkle_sample.png"}, {assets / "wrinkle.png", assets / "quilt.json"}},
+        {"terrain", "shanshui-terrain",
+         {(s / "terrain/mount_st_helens.dem").string(), "-o", (assets / "st_helens.obj").string(), "--z-scale", "1.5",
+          "--max-vertices", max_vertices},
+         {s / "terrain/mount_st_helens.dem"}, {assets / "st_helens.obj"}},
+        {"param", "shanshui-param",
+         {(assets / "st_helens.obj").string(), "-o", (assets / "st_helens_uv.obj").string(), "--report",
+          (assets / "param.json").string(), "--checker", (assets / "checker.png").string()},
+         {assets / "st_helens.obj"}, {assets / "st_helens_uv.obj", assets / "param.json", assets / "checker.png"}},
+    };
+    std::vector<Result> results;
+    for (const Stage& st : stages) results.push_back(runner.run(st));
+    // The report shows the scan beside what became of it.
+    fs::copy_file(s / "textures/rain_strokes_scan.png", assets / "scan.png", fs::copy_options::overwrite_existing);
+    writeScene(s / "scenes/default.json", assets / "scene.json", quick);
+    const std::vector<fs::path> scene_inputs = {assets / "scene.json", assets / "st_helens_uv.obj", assets / "wrinkle.png"};
+    Stage still{"still", "shanshui-render",
+                {(assets / "scene.json").string(), "-o", (o / "mountain.png").string(), "--stats", (o / "mountain_stats.json").string()},
+                scene_inputs, {o / "mountain.png", o / "mountain_stats.json"}};
+    Stage orbit{"orbit", "shanshui-render",
+                {(assets / "scene.json").string(), "-o", (o / "orbit.png").string(), "--size", orbit_size, "--frames",
+                 std::to_string(frames), "--orbit", "40", "--set", "camera.path=[]", "--stats", (o / "orbit_stats.json").string()},
+                scene_inputs, {o / "orbit_stats.json"}};
+    results.push_back(runner.run(still));
+    stages.push_back(still);
+    results.push_back(runner.run(orbit));
+    stages.push_back(orbit);
+
+    // The report: pictures, and per stage its time and its quality numbers.
+    std::ostringstream md;
+    md << "# shanshui demo\n\nThe whole chain on the bundled samples (`shanshui-demo`). Stages marked *reused* were "
+          "not run: their program, arguments and inputs hash to the same key as in the run that made their outputs "
+          "(times are from that run).\n\n"
+       << "| stage | program | seconds | this run | result |\n|---|---|---|---|---|\n";
+    // Paths in the programs' messages, relative to the report.
+    auto relative = [&](std::string text) {
+      for (const auto& [from, to] : {std::pair{o.string() + "/", std::string()}, std::pair{s.string() + "/", std::string("samples/")}}) {
+        for (std::size_t at = 0; (at = text.find(from, at)) != std::string::npos; at += to.size()) text.replace(at, from.size(), to);
+      }
+      return text;
+    };
+    for (std::size_t i = 0; i < stages.size(); ++i) {
+      std::string summary = relative(results[i].summary);
+      for (char& c : summary)
+        if (c == '|') c = '/';
+      char secs[32];
+      std::snprintf(secs, sizeof secs, "%.2f", results[i].seconds);
+      md << "| " << stages[i].name << " | `" << stages[i].tool << "` | " << secs << " | "
+         << (results[i].reused ? "reused" : "ran") << " | " << summary << " |\n";
+    }
+    md << "\n## Texture\n\n![scan](assets/scan.png) ![enhanced](assets/wrinkle_sample.png) ![quilted](assets/wrinkle.png)\n\n"
+       << "Scan, enhanced sample, quilted texture. Quilting: overlap error "
+       << jsonNumber(assets / "quilt.json", {"overlap_error_per_pixel"}) << " per pixel, seam error "
+       << jsonNumber(assets / "quilt.json", {"mean_seam_error_per_overlap_pixel"}) << " per overlap pixel, largest copied "
+       << "region " << jsonNumber(assets / "quilt.json", {"largest_copy_blocks"}) << " blocks.\n\n"
+       << "## Mesh and UVs\n\n![checker](assets/checker.png)\n\nParameterization (`" 
+       << jsonNumber(assets / "param.json", {"method"}) << "`): L2 stretch "
+       << jsonNumber(assets / "param.json", {"distortion", "l2_stretch"}) << ", angle distortion "
+       << jsonNumber(assets / "param.json", {"distortion", "angle_distortion"}) << ", flipped faces "
+       << jsonNumber(assets / "param.json", {"distortion", "flipped"}) << ".\n\n"
+       << "## Painting\n\n![mountain](mountain.png)\n\n";
+    const json stats = json::parse(readFile(o / "mountain_stats.json"), nullptr, false);
+    if (!stats.is_discarded() && stats.contains("frames") && !stats["frames"].empty()) {
+      md << "Passes and GPU milliseconds of the still:";
+      for (const auto& [name, ms] : stats["frames"][0]["passes"].items()) {
+        char buf[64];
+        std::snprintf(buf, sizeof buf, " %s %.1f;", name.c_str(), ms.get<double>());
+        md << buf;
+      }
+      md << " device: " << stats.value("device", std::string("(not recorded)")) << ".\n\n";
+    }
+    md << "Orbit (" << frames << " frames): ";
+    for (int i = 0; i < frames; i += std::max(1, frames / 4)) {
+      char name[64];
+      std::snprintf(name, sizeof name, frames > 1 ? "orbit_%04d.png" : "orbit.png", i);
+      md << "![frame " << i << "](" << name << ") ";
+    }
+    md << "\n\n## Stability\n\n";
+    const fs::path stability = bin.parent_path() / "stability" / "stability.md";
+    if (fs::exists(stability)) {
+      std::string table = readFile(stability);
+      table = table.substr(table.find('\n') + 1);  // without its title
+      md << "From the last run of the stability suite (`ctest -L stability`):\n" << table;
+    } else {
+      md << "No stability table yet: `make test` (or `ctest -L stability`) writes it to " << stability.filename().string()
+         << " in the build directory.\n";
+    }
+    shanshui::writeAtomically(o / "report.md", [&](const fs::path& tmp) { std::ofstream(tmp) << md.str(); });
+    std::printf("report: %s\n", (o / "report.md").string().c_str());
+  });
+}
