@@ -28,8 +28,6 @@ test: build
 test-asan:
 	$(MAKE) test BUILD=build-asan BUILD_TYPE=RelWithDebInfo CMAKE_FLAGS="-DSHANSHUI_SANITIZE=ON -DSHANSHUI_BUILD_BENCH=OFF"
 
-SCENE ?= samples/scenes/default.json
-
 demo: build
 	$(BUILD)/bin/shanshui-demo --samples samples --out out
 	@echo
