@@ -87,45 +87,50 @@ WarpError warpingError(const WarpView& previous, const WarpView& current) {
   return out;
 }
 
-SpectrumPeak spectrumPeak(const image::Image& img) {
+std::vector<double> radialPowerSpectrum(const image::Image& img) {
   const int w = img.width, h = img.height;
-  cv::Mat m(h, w, CV_64F);
-  double sum = 0, sum2 = 0;
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) {
-      const double v = img.at(x, y, 0);
-      sum += v;
-      sum2 += v * v;
-    }
+  double sum = 0;
+  for (float v : img.pixels) sum += v;
   const double mean = sum / (static_cast<double>(w) * h);
+  cv::Mat m(h, w, CV_64F);
+  double window_energy = 0;
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
       const double hx = 0.5 - 0.5 * std::cos(2 * std::numbers::pi * (x + 0.5) / w);
       const double hy = 0.5 - 0.5 * std::cos(2 * std::numbers::pi * (y + 0.5) / h);
       m.at<double>(y, x) = (img.at(x, y, 0) - mean) * hx * hy;
+      window_energy += hx * hx * hy * hy;
     }
   cv::Mat f;
   cv::dft(m, f, cv::DFT_COMPLEX_OUTPUT);
-  // Radial bins of 1/min(w, h) cycles per pixel up to Nyquist.
-  const int bins = std::min(w, h) / 2;
-  std::vector<double> power(static_cast<std::size_t>(bins), 0.0), count(static_cast<std::size_t>(bins), 0.0);
+  const auto bins = static_cast<std::size_t>(std::min(w, h) / 2);
+  std::vector<double> power(bins, 0.0), count(bins, 0.0);
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
       const double fx = (x <= w / 2 ? x : x - w) / static_cast<double>(w), fy = (y <= h / 2 ? y : y - h) / static_cast<double>(h);
-      const int b = static_cast<int>(std::hypot(fx, fy) * std::min(w, h));
-      if (b <= 0 || b >= bins) continue;  // the mean and beyond Nyquist
+      const auto b = static_cast<std::size_t>(std::hypot(fx, fy) * std::min(w, h));
+      if (b == 0 || b >= bins) continue;  // the mean and beyond Nyquist
       const cv::Vec2d c = f.at<cv::Vec2d>(y, x);
-      power[static_cast<std::size_t>(b)] += c[0] * c[0] + c[1] * c[1];
-      count[static_cast<std::size_t>(b)] += 1;
+      power[b] += (c[0] * c[0] + c[1] * c[1]) / window_energy;
+      count[b] += 1;
     }
+  for (std::size_t b = 1; b < bins; ++b) power[b] = count[b] > 0 ? power[b] / count[b] : 0.0;
+  return power;
+}
+
+SpectrumPeak spectrumPeak(const image::Image& img) {
+  const int w = img.width, h = img.height;
+  double sum = 0, sum2 = 0;
+  for (float v : img.pixels) {
+    sum += v;
+    sum2 += static_cast<double>(v) * v;
+  }
+  const double mean = sum / (static_cast<double>(w) * h);
+  const std::vector<double> mean_power = radialPowerSpectrum(img);
   // The peak as the centroid of the radial profile where it is above half its maximum: a
   // single periodogram is noisy bin to bin, the centroid of the peak's top is not.
-  std::vector<double> mean_power(static_cast<std::size_t>(bins), 0.0);
   double top = 0;
-  for (std::size_t b = 1; b < mean_power.size(); ++b) {
-    mean_power[b] = count[b] > 0 ? power[b] / count[b] : 0.0;
-    top = std::max(top, mean_power[b]);
-  }
+  for (std::size_t b = 1; b < mean_power.size(); ++b) top = std::max(top, mean_power[b]);
   double weighted = 0, total = 0, all_weighted = 0, all_total = 0;
   for (std::size_t b = 1; b < mean_power.size(); ++b) {
     all_weighted += (static_cast<double>(b) + 0.5) * mean_power[b];

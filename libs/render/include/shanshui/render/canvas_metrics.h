@@ -3,6 +3,8 @@
 // optical flow, and the screen-space peak frequency and contrast of a canvas image.
 #pragma once
 
+#include <vector>
+
 #include <glm/glm.hpp>
 
 #include "shanshui/image/image.h"
@@ -43,6 +45,12 @@ struct SpectrumPeak {
   double mean_frequency = 0.0;  //!< cycles per pixel: power-weighted mean over all rings (broad spectra)
   double contrast = 0.0;   //!< standard deviation
 };
+
+//! The ring-averaged periodogram of a one-channel image: mean removed, Hann window, |DFT|²
+//! divided by the window's energy (a spectral density per pixel). Element b is the mean
+//! over the bins at radius [b, b + 1) / min(w, h) cycles per pixel, for b < min(w, h) / 2;
+//! element 0 (the mean) is 0.
+std::vector<double> radialPowerSpectrum(const image::Image& img);
 
 //! The peak of the radially averaged power spectrum (Hann-windowed) of a one-channel image,
 //! and its contrast.
