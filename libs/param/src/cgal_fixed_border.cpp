@@ -9,8 +9,12 @@
 
 #include <algorithm>
 #include <array>
+#include <cstdlib>
+#include <filesystem>
 #include <iostream>
+#include <mutex>
 #include <sstream>
+#include <string>
 
 #include <Eigen/Eigenvalues>
 
@@ -23,6 +27,50 @@ namespace {
 namespace SMP = CGAL::Surface_mesh_parameterization;
 using Circle = SMP::Circular_border_arc_length_parameterizer_3<SurfaceMesh>;
 using Square = SMP::Square_border_arc_length_parameterizer_3<SurfaceMesh>;
+
+// CGAL 5.5's iterative authalic parameterizer hard-codes DEBUG_L0 1: every iteration prints
+// to std::cout and writes "last_solve.off" into the working directory, which would clobber a
+// user's file of that name. The macro is defined unconditionally inside the header, so it
+// cannot be switched off from here; instead the solve runs with std::cout captured and the
+// working directory moved to a private scratch directory, removed afterwards. Both are
+// process-wide, so calls are serialised; nothing else in the tools opens relative paths
+// while a parameterization runs.
+class QuietCgalDebugOutput {
+ public:
+  QuietCgalDebugOutput() : lock_(mutex()), saved_cout_(std::cout.rdbuf(sink_.rdbuf())) {
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    saved_dir_ = fs::current_path(ec);
+    if (ec) return;  // no working directory: CGAL's write fails and nothing is written
+    std::string pattern = (fs::temp_directory_path(ec) / "shanshui-param-XXXXXX").string();
+    if (ec || ::mkdtemp(pattern.data()) == nullptr) return;
+    scratch_ = pattern;
+    fs::current_path(scratch_, ec);
+    if (ec) {
+      fs::remove_all(scratch_, ec);
+      scratch_.clear();
+    }
+  }
+  ~QuietCgalDebugOutput() {
+    std::cout.rdbuf(saved_cout_);
+    if (scratch_.empty()) return;
+    std::error_code ec;
+    std::filesystem::current_path(saved_dir_, ec);
+    std::filesystem::remove_all(scratch_, ec);
+  }
+  QuietCgalDebugOutput(const QuietCgalDebugOutput&) = delete;
+  QuietCgalDebugOutput& operator=(const QuietCgalDebugOutput&) = delete;
+
+ private:
+  static std::mutex& mutex() {
+    static std::mutex m;
+    return m;
+  }
+  std::lock_guard<std::mutex> lock_;
+  std::ostringstream sink_;
+  std::streambuf* saved_cout_;
+  std::filesystem::path saved_dir_, scratch_;
+};
 
 // Four border vertices for the square's corners: the extremes of the border in the four
 // diagonal directions of its principal plane, in border order. (CGAL's automatic corners
@@ -69,14 +117,9 @@ SMP::Error_code run(SurfaceMesh& sm, HalfedgeIndex border, UvMap uv, Method meth
     case Method::Dcm: return SMP::parameterize(sm, SMP::Discrete_conformal_map_parameterizer_3<SurfaceMesh, BorderParameterizer>(bp), border, uv);
     case Method::Tutte: return SMP::parameterize(sm, SMP::Barycentric_mapping_parameterizer_3<SurfaceMesh, BorderParameterizer>(bp), border, uv);
     case Method::Authalic: {
-      // CGAL 5.5 hard-codes DEBUG_L0 1 in this header and prints every iteration to
-      // std::cout; keep the tools' stdout clean.
-      std::ostringstream sink;
-      std::streambuf* const saved = std::cout.rdbuf(sink.rdbuf());
+      const QuietCgalDebugOutput quiet;
       SMP::Iterative_authalic_parameterizer_3<SurfaceMesh, BorderParameterizer> p(bp);
-      const SMP::Error_code status = p.parameterize(sm, border, uv, static_cast<unsigned>(authalicIterations));
-      std::cout.rdbuf(saved);
-      return status;
+      return p.parameterize(sm, border, uv, static_cast<unsigned>(authalicIterations));
     }
     default: break;
   }

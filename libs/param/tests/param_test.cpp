@@ -130,6 +130,25 @@ TEST(Parameterize, EveryMethodGivesAOneToOneMapOnAMountain) {
   }
 }
 
+// CGAL 5.5's authalic parameterizer writes "last_solve.off" into the working directory and
+// prints every iteration (DEBUG_L0 is hard-coded); neither may reach the user.
+TEST(Parameterize, AuthalicLeavesTheWorkingDirectoryAndStdoutAlone) {
+  const test::TempDir dir;
+  const std::filesystem::path before = std::filesystem::current_path();
+  std::filesystem::current_path(dir.path());
+  ParamOptions o;
+  o.method = Method::Authalic;
+  testing::internal::CaptureStdout();
+  const mesh::Mesh out = parameterize(mountain(), o);
+  const std::string printed = testing::internal::GetCapturedStdout();
+  const std::filesystem::path after = std::filesystem::current_path();
+  std::filesystem::current_path(before);
+  EXPECT_EQ(after, dir.path());
+  EXPECT_TRUE(std::filesystem::is_empty(dir.path())) << "CGAL's debug file leaked into the working directory";
+  EXPECT_EQ(printed, "");
+  EXPECT_TRUE(measureDistortion(out).valid());
+}
+
 TEST(Parameterize, AutoOnEveryRealDemIsNearIsometricWithoutFlips) {
   const std::filesystem::path dems[] = {test::sourceDir() / "samples/terrain/mount_st_helens.dem",
                                         test::sharedData() / "terrain/jacksboro_fault_dem_u16.png",
