@@ -9,7 +9,9 @@
 //     a ratio to its G-buffer pass (interleaved in one run), and the error of a facing
 //     plane's canvas against the analytic Gabor spectrum, its variance and its excess
 //     kurtosis (0 for Gaussian noise; sparse noise is spiky).
-// Writes canvas_tradeoff.md, .csv and canvas_dolly.png.   bench_canvas_tradeoff [--out DIR]
+// Writes canvas_tradeoff.md, .csv, _points.csv (for shanshui-bench's plots) and
+// canvas_dolly.png. --quick: small frames, short paths, N′ ∈ {8, 32}.
+//   bench_canvas_tradeoff [--out DIR] [--only coherence|impulses] [--quick]
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -31,6 +33,7 @@
 #include "shanshui/scene/scene.h"
 #include "shanshui/scene/scene_assets.h"
 #include "test_meshes.h"
+#include "tradeoff_points.h"
 
 namespace {
 
@@ -119,12 +122,20 @@ double excessKurtosis(const image::Image& img) {
 int main(int argc, char** argv) {
   std::filesystem::path out = ".";
   std::string only;  // --only coherence|impulses: one section (for a quick look; the files then hold only it)
-  for (int i = 1; i + 1 < argc; i += 2) {
-    if (std::string(argv[i]) == "--out") out = argv[i + 1];
-    if (std::string(argv[i]) == "--only") only = argv[i + 1];
+  bool quick = false;
+  for (int i = 1; i < argc; ++i) {
+    const std::string flag = argv[i];
+    if (flag == "--out" && i + 1 < argc) out = argv[++i];
+    else if (flag == "--only" && i + 1 < argc) only = argv[++i];
+    else if (flag == "--quick") quick = true;
+    else {
+      std::fprintf(stderr, "usage: bench_canvas_tradeoff [--out DIR] [--only coherence|impulses] [--quick]\n");
+      return 2;
+    }
   }
   std::filesystem::create_directories(out);
   std::ofstream csv(out / "canvas_tradeoff.csv"), md(out / "canvas_tradeoff.md");
+  bench::TradeoffPoints points(out / "canvas_tradeoff_points.csv");
   const auto context = render::GlContext::create({.kind = render::ContextKind::Headless});
   md << "# Dynamic canvas: temporal coherence, flatness, and error against run time\n\nDevice: " << context->description()
      << "\n\n";
@@ -135,7 +146,7 @@ int main(int argc, char** argv) {
 
   // 1. Camera paths. 512 × 384 (the canvas costs seconds per frame at 1024² on llvmpipe).
   if (only.empty() || only == "coherence") {
-    const int w = 512, h = 384;
+    const int w = quick ? 128 : 512, h = quick ? 96 : 384;
     md << "## Temporal coherence and flatness, sample scene, " << w << "×" << h << "\n\n"
        << "Warping error: mean squared difference between frame t and frame t−1 warped to it (positions from the "
           "depth buffer, or the background dome; occluded and off-screen pixels left out), over the variance; mean "
@@ -163,11 +174,11 @@ int main(int argc, char** argv) {
       for (const char* path : paths) {
         std::vector<render::OrbitCamera> cams;
         const std::string p = path;
-        const int frames = p == "dolly" ? 13 : 6;
+        const int frames = quick ? (p == "dolly" ? 5 : 3) : p == "dolly" ? 13 : 6;
         for (int i = 0; i < frames; ++i) {
           render::OrbitCamera c = base;
           if (p == "orbit") c.azimuth_deg += i;
-          if (p == "dolly") c.distance = base.distance * 2.0 * std::pow(2.0, -i / 6.0);
+          if (p == "dolly") c.distance = base.distance * 2.0 * std::pow(2.0, -2.0 * i / (frames - 1));
           if (p == "pan") {
             const glm::dvec3 right = glm::normalize(glm::cross(base.target - base.eye(), glm::dvec3(0, 0, 1)));
             c.target += right * (0.01 * radius * i);
@@ -270,7 +281,7 @@ int main(int argc, char** argv) {
     const render::OrbitCamera cam = render::sceneCamera(s, r.worldBounds(), 1.0, render::frameKey(s, 0, 1, 0.0));
 
     // The facing plane.
-    const int n = 512;
+    const int n = quick ? 128 : 512, frame = quick ? 256 : 1024;
     scene::Scene ps = scene::parseScene(
         nlohmann::json{{"objects", nlohmann::json::array({{{"mesh", "memory.obj"}, {"lines", {{"enabled", false}}}, {"shading", {{"enabled", false}}}}})},
          {"camera", {{"elevation", 89.0}, {"azimuth", 0.0}, {"zoom", 1.6}}},
@@ -281,7 +292,7 @@ int main(int argc, char** argv) {
     const std::vector<scene::LoadedObject> plane_objects{
         {std::make_shared<const scene::ObjectAsset>(scene::prepareAsset(plane, ps.objects[0])), nullptr}};
 
-    for (double impulses : {8.0, 16.0, 32.0, 64.0, 128.0}) {
+    for (double impulses : quick ? std::vector<double>{8, 32} : std::vector<double>{8, 16, 32, 64, 128}) {
       s.canvas.impulses = impulses;
       r.setScene(s);
       std::vector<double> canvas_ms, gbuffer_ms;
@@ -289,7 +300,7 @@ int main(int argc, char** argv) {
         render::OrbitCamera c = cam;
         c.azimuth_deg += 0.01 * rep;
         render::FrameStats st;
-        r.render(c, 1024, 1024, &st);
+        r.render(c, frame, frame, &st);
         for (const auto& p : st.passes) {
           if (p.name == "canvas") canvas_ms.push_back(p.gpu_ms);
           if (p.name == "gbuffer") gbuffer_ms.push_back(p.gpu_ms);
@@ -299,7 +310,7 @@ int main(int argc, char** argv) {
       ps.canvas.impulses = impulses;
       std::vector<double> measured(n / 2, 0.0), expected(n / 2, 0.0), count(n / 2, 0.0);
       double var = 0, kurt = 0;
-      const int seeds = 4;
+      const int seeds = quick ? 2 : 4;
       noise::CanvasNoiseOptions o;
       for (int seed = 1; seed <= seeds; ++seed) {
         ps.seed = static_cast<std::uint64_t>(seed);
@@ -350,6 +361,10 @@ int main(int argc, char** argv) {
       std::fputs(line, stderr);
       csv << "impulses," << impulses << "," << cm << "," << gm << "," << cm / gm << "," << spectrum_error << "," << var << ","
           << kurt << "\n";
+      const std::string series = "silk canvas, N' 8 .. 128 (sample scene at " + std::to_string(frame) + "²)";
+      points.add("canvas: spectrum against N'", "relative L2 error of the power spectrum", series, true, cm,
+                 spectrum_error);
+      points.add("canvas: Gaussianity against N'", "excess kurtosis (0 = Gaussian)", series, true, cm, kurt);
     }
   }
   return 0;

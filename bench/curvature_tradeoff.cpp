@@ -1,8 +1,9 @@
-// Error against run time for object-space curvature (SPEC.md sections 6 and 12): the
-// cotangent estimator on a unit sphere and a torus (R = 3, r = 1) at increasing resolution;
-// error = median and 95th-percentile relative error of the mean curvature against the
-// analytic value. Writes curvature_tradeoff.md and .csv.
-//   bench_curvature_tradeoff [--out DIR]
+// Error against run time for object-space curvature (SPEC.md sections 6 and 12): both
+// estimators (the two-ring quadric fit, the renderer's default, and the cotangent formula)
+// on a unit sphere and a torus (R = 3, r = 1) at increasing resolution; error = median and
+// 95th-percentile relative error of the mean curvature against the analytic value. Writes
+// curvature_tradeoff.md, .csv and _points.csv (for shanshui-bench's plots).
+//   bench_curvature_tradeoff [--out DIR] [--quick]
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -14,7 +15,8 @@
 #include <vector>
 
 #include "shanshui/mesh/curvature.h"
-#include "test_meshes.h"  // tests/support: the analytic surfaces the tests use
+#include "test_meshes.h"
+#include "tradeoff_points.h"  // tests/support: the analytic surfaces the tests use
 
 namespace {
 
@@ -44,30 +46,49 @@ Surface torus(int nv) {
 
 int main(int argc, char** argv) {
   std::filesystem::path out = ".";
-  if (argc == 3 && std::string(argv[1]) == "--out") out = argv[2];
+  bool quick = false;
+  for (int i = 1; i < argc; ++i) {
+    const std::string flag = argv[i];
+    if (flag == "--out" && i + 1 < argc) out = argv[++i];
+    else if (flag == "--quick") quick = true;
+    else {
+      std::fprintf(stderr, "usage: bench_curvature_tradeoff [--out DIR] [--quick]\n");
+      return 2;
+    }
+  }
   std::filesystem::create_directories(out);
   std::ofstream csv(out / "curvature_tradeoff.csv"), md(out / "curvature_tradeoff.md");
-  csv << "surface,resolution,vertices,milliseconds,median_rel_error,p95_rel_error\n";
-  md << "Cotangent mean curvature against the analytic value (relative error of |H| per vertex).\n\n"
-     << "| surface | resolution | vertices | ms | median error | 95th percentile |\n|---|---|---|---|---|---|\n";
+  bench::TradeoffPoints points(out / "curvature_tradeoff_points.csv");
+  csv << "surface,estimator,resolution,vertices,milliseconds,median_rel_error,p95_rel_error\n";
+  md << "Object-space mean curvature against the analytic value (relative error of |H| per vertex); "
+        "quadric = two-ring quadric fit (default), cotangent = the cotangent formula.\n\n"
+     << "| surface | estimator | resolution | vertices | ms | median error | 95th percentile |\n"
+        "|---|---|---|---|---|---|---|\n";
+  const std::vector<int> resolutions = quick ? std::vector<int>{8, 16, 32} : std::vector<int>{8, 16, 32, 64, 128, 256};
   for (const char* name : {"sphere", "torus"}) {
-    for (int res : {8, 16, 32, 64, 128, 256}) {
-      const Surface s = std::string(name) == "sphere" ? sphere(res) : torus(res);
-      const int repeats = std::max(1, 200000 / static_cast<int>(s.mesh.positions.size()));
-      mesh::VertexCurvature c;
-      const auto start = Clock::now();
-      for (int r = 0; r < repeats; ++r) c = mesh::estimateCurvature(s.mesh);
-      const double ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count() / repeats;
-      std::vector<double> e;
-      for (std::size_t i = 0; i < s.mean.size(); ++i) e.push_back(std::abs(std::abs(c.mean[i]) - s.mean[i]) / s.mean[i]);
-      std::sort(e.begin(), e.end());
-      const double median = e[e.size() / 2], p95 = e[e.size() * 95 / 100];
-      csv << name << "," << res << "," << s.mesh.positions.size() << "," << ms << "," << median << "," << p95 << "\n";
-      char line[256];
-      std::snprintf(line, sizeof line, "| %s | %d | %zu | %.3f | %.2e | %.2e |\n", name, res, s.mesh.positions.size(), ms,
-                    median, p95);
-      md << line;
-      std::fputs(line, stderr);
+    for (const char* estimator : {"quadric", "cotangent"}) {
+      const bool fit = std::string(estimator) == "quadric";
+      for (int res : resolutions) {
+        const Surface s = std::string(name) == "sphere" ? sphere(res) : torus(res);
+        const int repeats = std::max(1, (quick ? 20000 : 200000) / static_cast<int>(s.mesh.positions.size()));
+        mesh::VertexCurvature c;
+        const auto start = Clock::now();
+        for (int r = 0; r < repeats; ++r) c = fit ? mesh::estimateCurvatureByFit(s.mesh) : mesh::estimateCurvature(s.mesh);
+        const double ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count() / repeats;
+        std::vector<double> e;
+        for (std::size_t i = 0; i < s.mean.size(); ++i) e.push_back(std::abs(std::abs(c.mean[i]) - s.mean[i]) / s.mean[i]);
+        std::sort(e.begin(), e.end());
+        const double median = e[e.size() / 2], p95 = e[e.size() * 95 / 100];
+        csv << name << "," << estimator << "," << res << "," << s.mesh.positions.size() << "," << ms << "," << median
+            << "," << p95 << "\n";
+        points.add("object-space curvature", "95th-percentile relative error of |H|",
+                   std::string(estimator) + ", " + name, true, ms, p95);
+        char line[256];
+        std::snprintf(line, sizeof line, "| %s | %s | %d | %zu | %.3f | %.2e | %.2e |\n", name, estimator, res,
+                      s.mesh.positions.size(), ms, median, p95);
+        md << line;
+        std::fputs(line, stderr);
+      }
     }
   }
   return 0;

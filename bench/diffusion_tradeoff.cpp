@@ -5,7 +5,8 @@
 //     and GPU times;
 //  3. the full frame at 1024² with n = 5, d = 8 against the same frame without diffusion,
 //     interleaved in one run (target ≤ 1.5x).
-// Writes diffusion_tradeoff.md and .csv.   bench_diffusion_tradeoff [--out DIR]
+// Writes diffusion_tradeoff.md, .csv and _points.csv (for shanshui-bench's plots). --quick:
+// quarter sizes and short sweeps.   bench_diffusion_tradeoff [--out DIR] [--quick]
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -21,6 +22,7 @@
 #include "shanshui/render/ink_renderer.h"
 #include "shanshui/scene/scene.h"
 #include "shanshui/scene/scene_assets.h"
+#include "tradeoff_points.h"
 
 namespace {
 
@@ -82,9 +84,20 @@ double gpuMs(render::InkDiffusionPass& pass, const Input& in, const ink::Diffusi
 
 int main(int argc, char** argv) {
   std::filesystem::path out = ".";
-  if (argc == 3 && std::string(argv[1]) == "--out") out = argv[2];
+  bool quick = false;
+  for (int i = 1; i < argc; ++i) {
+    const std::string flag = argv[i];
+    if (flag == "--out" && i + 1 < argc) out = argv[++i];
+    else if (flag == "--quick") quick = true;
+    else {
+      std::fprintf(stderr, "usage: bench_diffusion_tradeoff [--out DIR] [--quick]\n");
+      return 2;
+    }
+  }
+  const int mainSize = quick ? 128 : 512, boundarySize = quick ? 64 : 256, frameSize = quick ? 256 : 1024;
   std::filesystem::create_directories(out);
   std::ofstream csv(out / "diffusion_tradeoff.csv"), md(out / "diffusion_tradeoff.md");
+  bench::TradeoffPoints points(out / "diffusion_tradeoff_points.csv");
   const auto context = render::GlContext::create({.kind = render::ContextKind::Headless});
   md << "# Ink diffusion: error against run time, and cost\n\nDevice: " << context->description()
      << "\n\nInput: the sample scene rendered without diffusion (lines, shading, wrinkles).\n\n";
@@ -97,16 +110,16 @@ int main(int argc, char** argv) {
 
   // 1. Main region: distance transform against the iteration, 512².
   {
-    const Input input = renderInput(sc, objects, 512, paper);
+    const Input input = renderInput(sc, objects, mainSize, paper);
     const ink::InkField& in = input.ink;
     render::InkDiffusionPass pass;
-    md << "## Main region: distance transform against the ring-by-ring iteration, 512²\n\n"
+    md << "## Main region: distance transform against the ring-by-ring iteration, " << mainSize << "²\n\n"
        << "CPU: the two reference implementations; GPU: the compute pass with n = 0 (the transform alone, "
           "median of 5), its ink against the CPU iteration.\n\n"
        << "| d | CPU iteration ms | CPU distance transform ms | same rings | max ink difference | GPU ms | GPU max "
           "difference to the iteration |\n|---|---|---|---|---|---|---|\n";
     csv << "section,d,iteration_ms,distance_ms,same_rings,max_difference,gpu_ms,gpu_max_difference\n";
-    for (int d : {1, 4, 8, 16, 64, 256}) {
+    for (int d : quick ? std::vector<int>{1, 8, 64} : std::vector<int>{1, 4, 8, 16, 64, 256}) {
       ink::DiffusionOptions o;
       o.ring_steps = d;
       std::vector<int> ra, rb;
@@ -128,23 +141,28 @@ int main(int argc, char** argv) {
       std::fputs(line, stderr);
       csv << "main," << d << "," << ta << "," << tb << "," << (ra == rb) << "," << diff.max << "," << gpu_ms << "," << gdiff.max
           << "\n";
+      const char* plot = "diffusion main region against the ring iteration";
+      const char* y = "max |ink difference| to the ring-by-ring iteration";
+      points.add(plot, y, "ring iteration (CPU, the reference)", true, ta, 0.0);
+      points.add(plot, y, "distance transform (CPU)", true, tb, diff.max);
+      points.add(plot, y, "distance transform (GPU)", true, gpu_ms, gdiff.max);
     }
   }
 
   // 2. Boundary diffusion against n = 1000, 256².
   {
-    const Input input = renderInput(sc, objects, 256, paper);
+    const Input input = renderInput(sc, objects, boundarySize, paper);
     const ink::InkField& in = input.ink;
     render::InkDiffusionPass pass;
     ink::DiffusionOptions o;
     o.iterations = 1000;
     const ink::InkField reference = ink::diffuseInk(in, {}, o);
-    md << "\n## Boundary diffusion: n against a converged reference (n = 1000, CPU double), 256²\n\n"
+    md << "\n## Boundary diffusion: n against a converged reference (n = 1000, CPU double), " << boundarySize << "²\n\n"
        << "I_p is spread over the n iterations, so the result converges as n grows. Mean and max |ink "
           "difference| per pixel; CPU = the reference implementation, GPU = the compute pass (median of 5).\n\n"
        << "| n | mean error | max error | CPU ms | GPU ms |\n|---|---|---|---|---|\n";
     csv << "section,n,mean_error,max_error,cpu_ms,gpu_ms\n";
-    for (int n : {1, 2, 5, 10, 20, 50, 100}) {
+    for (int n : quick ? std::vector<int>{1, 5, 20} : std::vector<int>{1, 2, 5, 10, 20, 50, 100}) {
       o.iterations = n;
       auto t = Clock::now();
       const ink::InkField cpu = ink::diffuseInk(in, {}, o);
@@ -156,31 +174,35 @@ int main(int argc, char** argv) {
       md << line;
       std::fputs(line, stderr);
       csv << "boundary," << n << "," << diff.mean << "," << diff.max << "," << tc << "," << gpu_ms << "\n";
+      const char* plot = "boundary diffusion against n = 1000";
+      const char* y = "mean |ink difference| to the converged result";
+      points.add(plot, y, "CPU reference", true, tc, diff.mean);
+      points.add(plot, y, "GPU pass", true, gpu_ms, diff.mean);
     }
   }
 
   // 3. The full frame with and without diffusion, interleaved.
   {
     scene::Scene with = sc, without = sc;
-    with.output.width = with.output.height = without.output.width = without.output.height = 1024;
+    with.output.width = with.output.height = without.output.width = without.output.height = frameSize;
     with.diffusion.ring_steps = 8;
     with.diffusion.iterations = 5;
     render::InkRenderer a(without, objects), b(with, objects);
     const render::OrbitCamera cam = render::sceneCamera(with, a.worldBounds(), 1.0, render::frameKey(with, 0, 1, 0.0));
     std::vector<double> ta, tb, diffusion_ms;
-    for (int rep = 0; rep < 11; ++rep) {
+    for (int rep = 0; rep < (quick ? 3 : 11); ++rep) {
       render::OrbitCamera c = cam;
       c.azimuth_deg += 0.01 * rep;
       render::FrameStats st;
-      a.render(c, 1024, 1024, &st);
+      a.render(c, frameSize, frameSize, &st);
       ta.push_back(st.frame_ms);
-      b.render(c, 1024, 1024, &st);
+      b.render(c, frameSize, frameSize, &st);
       tb.push_back(st.frame_ms);
       for (const auto& p : st.passes)
         if (p.name == "diffusion") diffusion_ms.push_back(p.gpu_ms);
     }
     const double x = median(ta), y = median(tb);
-    md << "\n## Frame cost at 1024², sample scene, median of 11 interleaved frames\n\n"
+    md << "\n## Frame cost at " << frameSize << "², sample scene, median of " << (quick ? 3 : 11) << " interleaved frames\n\n"
        << "| frame | ms | ratio |\n|---|---|---|\n";
     char line[512];
     std::snprintf(line, sizeof line, "| without diffusion | %.1f | 1.00 |\n| with diffusion, n = 5, d = 8 | %.1f | %.2f |\n\n"

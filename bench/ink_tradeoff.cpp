@@ -6,8 +6,9 @@
 //  2. the Gaussian CDF of the smoothed tone steps: the GLSL formula and a cheaper candidate
 //     against std::erf;
 //  3. lines + shading of the sample scene against a Lambert render of the same mesh.
-// Writes ink_tradeoff.md and ink_tradeoff.csv.
-//   bench_ink_tradeoff [--out DIR] [--size N]
+// Writes ink_tradeoff.md, ink_tradeoff.csv and ink_tradeoff_points.csv (for shanshui-bench's
+// plots). --quick: one mesh resolution, 256² frames.
+//   bench_ink_tradeoff [--out DIR] [--size N] [--quick]
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -32,6 +33,7 @@
 #include "shanshui/scene/scene.h"
 #include "shanshui/scene/scene_assets.h"
 #include "test_meshes.h"  // tests/support: the analytic surfaces the tests use
+#include "tradeoff_points.h"
 
 namespace {
 
@@ -140,12 +142,22 @@ double cdfExact(double x) { return 0.5 * std::erfc(-x / std::numbers::sqrt2); }
 int main(int argc, char** argv) {
   std::filesystem::path out = ".";
   int size = 1024;
-  for (int i = 1; i + 1 < argc; i += 2) {
-    if (std::string(argv[i]) == "--out") out = argv[i + 1];
-    if (std::string(argv[i]) == "--size") size = std::stoi(argv[i + 1]);
+  bool quick = false;
+  for (int i = 1; i < argc; ++i) {
+    const std::string flag = argv[i];
+    if (flag == "--out" && i + 1 < argc) out = argv[++i];
+    else if (flag == "--size" && i + 1 < argc) size = std::stoi(argv[++i]);
+    else if (flag == "--quick") {
+      quick = true;
+      size = 256;
+    } else {
+      std::fprintf(stderr, "usage: bench_ink_tradeoff [--out DIR] [--size N] [--quick]\n");
+      return 2;
+    }
   }
   std::filesystem::create_directories(out);
   std::ofstream csv(out / "ink_tradeoff.csv"), md(out / "ink_tradeoff.md");
+  bench::TradeoffPoints points(out / "ink_tradeoff_points.csv");
   const auto context = render::GlContext::create({.kind = render::ContextKind::Headless});
   md << "# Ink renderer: error against run time, and cost\n\nDevice: " << context->description() << "\n\n";
 
@@ -156,8 +168,7 @@ int main(int argc, char** argv) {
      << "| surface | resolution | vertices | estimator | median error | 90th pct | precompute ms | gbuffer ms |\n"
      << "|---|---|---|---|---|---|---|---|\n";
   csv << "section,surface,resolution,vertices,estimator,median_error,p90_error,precompute_ms,gbuffer_ms\n";
-  const bool quick = std::getenv("SHANSHUI_BENCH_QUICK") != nullptr;
-  for (int res : quick ? std::vector<int>{} : std::vector<int>{16, 64, 256}) {
+  for (int res : quick ? std::vector<int>{16} : std::vector<int>{16, 64, 256}) {
     std::vector<Surface> surfaces;
     surfaces.push_back(sphere(res, false));
     surfaces.push_back(sphere(res, true));
@@ -165,7 +176,7 @@ int main(int argc, char** argv) {
     surfaces.push_back(paraboloid(2 * res));
     for (const Surface& s : surfaces) {
       for (const char* source : {"quadric", "cotangent", "screen"}) {
-        const CurvatureRow row = measureCurvature(s, source, 512);
+        const CurvatureRow row = measureCurvature(s, source, quick ? 128 : 512);
         char line[512];
         std::snprintf(line, sizeof line, "| %s | %d | %zu | %s | %.1e | %.1e | %.1f | %.2f |\n", s.name.c_str(), res,
                       s.mesh.positions.size(), source, row.median, row.p90, row.precompute_ms, row.gbuffer_ms);
@@ -173,6 +184,8 @@ int main(int argc, char** argv) {
         std::fputs(line, stderr);
         csv << "curvature," << s.name << "," << res << "," << s.mesh.positions.size() << "," << source << ","
             << row.median << "," << row.p90 << "," << row.precompute_ms << "," << row.gbuffer_ms << "\n";
+        points.add("curvature per pixel", "90th-percentile relative error of max(|k1|, |k2|)",
+                   std::string(source) + ", " + s.name, true, row.precompute_ms + row.gbuffer_ms, row.p90);
       }
     }
   }
@@ -234,7 +247,7 @@ int main(int argc, char** argv) {
   };
   std::vector<double> t_lambert, t_ink, t_plain;
   std::map<std::string, std::vector<double>> pass_ms;
-  for (int rep = 0; rep < 15; ++rep) {
+  for (int rep = 0; rep < (quick ? 3 : 15); ++rep) {
     render::OrbitCamera c = cam;
     c.azimuth_deg += 0.01 * rep;
     t_lambert.push_back(lambertFrame(c));

@@ -1,8 +1,10 @@
 // Error against run time for parameterization (SPEC.md sections 5 and 12): distortion and
 // seconds per method on the real DEMs and CGAL's test meshes, plus `auto` end to end
-// (read OBJ, repair, parameterize, write OBJ) on a 230k-vertex mountain. Writes
-// param_tradeoff.csv and param_tradeoff.md.
-//   bench_param_tradeoff [--out DIR] [--max-vertices N]
+// (read OBJ, repair, parameterize, write OBJ) on a 230k-vertex mountain. The input with a
+// known answer is a developable ridge (z depends on x only): it unrolls isometrically, so
+// every method's L2 stretch should be 1. Writes param_tradeoff.csv, .md and _points.csv
+// (for shanshui-bench's plots). --quick: small meshes, no CGAL meshes, no 230k run.
+//   bench_param_tradeoff [--out DIR] [--max-vertices N] [--quick]
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -17,6 +19,7 @@
 #include "shanshui/param/parameterize.h"
 #include "shanshui/terrain/heightfield.h"
 #include "shanshui/terrain/terrain_mesh.h"
+#include "tradeoff_points.h"
 
 namespace {
 
@@ -37,28 +40,54 @@ mesh::Mesh demMesh(const fs::path& f, int maxVertices) {
   return terrain::heightfieldToMesh(terrain::loadHeightfield(f, ho), mo);
 }
 
+const char* const kDevelopable = "developable ridge";
+
+// z = f(x) only: a ruled surface with zero Gaussian curvature, so an isometric map (L2
+// stretch exactly 1) exists — the unrolled cross-section.
+mesh::Mesh developableRidge(int n) {
+  mesh::Mesh m;
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      const double x = i * 10.0, y = j * 10.0;
+      m.positions.emplace_back(x, y, 250.0 * std::sin(x / 150.0) + 120.0 * std::exp(-(x - 600) * (x - 600) / 20000.0));
+    }
+  for (int j = 0; j + 1 < n; ++j)
+    for (int i = 0; i + 1 < n; ++i) {
+      const auto a = static_cast<unsigned>(j * n + i), w = static_cast<unsigned>(n);
+      m.triangles.emplace_back(a, a + 1, a + w + 1);
+      m.triangles.emplace_back(a, a + w + 1, a + w);
+    }
+  return m;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   fs::path out = ".";
   int maxVertices = 30000;
-  for (int i = 1; i + 1 < argc; i += 2) {
+  bool quick = false;
+  for (int i = 1; i < argc; ++i) {
     const std::string flag = argv[i];
-    if (flag == "--out") out = argv[i + 1];
-    else if (flag == "--max-vertices") maxVertices = std::stoi(argv[i + 1]);
-    else {
-      std::fprintf(stderr, "usage: bench_param_tradeoff [--out DIR] [--max-vertices N]\n");
+    if (flag == "--out" && i + 1 < argc) out = argv[++i];
+    else if (flag == "--max-vertices" && i + 1 < argc) maxVertices = std::stoi(argv[++i]);
+    else if (flag == "--quick") {
+      quick = true;
+      maxVertices = 3000;
+    } else {
+      std::fprintf(stderr, "usage: bench_param_tradeoff [--out DIR] [--max-vertices N] [--quick]\n");
       return 2;
     }
   }
   fs::create_directories(out);
   std::vector<Input> inputs;
+  inputs.push_back({kDevelopable, developableRidge(quick ? 40 : 120)});
   const fs::path source = SHANSHUI_SOURCE_DIR, data = SHANSHUI_DATA_DIR;
   for (const fs::path& f : {source / "samples/terrain/mount_st_helens.dem", data / "terrain/jacksboro_fault_dem_u16.png",
                             data / "terrain/bc_coast_topobathy.asc"}) {
     if (fs::exists(f)) inputs.push_back({f.filename().string(), demMesh(f, maxVertices)});
   }
   for (const char* name : {"three_peaks", "holes", "lion", "blobby_3cc"}) {
+    if (quick) break;
     const fs::path f = fs::path(SHANSHUI_TEST_MESH_DIR) / (std::string(name) + ".off");
     if (!fs::exists(f)) continue;
     mesh::RepairOptions ro;
@@ -88,6 +117,7 @@ int main(int argc, char** argv) {
      << " vertices). L2/Linf: Sander stretch, angle: mean σ1/σ2, area: mean |log σ1σ2| (all area-weighted; "
         "1, 1, 1, 0 ideal). Invalid = flipped or degenerate UV faces.\n\n"
      << "| input | vertices | method | seconds | L2 | Linf | angle | area | valid |\n|---|---|---|---|---|---|---|---|---|\n";
+  bench::TradeoffPoints points(out / "param_tradeoff_points.csv");
   char line[512];
   for (const Input& in : inputs) {
     for (const Config& c : configs) {
@@ -114,11 +144,14 @@ int main(int argc, char** argv) {
                     d.area_distortion, note.empty() && d.valid() ? "yes" : "no");
       md << line;
       std::fprintf(stderr, "%s", line);
+      if (in.name == kDevelopable && note.empty())
+        points.add("parameterization of a developable ridge", "L2 stretch - 1 (0 = isometric)", label, false,
+                   1000.0 * seconds, d.l2_stretch - 1.0);
     }
   }
 
   // auto end to end on a 230k-vertex mountain (480 x 480 grid, 30 m cells).
-  {
+  if (!quick) {
     mesh::Mesh m;
     const int n = 480;
     for (int j = 0; j < n; ++j)

@@ -1,8 +1,9 @@
 // Error against run time for image quilting (SPEC.md sections 3 and 12): every sample
 // texture, each search mode and seam mode; the search error is the chosen block's overlap
 // error relative to the exhaustive search's minimum. Writes quilt_tradeoff.csv (one row
-// per texture and configuration) and quilt_tradeoff.md (means over textures).
-//   bench_quilt_tradeoff [--out DIR] [--size N] [--block B]
+// per texture and configuration), quilt_tradeoff.md (means over textures) and
+// quilt_tradeoff_points.csv (for shanshui-bench's plots). --quick: three textures, 128².
+//   bench_quilt_tradeoff [--out DIR] [--size N] [--block B] [--quick]
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -14,6 +15,7 @@
 #include "shanshui/image/image_io.h"
 #include "shanshui/texsynth/quilt_metrics.h"
 #include "shanshui/texsynth/quilting.h"
+#include "tradeoff_points.h"
 
 namespace {
 
@@ -36,13 +38,17 @@ struct Row {
 int main(int argc, char** argv) {
   fs::path out = ".";
   int size = 256, block = 32;
-  for (int i = 1; i + 1 < argc; i += 2) {
+  bool quick = false;
+  for (int i = 1; i < argc; ++i) {
     const std::string flag = argv[i];
-    if (flag == "--out") out = argv[i + 1];
-    else if (flag == "--size") size = std::stoi(argv[i + 1]);
-    else if (flag == "--block") block = std::stoi(argv[i + 1]);
-    else {
-      std::fprintf(stderr, "usage: bench_quilt_tradeoff [--out DIR] [--size N] [--block B]\n");
+    if (flag == "--out" && i + 1 < argc) out = argv[++i];
+    else if (flag == "--size" && i + 1 < argc) size = std::stoi(argv[++i]);
+    else if (flag == "--block" && i + 1 < argc) block = std::stoi(argv[++i]);
+    else if (flag == "--quick") {
+      quick = true;
+      size = 128;
+    } else {
+      std::fprintf(stderr, "usage: bench_quilt_tradeoff [--out DIR] [--size N] [--block B] [--quick]\n");
       return 2;
     }
   }
@@ -54,6 +60,7 @@ int main(int argc, char** argv) {
   std::vector<fs::path> files;
   for (const auto& e : fs::directory_iterator(dir)) files.push_back(e.path());
   std::sort(files.begin(), files.end());
+  if (quick && files.size() > 3) files.resize(3);
   fs::create_directories(out);
 
   using texsynth::SearchMode;
@@ -119,6 +126,14 @@ int main(int argc, char** argv) {
                   mean(v, &Row::overlapError), mean(v, &Row::seamError), mean(v, &Row::coherence),
                   mean(v, &Row::verbatim), mean(v, &Row::coverage), mean(v, &Row::wrapError));
     md << line;
+  }
+  bench::TradeoffPoints points(out / "quilt_tradeoff_points.csv");
+  for (const Config& c : configs) {
+    const auto& v = rows[c.name];
+    points.add("quilting: overlap error", "overlap error per pixel (mean over textures)", c.name, false,
+               1000.0 * mean(v, &Row::seconds), mean(v, &Row::overlapError));
+    points.add("quilting: seam error", "seam error per edge (mean over textures)", c.name, false,
+               1000.0 * mean(v, &Row::seconds), mean(v, &Row::seamError));
   }
   std::fprintf(stderr, "wrote %s and %s\n", (out / "quilt_tradeoff.csv").c_str(), (out / "quilt_tradeoff.md").c_str());
   return 0;

@@ -16,6 +16,7 @@
 #include <nlohmann/json.hpp>
 
 #include "shanshui/core/atomic_output.h"
+#include "subprocess.h"
 #include "tool_main.h"
 
 namespace {
@@ -42,12 +43,6 @@ std::string hex(std::uint64_t v) {
   char buf[17];
   std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(v));
   return buf;
-}
-
-std::string quote(const std::string& s) {
-  std::string q = "'";
-  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return q + "'";
 }
 
 struct Stage {
@@ -89,23 +84,16 @@ class Runner {
         return r;
       }
     }
-    std::string command = quote(tool.string());
-    for (const std::string& a : s.args) command += " " + quote(a);
     std::printf("%-8s running %s\n", s.name.c_str(), s.tool.c_str());
     std::fflush(stdout);
     const auto start = std::chrono::steady_clock::now();
-    const int status = std::system((command + " > " + quote(log.string()) + " 2>&1").c_str());
+    const shanshui::tools::ProgramRun run = shanshui::tools::runProgram(tool, s.args, log);
     r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    const std::string text = readFile(log);
-    std::string last;
-    std::istringstream lines(text);
-    for (std::string line; std::getline(lines, line);)
-      if (!line.empty()) last = line;
-    if (status != 0 || !WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+    if (!run.ok) {
       fs::remove(cache);
-      throw shanshui::makeError("stage ", s.name, " failed: ", last, " (log: ", log.string(), ")");
+      throw shanshui::makeError("stage ", s.name, " failed: ", run.last_line, " (log: ", log.string(), ")");
     }
-    r.summary = last;
+    r.summary = run.last_line;
     shanshui::writeAtomically(cache, [&](const fs::path& tmp) {
       std::ofstream(tmp) << json{{"key", hex(key)}, {"seconds", r.seconds}, {"summary", r.summary}}.dump(2) << "\n";
     });
