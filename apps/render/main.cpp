@@ -61,7 +61,7 @@ int main(int argc, char** argv) {
   app.add_option("--set", sets, "override a scene key, dotted path = JSON value (repeatable)");
   app.add_option("--stats", stats_path, "write JSON statistics: passes built, per frame time and pass GPU times");
   app.add_flag("-v,--verbose", verbose, "print the GL platform and load times");
-  return tools::runTool(app, argc, argv, [&] {
+  return tools::runBatchableTool(app, argc, argv, [&] {
     if (frames < 1 || frames > 100000) throw makeError("--frames: ", frames, " is out of range; expected [1, 100000]");
     if (!std::isfinite(orbit)) throw makeError("--orbit: must be finite");
     if (!(fps > 0 && fps <= 1e4)) throw makeError("--fps: ", fps, " is out of range; expected (0, 10000]");

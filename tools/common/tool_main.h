@@ -8,17 +8,21 @@
 #include <exception>
 #include <functional>
 
+#include "batch.h"
 #include "shanshui/core/error.h"
 
 namespace shanshui::tools {
 
 //! Runs `body` after parsing; returns the process exit code (0 ok, 1 error, CLI11's code
-//! for usage errors, 0 for --help).
+//! for usage errors, 0 for --help). Every error is one line on stderr.
 inline int runTool(CLI::App& app, int argc, char** argv, const std::function<void()>& body) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    if (e.get_exit_code() == 0) return app.exit(e);  // --help
+    // A usage error is one line too, like every other error.
+    std::fprintf(stderr, "%s: error: %s (see --help)\n", app.get_name().c_str(), e.what());
+    return e.get_exit_code();
   }
   try {
     body();
@@ -27,6 +31,23 @@ inline int runTool(CLI::App& app, int argc, char** argv, const std::function<voi
     std::fprintf(stderr, "%s: error: %s\n", app.get_name().c_str(), e.what());
     return 1;
   }
+}
+
+//! runTool for the asset tools, which also run in batches: `--manifest FILE` runs the
+//! program once per line of FILE (see batch.h); --help describes it.
+inline int runBatchableTool(CLI::App& app, int argc, char** argv, const std::function<void()>& body) {
+  std::string manifest_help;
+  app.add_option("--manifest", manifest_help,
+                 "batch: run once per line of FILE ('-' reads stdin), each line the arguments of one item; the other "
+                 "arguments given here apply to every item")
+      ->option_text("FILE");
+  app.footer(app.get_footer() +
+             "\n\nBatch: --manifest FILE runs one item per line (the arguments after the program's name, shell "
+             "quoting, # comments). Failed items are listed at the end and the rest still run; exit code 1 if any "
+             "failed.\n  " +
+             app.get_name() + " --manifest items.txt");
+  if (const std::optional<int> code = runManifest(app, argc, argv)) return *code;
+  return runTool(app, argc, argv, body);
 }
 
 }  // namespace shanshui::tools

@@ -23,7 +23,7 @@ int main(int argc, char** argv) {
   app.add_option("--to", to, "output range C:D in [0,1]")->default_val("0:1");
   app.add_flag("--color,--colour", colour, "map every colour channel instead of converting to grey");
   app.add_option("--depth", depth, "output sample depth: 8, 16 or float (default: the input's)");
-  return tools::runTool(app, argc, argv, [&] {
+  return tools::runBatchableTool(app, argc, argv, [&] {
     texsynth::EnhanceOptions options;
     if (!range.empty()) {
       const auto [a, b] = parsePair(range, "--range");

@@ -49,7 +49,7 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"keep-largest", "fail"}))->default_val("keep-largest");
   app.add_option("--report", reportPath, "write distortion, timings and repairs as JSON");
   app.add_option("--checker", checkerPath, "render a checkerboard-textured view of the result (PNG)");
-  return tools::runTool(app, argc, argv, [&] {
+  return tools::runBatchableTool(app, argc, argv, [&] {
     param::ParamOptions options;
     options.method = param::parseMethod(methodName);
     options.border = param::parseBorder(borderName);

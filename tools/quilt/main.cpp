@@ -76,7 +76,7 @@ int main(int argc, char** argv) {
   app.add_option("--threads", options.threads, "worker threads (0 = all cores); the output does not depend on it")
       ->default_val(0);
   app.add_option("--report", reportPath, "write timings and quality metrics as JSON");
-  return tools::runTool(app, argc, argv, [&] {
+  return tools::runBatchableTool(app, argc, argv, [&] {
     const Size2 outSize = parseSize(size, "--size");
     options.width = outSize.width;
     options.height = outSize.height;

@@ -25,7 +25,7 @@ int main(int argc, char** argv) {
   app.add_flag("--no-fill-holes", noFill, "leave holes open");
   app.add_option("--max-hole-edges", options.max_hole_edges, "larger holes stay open")->default_val(1000);
   app.add_option("--report", reportPath, "write what was changed as JSON");
-  return tools::runTool(app, argc, argv, [&] {
+  return tools::runBatchableTool(app, argc, argv, [&] {
     options.fill_holes = !noFill;
     options.components = components == "fail"       ? mesh::ComponentPolicy::Fail
                          : components == "keep-all" ? mesh::ComponentPolicy::KeepAll

@@ -22,7 +22,7 @@ int main(int argc, char** argv) {
   app.add_option("--step", meshOptions.step, "keep every N-th sample")->default_val(1);
   app.add_option("--max-vertices", meshOptions.max_vertices,
                  "raise the step until the grid has at most K vertices (0: no limit)")->default_val(0);
-  return tools::runTool(app, argc, argv, [&] {
+  return tools::runBatchableTool(app, argc, argv, [&] {
     if (field.cell_size < 0 || (app.count("--cell-size") && field.cell_size == 0)) {
       throw makeError("--cell-size: ", field.cell_size, " is out of range; expected (0, 1e6] metres");
     }
