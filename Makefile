@@ -1,12 +1,13 @@
 # shanshui: the two commands of the README, each doing its own set-up.
 #   make demo   the sample scene rendered headless (still + camera path), results in out/
 #   make test   build and run the whole test suite (CTest)
+#   make bench  error against run time for every stage, tables and plots in out/bench/
 BUILD ?= build
 BUILD_TYPE ?= Release
 JOBS ?= $(shell nproc)
 CMAKE_FLAGS ?=
 
-.PHONY: all setup configure build test test-asan demo format clean
+.PHONY: all setup configure build test test-asan demo bench format clean
 
 all: build
 
@@ -33,9 +34,15 @@ demo: build
 	@echo
 	@echo "demo results in $(CURDIR)/out/ (a second run reuses every stage whose inputs are unchanged):"
 	@echo "  out/report.md            pictures, per-stage times and quality numbers, the stability table"
+	@echo "  out/stability/           the stability suite's table of cases and outcomes (.md, .csv)"
 	@echo "  out/mountain.png         the sample scene painted from the chain's own assets"
 	@echo "  out/orbit_*.png          an orbit around it"
 	@echo "  out/assets/              enhanced sample, quilted wrinkle texture, meshes, UVs, reports"
+
+# Error against run time for every approximate stage: tables, plots and an index in out/bench/.
+bench: build
+	$(BUILD)/bin/shanshui-bench --stage all --out out/bench
+	@echo "bench results: $(CURDIR)/out/bench/README.md"
 
 format:
 	find apps libs tools tests bench -name '*.cpp' -o -name '*.h' | xargs clang-format -i

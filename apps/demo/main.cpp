@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <map>
 #include <sstream>
 
@@ -64,7 +65,8 @@ class Runner {
     fs::create_directories(out_ / "logs");
   }
 
-  Result run(const Stage& s) {
+  //! Runs the stage unless it is up to date; `prepare` runs just before the program does.
+  Result run(const Stage& s, const std::function<void()>& prepare = {}) {
     Result r;
     const fs::path tool = bin_ / s.tool;
     std::uint64_t key = fnv1a(readFile(tool));
@@ -84,6 +86,7 @@ class Runner {
         return r;
       }
     }
+    if (prepare) prepare();
     std::printf("%-8s running %s\n", s.name.c_str(), s.tool.c_str());
     std::fflush(stdout);
     const auto start = std::chrono::steady_clock::now();
@@ -200,6 +203,27 @@ int main(int argc, char** argv) {
     results.push_back(runner.run(orbit));
     stages.push_back(orbit);
 
+    // The stability suite (built with the tests), its table for the report; keyed by the
+    // suite and every program it runs. --quick runs only its fast library cases.
+    const fs::path suite = bin / "test_stability", stability = o / "stability";
+    const bool have_suite = fs::exists(suite);
+    if (have_suite) {
+      ::setenv("SHANSHUI_STABILITY_DIR", fs::absolute(stability).c_str(), 1);
+      std::vector<fs::path> programs;
+      for (const char* p : {"shanshui-terrain", "shanshui-repair", "shanshui-enhance", "shanshui-quilt", "shanshui-param",
+                            "shanshui-render"})
+        programs.push_back(bin / p);
+      Stage st{"stability", "test_stability", {"--gtest_brief=1"}, programs, {stability / "stability.md"}};
+      if (quick)
+        st.args.push_back("--gtest_filter=Stability.RepairOn*:Stability.CurvatureOn*:Stability.InkDiffusionOn*:"
+                          "Stability.NoiseOn*");
+      results.push_back(runner.run(st, [&] {
+        fs::remove_all(stability);  // the suite assembles its table from every stage file there
+        fs::create_directories(stability);
+      }));
+      stages.push_back(st);
+    }
+
     // The report: pictures, and per stage its time and its quality numbers.
     std::ostringstream md;
     md << "# shanshui demo\n\nThe whole chain on the bundled samples (`shanshui-demo`). Stages marked *reused* were "
@@ -250,14 +274,13 @@ int main(int argc, char** argv) {
       md << "![frame " << i << "](" << name << ") ";
     }
     md << "\n\n## Stability\n\n";
-    const fs::path stability = bin.parent_path() / "stability" / "stability.md";
-    if (fs::exists(stability)) {
-      std::string table = readFile(stability);
+    if (have_suite && fs::exists(stability / "stability.md")) {
+      std::string table = readFile(stability / "stability.md");
       table = table.substr(table.find('\n') + 1);  // without its title
-      md << "From the last run of the stability suite (`ctest -L stability`):\n" << table;
+      md << "The stability suite (`test_stability`, also `ctest -L stability`)" << (quick ? ", fast cases only (--quick)" : "")
+         << "; also as [CSV](stability/stability.csv).\n" << table;
     } else {
-      md << "No stability table yet: `make test` (or `ctest -L stability`) writes it to " << stability.filename().string()
-         << " in the build directory.\n";
+      md << "The stability suite is built with the tests (SHANSHUI_BUILD_TESTS=ON); this build has none, so no table.\n";
     }
     shanshui::writeAtomically(o / "report.md", [&](const fs::path& tmp) { std::ofstream(tmp) << md.str(); });
     std::printf("report: %s\n", (o / "report.md").string().c_str());

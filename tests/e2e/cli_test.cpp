@@ -311,7 +311,8 @@ TEST(Cli, DemoRunsTheChainThenReusesWhatIsUpToDate) {
   auto r = run(demo);
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const std::map<std::string, std::string> all_ran = {{"enhance", "running"}, {"quilt", "running"}, {"terrain", "running"},
-                                                      {"param", "running"},   {"still", "running"}, {"orbit", "running"}};
+                                                      {"param", "running"},   {"still", "running"}, {"orbit", "running"},
+                                                      {"stability", "running"}};
   EXPECT_EQ(demoStages(r.output), all_ran);
   for (const char* f : {"report.md", "mountain.png", "orbit_0000.png", "orbit_0001.png", "assets/wrinkle.png",
                         "assets/st_helens_uv.obj", "assets/checker.png", "assets/scan.png"}) {
@@ -321,6 +322,9 @@ TEST(Cli, DemoRunsTheChainThenReusesWhatIsUpToDate) {
   EXPECT_NE(report.find("![mountain](mountain.png)"), std::string::npos);
   EXPECT_NE(report.find("L2 stretch"), std::string::npos);
   EXPECT_EQ(report.find(dir.path().string()), std::string::npos) << "the report's links are relative";
+  // The stability table of this run (its fast cases with --quick), on a fresh machine too.
+  EXPECT_NE(report.find("| curvature | a single triangle | finite result"), std::string::npos) << report;
+  EXPECT_TRUE(std::filesystem::exists(out / "stability/stability.csv"));
 
   // Nothing changed: every stage is reused.
   r = run(demo);
@@ -335,7 +339,8 @@ TEST(Cli, DemoRunsTheChainThenReusesWhatIsUpToDate) {
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_EQ(demoStages(r.output),
             (std::map<std::string, std::string>{{"enhance", "running"}, {"quilt", "running"}, {"terrain", "reused"},
-                                                {"param", "reused"}, {"still", "running"}, {"orbit", "running"}}));
+                                                {"param", "reused"}, {"still", "running"}, {"orbit", "running"},
+                                                {"stability", "reused"}}));
 
   // A missing sample is named.
   std::filesystem::remove(samples / "terrain/mount_st_helens.dem");

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <map>
 #include <sstream>
 #include <fstream>
@@ -41,7 +42,8 @@ std::vector<Row>& table() {
   return rows;
 }
 
-// When a test process ends, its rows go to stability/<stage>.tsv in the build directory and
+// When a test process ends, its rows go to stability/<stage>.tsv in the build directory (or
+// $SHANSHUI_STABILITY_DIR) and
 // stability.md and .csv are rebuilt from every stage's file present (CTest runs each test
 // in its own process, some at once: the summary is written to a temporary name and
 // renamed, and the last process to finish leaves the whole table).
@@ -49,7 +51,9 @@ class TableWriter : public ::testing::Environment {
  public:
   void TearDown() override {
     namespace fs = std::filesystem;
-    const fs::path dir = test::binDir().parent_path() / "stability";
+    // SHANSHUI_STABILITY_DIR: where shanshui-demo wants the table for its report.
+    const char* env = std::getenv("SHANSHUI_STABILITY_DIR");
+    const fs::path dir = env && *env ? fs::path(env) : test::binDir().parent_path() / "stability";
     fs::create_directories(dir);
     std::map<std::string, std::vector<const Row*>> by_stage;
     for (const Row& r : table()) by_stage[r.stage].push_back(&r);
