@@ -462,5 +462,52 @@ TEST(Stability, NoiseOnExtremeParameters) {
   });
 }
 
+// Batches (--manifest): a manifest that is odd in itself. Each ends with one clear error
+// naming the manifest, or with every item run and the failed ones listed by line.
+TEST(Stability, BatchManifestsOnStiffInput) {
+  test::TempDir dir;
+  image::saveImage(image::Image(8, 8, 1, 0.25f), dir / "flat.png");
+  image::Image ramp(8, 8, 1, 0.0f);
+  for (int y = 0; y < 8; ++y)
+    for (int x = 0; x < 8; ++x) ramp.at(x, y, 0) = static_cast<float>(x) / 7.0f;
+  image::saveImage(ramp, dir / "ramp.png");
+  const std::string e = "cd " + quote(dir.path()) + " && " + bin("shanshui-enhance") + " --manifest ";
+  auto record = [&](const std::string& name, const std::string& manifest, const std::string& text, int want_exit,
+                    const std::string& want) {
+    SCOPED_TRACE("batch: " + name);
+    if (!text.empty() || !std::filesystem::exists(dir / manifest)) writeText(dir / manifest, text);
+    const auto r = run(e + quote(manifest));
+    EXPECT_EQ(r.exit_code, want_exit) << r.output;
+    EXPECT_NE(r.output.find(want), std::string::npos) << r.output;
+    std::string last;
+    std::istringstream in(r.output);
+    for (std::string line; std::getline(in, line);)
+      if (line.find(want) != std::string::npos) last = line;
+    for (char& c : last)
+      if (c == '|') c = ' ';
+    table().push_back({"batch", name, (r.exit_code == 0 ? "finished: " : "exit " + std::to_string(r.exit_code) + ": ") + last});
+  };
+  record("no items (comments only)", "empty.txt", "# nothing\n\n   \n", 1, "empty.txt: the manifest has no items");
+  std::filesystem::create_directories(dir / "a_dir.txt");
+  record("the manifest is a directory", "a_dir.txt", "", 1, "a_dir.txt: --manifest names a directory");
+  record("binary junk (NUL bytes)", "junk.txt", std::string("ramp.png -o j.png\n\0\x01\xff\n", 21), 1,
+         "batch of 2: 1 done, 1 failed");
+  record("CRLF line endings", "crlf.txt", "ramp.png -o c1.png\r\nramp.png -o c2.png\r\n", 0,
+         "batch of 2: 2 done, 0 failed");
+  record("a 100 000-character argument", "long.txt", "ramp.png -o " + std::string(100000, 'x') + ".png\nramp.png -o l.png\n",
+         1, "batch of 2: 1 done, 1 failed");
+  std::string many;
+  for (int i = 0; i < 40; ++i) many += (i % 2 ? "flat.png" : "ramp.png") + std::string(" -o m") + std::to_string(i) + ".png\n";
+  record("40 items, every other one a flat image (refused)", "many.txt", many, 1, "batch of 40: 20 done, 20 failed");
+  // The manifest is read whole before any item runs: item 1 replacing it with a picture
+  // does not change what item 2 is.
+  record("item 1 writes its picture over the manifest", "self.png", "ramp.png -o self.png\nramp.png -o self2.png\n", 0,
+         "batch of 2: 2 done, 0 failed");
+  EXPECT_EQ(image::loadImage(dir / "self.png").width, 8);
+  EXPECT_TRUE(std::filesystem::exists(dir / "self2.png"));
+  for (int i = 0; i < 40; i += 2) EXPECT_TRUE(std::filesystem::exists(dir / ("m" + std::to_string(i) + ".png"))) << i;
+  EXPECT_FALSE(std::filesystem::exists(dir / "m1.png")) << "a refused item wrote an output";
+}
+
 }  // namespace
 }  // namespace shanshui
