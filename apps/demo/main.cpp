@@ -207,6 +207,7 @@ int main(int argc, char** argv) {
     // suite and every program it runs. --quick runs only its fast library cases.
     const fs::path suite = bin / "test_stability", stability = o / "stability";
     const bool have_suite = fs::exists(suite);
+    std::string stability_failure;
     if (have_suite) {
       ::setenv("SHANSHUI_STABILITY_DIR", fs::absolute(stability).c_str(), 1);
       std::vector<fs::path> programs;
@@ -217,10 +218,16 @@ int main(int argc, char** argv) {
       if (quick)
         st.args.push_back("--gtest_filter=Stability.RepairOn*:Stability.CurvatureOn*:Stability.InkDiffusionOn*:"
                           "Stability.NoiseOn*");
-      results.push_back(runner.run(st, [&] {
-        fs::remove_all(stability);  // the suite assembles its table from every stage file there
-        fs::create_directories(stability);
-      }));
+      // A failing case still leaves its table: the report is written, then the demo fails.
+      try {
+        results.push_back(runner.run(st, [&] {
+          fs::remove_all(stability);  // the suite assembles its table from every stage file there
+          fs::create_directories(stability);
+        }));
+      } catch (const shanshui::Error& e) {
+        stability_failure = e.what();
+        results.push_back({false, 0.0, "FAILED: " + stability_failure});
+      }
       stages.push_back(st);
     }
 
@@ -284,5 +291,6 @@ int main(int argc, char** argv) {
     }
     shanshui::writeAtomically(o / "report.md", [&](const fs::path& tmp) { std::ofstream(tmp) << md.str(); });
     std::printf("report: %s\n", (o / "report.md").string().c_str());
+    if (!stability_failure.empty()) throw shanshui::makeError(stability_failure);
   });
 }

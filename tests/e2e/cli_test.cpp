@@ -349,5 +349,30 @@ TEST(Cli, DemoRunsTheChainThenReusesWhatIsUpToDate) {
   EXPECT_NE(r.output.find("mount_st_helens.dem: not found"), std::string::npos) << r.output;
 }
 
+// A failing stability suite still leaves the report, with its table and the failure, and
+// fails the demo. The programs are copied beside a stand-in suite that records one case and
+// fails.
+TEST(Cli, DemoWithAFailingStabilitySuiteWritesTheReportThenFails) {
+  test::TempDir dir;
+  const std::filesystem::path bin_dir = dir / "bin";
+  std::filesystem::create_directories(bin_dir);
+  for (const char* p : {"shanshui-demo", "shanshui-enhance", "shanshui-quilt", "shanshui-terrain", "shanshui-param",
+                        "shanshui-render", "shanshui-repair"})
+    std::filesystem::copy_file(test::binDir() / p, bin_dir / p);
+  std::ofstream(bin_dir / "test_stability")
+      << "#!/bin/sh\nprintf '# Stability suite\\n\\n| stage | case | outcome |\\n|---|---|---|\\n"
+         "| fake | stand-in case | NaN written |\\n' > \"$SHANSHUI_STABILITY_DIR/stability.md\"\n"
+         "echo '[  FAILED  ] 1 test'\nexit 1\n";
+  std::filesystem::permissions(bin_dir / "test_stability", std::filesystem::perms::owner_all);
+  const auto r = run(quote(bin_dir / "shanshui-demo") + " --quick --frames 1 --samples " +
+                     quote(test::sourceDir() / "samples") + " --out " + quote(dir / "out"));
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_NE(r.output.find("stage stability failed: [  FAILED  ] 1 test"), std::string::npos) << r.output;
+  const std::string report = readBytes(dir / "out/report.md");
+  EXPECT_NE(report.find("| fake | stand-in case | NaN written |"), std::string::npos) << report;
+  EXPECT_NE(report.find("FAILED"), std::string::npos) << report;
+  EXPECT_TRUE(std::filesystem::exists(dir / "out/mountain.png"));
+}
+
 }  // namespace
 }  // namespace shanshui
