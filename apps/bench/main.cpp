@@ -165,10 +165,15 @@ int main(int argc, char** argv) {
         const std::string base = program.substr(std::string("bench_").size());
         const fs::path points = dir / (base + "_points.csv");
         if (r.ok && fs::exists(points)) {
-          for (const bench::Plot& p : readPoints(points)) {
-            const std::string png = base + "_" + slug(p.title) + ".png";
-            bench::writePlot(p, dir / png);
-            r.pngs.push_back(png);
+          try {
+            for (const bench::Plot& p : readPoints(points)) {
+              const std::string png = base + "_" + slug(p.title) + ".png";
+              bench::writePlot(p, dir / png);
+              r.pngs.push_back(png);
+            }
+          } catch (const Error& e) {  // a bad points file fails this program, not the run
+            r.ok = false;
+            r.last_line = e.what();
           }
         }
         std::fprintf(stderr, "[%s] %s: %s in %.1f s%s\n", d.name.c_str(), program.c_str(), r.ok ? "done" : "FAILED",

@@ -80,6 +80,11 @@ TEST(Batch, SharedArgumentsStdinAndSyntaxErrors) {
   EXPECT_NE(r.output.find("line 2: an item cannot name another manifest"), std::string::npos) << r.output;
   EXPECT_TRUE(fs::exists(dir / "d.png"));
   EXPECT_FALSE(fs::exists(dir / "c.png"));
+  // Two manifests in one call are refused (an item run would otherwise start a batch).
+  r = run("cd " + quote(dir.path()) + " && " + bin("shanshui-render") + " --manifest items.txt --manifest=bad.txt");
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_NE(r.output.find("--manifest given 2 times"), std::string::npos) << r.output;
+  EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
   // A manifest that cannot be read, or has no items: one line naming it, nothing run.
   for (const std::string& m : {std::string("missing.txt"), std::string("empty.txt")}) {
     writeText(dir / "empty.txt", "# nothing\n\n");

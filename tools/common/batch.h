@@ -8,6 +8,7 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <unistd.h>
 
 #include <cstdio>
 #include <filesystem>
@@ -100,6 +101,7 @@ inline std::vector<ManifestItem> readManifest(const std::string& path) {
     if (item.args.empty() && item.error.empty()) continue;
     for (const std::string& a : item.args)
       if (a == "--manifest" || a.rfind("--manifest=", 0) == 0) item.error = "an item cannot name another manifest";
+    if (!item.error.empty()) item.args.clear();
     items.push_back(std::move(item));
   }
   if (items.empty()) throw makeError(path == "-" ? "stdin" : path, ": the manifest has no items");
@@ -111,23 +113,24 @@ inline std::vector<ManifestItem> readManifest(const std::string& path) {
 inline std::optional<int> runManifest(const CLI::App& app, int argc, char** argv) {
   std::string manifest;
   std::vector<std::string> shared;
-  bool found = false;
+  int given = 0;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "-h" || a == "--help") return std::nullopt;
-    if (a == "--manifest" && i + 1 < argc && !found) {
+    if (a == "--manifest" && i + 1 < argc) {
       manifest = argv[++i];
-      found = true;
-    } else if (a.rfind("--manifest=", 0) == 0 && !found) {
+      ++given;
+    } else if (a.rfind("--manifest=", 0) == 0) {
       manifest = a.substr(11);
-      found = true;
+      ++given;
     } else {
       shared.push_back(a);
     }
   }
-  if (!found) return std::nullopt;
+  if (given == 0) return std::nullopt;
   const std::string name = app.get_name();
   try {
+    if (given > 1) throw makeError("--manifest given ", given, " times; expected one manifest per call");
     const std::vector<ManifestItem> items = readManifest(manifest);
     const std::filesystem::path self = std::filesystem::canonical("/proc/self/exe");
     const std::filesystem::path log = std::filesystem::temp_directory_path() /
