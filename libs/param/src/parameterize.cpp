@@ -149,8 +149,8 @@ mesh::Mesh parameterize(const mesh::Mesh& input, const ParamOptions& opts, Param
   if (opts.authalic_iterations < 1 || opts.authalic_iterations > 1000) {
     throw makeError("authalic iterations ", opts.authalic_iterations, "; expected [1, 1000]");
   }
-  if (!(opts.auto_accept_xy_stretch >= 1.0)) {
-    throw makeError("auto xy stretch limit ", opts.auto_accept_xy_stretch, "; expected at least 1");
+  if (!(opts.auto_accept_stretch >= 1.0)) {
+    throw makeError("auto stretch limit ", opts.auto_accept_stretch, "; expected at least 1");
   }
   if (input.triangles.empty()) throw makeError(what, ": no triangles to parameterize");
   for (const glm::dvec3& p : input.positions) {
@@ -218,17 +218,19 @@ mesh::Mesh parameterize(const mesh::Mesh& input, const ParamOptions& opts, Param
     }
   } else {
     consider(Method::Xy);
-    const bool xyGood = haveBest && r.distortion.l2_stretch <= opts.auto_accept_xy_stretch;
     const std::pair<Method, int> plan[] = {{Method::Mvc, opts.auto_max_vertices_linear},
                                            {Method::Lscm, opts.auto_max_vertices_linear},
                                            {Method::Arap, opts.auto_max_vertices_arap}};
     for (const auto& [method, limit] : plan) {
-      if (xyGood || vertices > limit) {
+      // Near-isometric already (the projection on a heightfield, LSCM on a developable
+      // surface): the slower methods cannot do much better.
+      const bool good = haveBest && r.distortion.l2_stretch <= opts.auto_accept_stretch;
+      if (good || vertices > limit) {
         MethodTrial skipped;
         skipped.method = method;
         std::ostringstream why;
-        if (xyGood) {
-          why << "skipped: xy is already valid with L2 stretch <= " << opts.auto_accept_xy_stretch;
+        if (good) {
+          why << "skipped: " << methodName(r.method) << " is already valid with L2 stretch <= " << opts.auto_accept_stretch;
         } else {
           why << "skipped: " << vertices << " vertices > " << limit;
         }

@@ -149,6 +149,24 @@ TEST(Parameterize, AuthalicLeavesTheWorkingDirectoryAndStdoutAlone) {
   EXPECT_TRUE(measureDistortion(out).valid());
 }
 
+// z = f(x) only: developable, so an isometric map exists (L2 stretch 1). The projection is
+// stretched by the slopes; LSCM finds the isometry, and auto stops there instead of also
+// running ARAP (seconds on such a mesh).
+TEST(Parameterize, AutoStopsAtTheFirstNearIsometricMethod) {
+  const mesh::Mesh ridge = test::heightGrid(40, 40, 10.0, [](double x, double) { return 250.0 * std::sin(x / 150.0); });
+  ParamReport r;
+  const mesh::Mesh out = parameterize(ridge, {}, &r);
+  EXPECT_EQ(r.method, Method::Lscm);
+  EXPECT_NEAR(r.distortion.l2_stretch, 1.0, 1e-6);
+  EXPECT_TRUE(measureDistortion(out).valid());
+  ASSERT_GE(r.trials.size(), 4u);
+  EXPECT_GT(r.trials[0].distortion.l2_stretch, 1.02) << "the projection is not accepted";
+  const MethodTrial& arap = r.trials.back();
+  EXPECT_EQ(arap.method, Method::Arap);
+  EXPECT_FALSE(arap.ran);
+  EXPECT_NE(arap.note.find("lscm is already valid"), std::string::npos) << arap.note;
+}
+
 TEST(Parameterize, AutoOnEveryRealDemIsNearIsometricWithoutFlips) {
   const std::filesystem::path dems[] = {test::sourceDir() / "samples/terrain/mount_st_helens.dem",
                                         test::sharedData() / "terrain/jacksboro_fault_dem_u16.png",

@@ -35,9 +35,9 @@ struct ParamOptions {
   //! on a 230k-vertex grid (SPEC.md section 5), the linear solvers a few seconds.
   int auto_max_vertices_arap = 30000;
   int auto_max_vertices_linear = 120000;
-  //! Auto: accept the planar projection at once when it is valid with L2 stretch at or
-  //! below this, [1, inf).
-  double auto_accept_xy_stretch = 1.02;
+  //! Auto: stop at the first method (planar projection first) whose result is valid with
+  //! L2 stretch at or below this; the slower ones are skipped. [1, inf).
+  double auto_accept_stretch = 1.02;
   int authalic_iterations = 15;  //!< [1, 1000]
 };
 
