@@ -113,6 +113,7 @@ struct Ran {
   std::string stage, program;
   double seconds = 0;
   bool ok = false;
+  bool earlier = false;  //!< not run by this call: its results were already in --out
   std::string last_line;
   std::vector<std::string> pngs;
 };
@@ -142,10 +143,38 @@ int main(int argc, char** argv) {
     fs::create_directories(logs);
     const fs::path bin = fs::canonical("/proc/self/exe").parent_path();
     const bool all = std::find(stages.begin(), stages.end(), "all") != stages.end();
+    // One PNG per plot of a program's points file.
+    auto plot = [&](Ran& r) {
+      const std::string base = r.program.substr(std::string("bench_").size());
+      const fs::path points = dir / (base + "_points.csv");
+      if (!fs::exists(points)) return;
+      try {
+        for (const bench::Plot& p : readPoints(points)) {
+          const std::string png = base + "_" + slug(p.title) + ".png";
+          bench::writePlot(p, dir / png);
+          r.pngs.push_back(png);
+        }
+      } catch (const Error& e) {  // a bad points file fails this program, not the run
+        r.ok = false;
+        r.last_line = e.what();
+      }
+    };
     std::vector<Ran> ran;
     for (const StageDef& d : kStages) {
-      if (!all && std::find(stages.begin(), stages.end(), d.name) == stages.end()) continue;
+      const bool asked = all || std::find(stages.begin(), stages.end(), d.name) != stages.end();
       for (const std::string& program : d.programs) {
+        if (!asked) {
+          // Results of an earlier call in the same directory stay in the index.
+          Ran r;
+          r.stage = d.name;
+          r.program = program;
+          r.earlier = r.ok = fs::exists(dir / (program.substr(std::string("bench_").size()) + ".md"));
+          if (r.earlier) {
+            plot(r);
+            ran.push_back(std::move(r));
+          }
+          continue;
+        }
         Ran r;
         r.stage = d.name;
         r.program = program;
@@ -162,20 +191,7 @@ int main(int argc, char** argv) {
           r.last_line = run.last_line;
         }
         r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        const std::string base = program.substr(std::string("bench_").size());
-        const fs::path points = dir / (base + "_points.csv");
-        if (r.ok && fs::exists(points)) {
-          try {
-            for (const bench::Plot& p : readPoints(points)) {
-              const std::string png = base + "_" + slug(p.title) + ".png";
-              bench::writePlot(p, dir / png);
-              r.pngs.push_back(png);
-            }
-          } catch (const Error& e) {  // a bad points file fails this program, not the run
-            r.ok = false;
-            r.last_line = e.what();
-          }
-        }
+        if (r.ok) plot(r);
         std::fprintf(stderr, "[%s] %s: %s in %.1f s%s\n", d.name.c_str(), program.c_str(), r.ok ? "done" : "FAILED",
                      r.seconds, r.ok ? "" : (" — " + r.last_line).c_str());
         ran.push_back(std::move(r));
@@ -183,19 +199,21 @@ int main(int argc, char** argv) {
     }
 
     std::string index = "# shanshui-bench results\n\n";
-    index += quick ? "Quick run (--quick): small inputs and short sweeps; the numbers show the shape, not the final "
-                     "values.\n\n"
-                   : "Full run.\n\n";
+    index += std::string("The last call ran ") + (quick ? "quick sweeps (--quick: small inputs; the numbers show the shape, "
+                                                          "not the final values)"
+                                                        : "full sweeps") +
+             "; rows marked *earlier* are results an earlier call left in this directory.\n\n";
     index += "| stage | program | seconds | status | tables |\n|---|---|---|---|---|\n";
-    int failed = 0;
+    int failed = 0, now = 0;
     for (const Ran& r : ran) {
       const std::string base = r.program.substr(std::string("bench_").size());
       char seconds[32];
       std::snprintf(seconds, sizeof seconds, "%.1f", r.seconds);
-      index += "| " + r.stage + " | " + r.program + " | " + seconds + " | " +
-               (r.ok ? "ok" : "**failed**: " + r.last_line + " (logs/" + r.program + ".log)") + " | " +
+      const std::string status = r.earlier ? "*earlier*" : r.ok ? "ok" : "**failed**: " + r.last_line + " (logs/" + r.program + ".log)";
+      index += "| " + r.stage + " | " + r.program + " | " + (r.earlier ? "—" : seconds) + " | " + status + " | " +
                (r.ok ? "[" + base + ".md](" + base + ".md), [csv](" + base + ".csv)" : "") + " |\n";
-      failed += r.ok ? 0 : 1;
+      failed += r.ok || r.earlier ? 0 : 1;
+      now += r.earlier ? 0 : 1;
     }
     for (const StageDef& d : kStages) {
       std::string pictures;
@@ -206,6 +224,6 @@ int main(int argc, char** argv) {
     }
     writeAtomically(dir / "README.md", [&](const fs::path& tmp) { std::ofstream(tmp) << index; });
     std::fprintf(stderr, "wrote %s\n", (dir / "README.md").c_str());
-    if (failed) throw makeError(failed, " of ", ran.size(), " bench programs failed (see ", (dir / "README.md").string(), ")");
+    if (failed) throw makeError(failed, " of ", now, " bench programs failed (see ", (dir / "README.md").string(), ")");
   });
 }

@@ -103,6 +103,15 @@ TEST(BenchCli, QuickStagesWriteTablesPointsAndPlots) {
     ++plots;
   }
   EXPECT_EQ(plots, 4) << index;  // object-space and per-pixel curvature, two diffusion plots
+
+  // Running one stage again into the same directory keeps the others in the index.
+  const auto again = test::run(test::quote(test::binDir() / "shanshui-bench") + " --stage diffusion --quick --out " +
+                               test::quote(dir.path()));
+  ASSERT_EQ(again.exit_code, 0) << again.output;
+  const std::string index2 = readText(dir / "README.md");
+  EXPECT_NE(index2.find("| curvature | bench_curvature_tradeoff | — | *earlier* |"), std::string::npos) << index2;
+  EXPECT_NE(index2.find("| diffusion | bench_diffusion_tradeoff |"), std::string::npos) << index2;
+  EXPECT_NE(index2.find("ink_tradeoff_curvature_per_pixel.png"), std::string::npos) << index2;
 }
 
 TEST(BenchCli, AFailingProgramIsReportedAndTheOthersStillRun) {
