@@ -33,6 +33,7 @@
 #include "shanshui/scene/scene.h"
 #include "shanshui/scene/scene_assets.h"
 #include "test_meshes.h"
+#include "bench_args.h"
 #include "tradeoff_points.h"
 
 namespace {
@@ -120,19 +121,11 @@ double excessKurtosis(const image::Image& img) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::filesystem::path out = ".";
-  std::string only;  // --only coherence|impulses: one section (for a quick look; the files then hold only it)
-  bool quick = false;
-  for (int i = 1; i < argc; ++i) {
-    const std::string flag = argv[i];
-    if (flag == "--out" && i + 1 < argc) out = argv[++i];
-    else if (flag == "--only" && i + 1 < argc) only = argv[++i];
-    else if (flag == "--quick") quick = true;
-    else {
-      std::fprintf(stderr, "usage: bench_canvas_tradeoff [--out DIR] [--only coherence|impulses] [--quick]\n");
-      return 2;
-    }
-  }
+  const bench::BenchArgs args = bench::parseBenchArgs(
+      argc, argv, "bench_canvas_tradeoff [--out DIR] [--only coherence|impulses] [--quick]", {"--only"});
+  const std::filesystem::path out = args.out;
+  const bool quick = args.quick;
+  const std::string only = args.text("--only", "");  // one section (a quick look; the files then hold only it)
   std::filesystem::create_directories(out);
   std::ofstream csv(out / "canvas_tradeoff.csv"), md(out / "canvas_tradeoff.md");
   bench::TradeoffPoints points(out / "canvas_tradeoff_points.csv");
@@ -246,9 +239,10 @@ int main(int argc, char** argv) {
     // Pictures: the dolly's first, middle and last frames, centre crops: the painted frame
     // with the dynamic silk and with the static one, the dynamic canvas alone, and the
     // object-space texture alone.
-    const int cw = 224, ch = 168;
+    const int cw = std::min(224, w), ch = std::min(168, h);
     image::Image mosaic(3 * cw, 4 * ch, 3);
-    const int picks[3] = {0, 6, 12};
+    const int last = static_cast<int>(dolly_frames[0].size()) - 1;
+    const int picks[3] = {0, last / 2, last};
     for (int col = 0; col < 3; ++col) {
       const auto i = static_cast<std::size_t>(picks[col]);
       paste(mosaic, dolly_frames[0][i].picture, col * cw, 0, cw, ch, false);
@@ -281,7 +275,7 @@ int main(int argc, char** argv) {
     const render::OrbitCamera cam = render::sceneCamera(s, r.worldBounds(), 1.0, render::frameKey(s, 0, 1, 0.0));
 
     // The facing plane.
-    const int n = quick ? 128 : 512, frame = quick ? 256 : 1024;
+    const int n = 512, frame = quick ? 256 : 1024;  // the plane keeps its size: its pattern is in pixels of a 1024-tall frame
     scene::Scene ps = scene::parseScene(
         nlohmann::json{{"objects", nlohmann::json::array({{{"mesh", "memory.obj"}, {"lines", {{"enabled", false}}}, {"shading", {{"enabled", false}}}}})},
          {"camera", {{"elevation", 89.0}, {"azimuth", 0.0}, {"zoom", 1.6}}},

@@ -16,6 +16,7 @@
 
 #include "shanshui/mesh/curvature.h"
 #include "test_meshes.h"
+#include "bench_args.h"
 #include "tradeoff_points.h"  // tests/support: the analytic surfaces the tests use
 
 namespace {
@@ -45,17 +46,9 @@ Surface torus(int nv) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::filesystem::path out = ".";
-  bool quick = false;
-  for (int i = 1; i < argc; ++i) {
-    const std::string flag = argv[i];
-    if (flag == "--out" && i + 1 < argc) out = argv[++i];
-    else if (flag == "--quick") quick = true;
-    else {
-      std::fprintf(stderr, "usage: bench_curvature_tradeoff [--out DIR] [--quick]\n");
-      return 2;
-    }
-  }
+  const bench::BenchArgs args = bench::parseBenchArgs(argc, argv, "bench_curvature_tradeoff [--out DIR] [--quick]");
+  const std::filesystem::path out = args.out;
+  const bool quick = args.quick;
   std::filesystem::create_directories(out);
   std::ofstream csv(out / "curvature_tradeoff.csv"), md(out / "curvature_tradeoff.md");
   bench::TradeoffPoints points(out / "curvature_tradeoff_points.csv");

@@ -22,6 +22,7 @@
 #include "shanshui/render/ink_renderer.h"
 #include "shanshui/scene/scene.h"
 #include "shanshui/scene/scene_assets.h"
+#include "bench_args.h"
 #include "tradeoff_points.h"
 
 namespace {
@@ -83,17 +84,9 @@ double gpuMs(render::InkDiffusionPass& pass, const Input& in, const ink::Diffusi
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::filesystem::path out = ".";
-  bool quick = false;
-  for (int i = 1; i < argc; ++i) {
-    const std::string flag = argv[i];
-    if (flag == "--out" && i + 1 < argc) out = argv[++i];
-    else if (flag == "--quick") quick = true;
-    else {
-      std::fprintf(stderr, "usage: bench_diffusion_tradeoff [--out DIR] [--quick]\n");
-      return 2;
-    }
-  }
+  const bench::BenchArgs args = bench::parseBenchArgs(argc, argv, "bench_diffusion_tradeoff [--out DIR] [--quick]");
+  const std::filesystem::path out = args.out;
+  const bool quick = args.quick;
   const int mainSize = quick ? 128 : 512, boundarySize = quick ? 64 : 256, frameSize = quick ? 256 : 1024;
   std::filesystem::create_directories(out);
   std::ofstream csv(out / "diffusion_tradeoff.csv"), md(out / "diffusion_tradeoff.md");

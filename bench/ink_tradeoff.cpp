@@ -33,6 +33,7 @@
 #include "shanshui/scene/scene.h"
 #include "shanshui/scene/scene_assets.h"
 #include "test_meshes.h"  // tests/support: the analytic surfaces the tests use
+#include "bench_args.h"
 #include "tradeoff_points.h"
 
 namespace {
@@ -140,21 +141,11 @@ double cdfExact(double x) { return 0.5 * std::erfc(-x / std::numbers::sqrt2); }
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::filesystem::path out = ".";
-  int size = 1024;
-  bool quick = false;
-  for (int i = 1; i < argc; ++i) {
-    const std::string flag = argv[i];
-    if (flag == "--out" && i + 1 < argc) out = argv[++i];
-    else if (flag == "--size" && i + 1 < argc) size = std::stoi(argv[++i]);
-    else if (flag == "--quick") {
-      quick = true;
-      size = 256;
-    } else {
-      std::fprintf(stderr, "usage: bench_ink_tradeoff [--out DIR] [--size N] [--quick]\n");
-      return 2;
-    }
-  }
+  const bench::BenchArgs args =
+      bench::parseBenchArgs(argc, argv, "bench_ink_tradeoff [--out DIR] [--size N] [--quick]", {"--size"});
+  const std::filesystem::path out = args.out;
+  const bool quick = args.quick;
+  const int size = args.integer("--size", quick ? 256 : 1024);
   std::filesystem::create_directories(out);
   std::ofstream csv(out / "ink_tradeoff.csv"), md(out / "ink_tradeoff.md");
   bench::TradeoffPoints points(out / "ink_tradeoff_points.csv");

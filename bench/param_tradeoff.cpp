@@ -19,6 +19,7 @@
 #include "shanshui/param/parameterize.h"
 #include "shanshui/terrain/heightfield.h"
 #include "shanshui/terrain/terrain_mesh.h"
+#include "bench_args.h"
 #include "tradeoff_points.h"
 
 namespace {
@@ -63,21 +64,11 @@ mesh::Mesh developableRidge(int n) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  fs::path out = ".";
-  int maxVertices = 30000;
-  bool quick = false;
-  for (int i = 1; i < argc; ++i) {
-    const std::string flag = argv[i];
-    if (flag == "--out" && i + 1 < argc) out = argv[++i];
-    else if (flag == "--max-vertices" && i + 1 < argc) maxVertices = std::stoi(argv[++i]);
-    else if (flag == "--quick") {
-      quick = true;
-      maxVertices = 3000;
-    } else {
-      std::fprintf(stderr, "usage: bench_param_tradeoff [--out DIR] [--max-vertices N] [--quick]\n");
-      return 2;
-    }
-  }
+  const bench::BenchArgs args =
+      bench::parseBenchArgs(argc, argv, "bench_param_tradeoff [--out DIR] [--max-vertices N] [--quick]", {"--max-vertices"});
+  const fs::path out = args.out;
+  const bool quick = args.quick;
+  const int maxVertices = args.integer("--max-vertices", quick ? 3000 : 30000);
   fs::create_directories(out);
   std::vector<Input> inputs;
   inputs.push_back({kDevelopable, developableRidge(quick ? 40 : 120)});

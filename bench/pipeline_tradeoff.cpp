@@ -27,6 +27,7 @@
 #include "shanshui/render/ink_renderer.h"
 #include "shanshui/scene/scene.h"
 #include "shanshui/scene/scene_assets.h"
+#include "bench_args.h"
 #include "tradeoff_points.h"
 
 namespace {
@@ -94,25 +95,12 @@ scene::Scene withPreset(scene::Scene s, const Preset& p) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::filesystem::path out = ".";
-  int width = 512, height = 384;
-  bool quick = false;
-  for (int i = 1; i < argc; ++i) {
-    const std::string flag = argv[i];
-    if (flag == "--out" && i + 1 < argc) out = argv[++i];
-    else if (flag == "--size" && i + 1 < argc) {
-      const Size2 size = parseSize(argv[++i], "--size");
-      width = size.width;
-      height = size.height;
-    } else if (flag == "--quick") {
-      quick = true;
-      width = 128;
-      height = 96;
-    } else {
-      std::fprintf(stderr, "usage: bench_pipeline_tradeoff [--out DIR] [--size WxH] [--quick]\n");
-      return 2;
-    }
-  }
+  const bench::BenchArgs args =
+      bench::parseBenchArgs(argc, argv, "bench_pipeline_tradeoff [--out DIR] [--size WxH] [--quick]", {"--size"});
+  const std::filesystem::path out = args.out;
+  const bool quick = args.quick;
+  const Size2 size = parseSize(args.text("--size", quick ? "128x96" : "512x384"), "--size");
+  const int width = size.width, height = size.height;
   std::filesystem::create_directories(out);
   std::ofstream csv(out / "pipeline_tradeoff.csv"), md(out / "pipeline_tradeoff.md");
   bench::TradeoffPoints points(out / "pipeline_tradeoff_points.csv");

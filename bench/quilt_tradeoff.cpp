@@ -15,6 +15,7 @@
 #include "shanshui/image/image_io.h"
 #include "shanshui/texsynth/quilt_metrics.h"
 #include "shanshui/texsynth/quilting.h"
+#include "bench_args.h"
 #include "tradeoff_points.h"
 
 namespace {
@@ -36,22 +37,11 @@ struct Row {
 }  // namespace
 
 int main(int argc, char** argv) {
-  fs::path out = ".";
-  int size = 256, block = 32;
-  bool quick = false;
-  for (int i = 1; i < argc; ++i) {
-    const std::string flag = argv[i];
-    if (flag == "--out" && i + 1 < argc) out = argv[++i];
-    else if (flag == "--size" && i + 1 < argc) size = std::stoi(argv[++i]);
-    else if (flag == "--block" && i + 1 < argc) block = std::stoi(argv[++i]);
-    else if (flag == "--quick") {
-      quick = true;
-      size = 128;
-    } else {
-      std::fprintf(stderr, "usage: bench_quilt_tradeoff [--out DIR] [--size N] [--block B] [--quick]\n");
-      return 2;
-    }
-  }
+  const bench::BenchArgs args = bench::parseBenchArgs(
+      argc, argv, "bench_quilt_tradeoff [--out DIR] [--size N] [--block B] [--quick]", {"--size", "--block"});
+  const fs::path out = args.out;
+  const bool quick = args.quick;
+  const int size = args.integer("--size", quick ? 128 : 256), block = args.integer("--block", 32);
   const fs::path dir = fs::path(SHANSHUI_DATA_DIR) / "textures";
   if (!fs::is_directory(dir)) {
     std::fprintf(stderr, "bench_quilt_tradeoff: no textures in %s\n", dir.c_str());
