@@ -125,8 +125,8 @@ int main(int argc, char** argv) {
                "writes tables (Markdown, CSV), plots (PNG) and an index (README.md) under --out.",
                "shanshui-bench"};
   app.footer(
-      "Stages: quilt, param, curvature, diffusion, noise, pipeline (or all). A full run takes about ten minutes\n"
-      "on two CPU cores with llvmpipe; --quick runs every sweep on small inputs in about two.\n\n"
+      "Stages: quilt, param, curvature, diffusion, noise, pipeline (or all). A full run takes about seven minutes\n"
+      "on two idle CPU cores with llvmpipe; --quick runs every sweep on small inputs in under a minute.\n\n"
       "Example:\n"
       "  shanshui-bench --stage all --out bench-results\n"
       "  shanshui-bench --stage curvature --stage pipeline --out bench-results --quick");
@@ -137,7 +137,7 @@ int main(int argc, char** argv) {
   for (const StageDef& d : kStages) names.push_back(d.name);
   app.add_option("--stage", stages, "stages to run (repeatable)")->check(CLI::IsMember(names))->capture_default_str();
   app.add_option("--out", out, "output directory (created)")->required();
-  app.add_flag("--quick", quick, "small inputs and short sweeps (minutes instead of tens of minutes)");
+  app.add_flag("--quick", quick, "small inputs and short sweeps (the shape of each trade-off, not final numbers)");
   return tools::runTool(app, argc, argv, [&] {
     const fs::path dir(out), logs = dir / "logs";
     fs::create_directories(logs);
