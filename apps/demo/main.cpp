@@ -289,6 +289,9 @@ int main(int argc, char** argv) {
     } else {
       md << "The stability suite is built with the tests (SHANSHUI_BUILD_TESTS=ON); this build has none, so no table.\n";
     }
+    md << "\n## Error against run time\n\n`make bench` (or `shanshui-bench --stage all --out out/bench`) measures every "
+          "approximate stage on inputs with known answers and writes tables and plots to out/bench/README.md; the "
+          "results of a full run ship in docs/bench/README.md.\n";
     shanshui::writeAtomically(o / "report.md", [&](const fs::path& tmp) { std::ofstream(tmp) << md.str(); });
     std::printf("report: %s\n", (o / "report.md").string().c_str());
     if (!stability_failure.empty()) throw shanshui::makeError(stability_failure);
