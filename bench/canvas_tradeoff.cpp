@@ -275,7 +275,8 @@ int main(int argc, char** argv) {
     const render::OrbitCamera cam = render::sceneCamera(s, r.worldBounds(), 1.0, render::frameKey(s, 0, 1, 0.0));
 
     // The facing plane.
-    const int n = 512, frame = quick ? 256 : 1024;  // the plane keeps its size: its pattern is in pixels of a 1024-tall frame
+    // The plane keeps its size with --quick: its pattern is in pixels of a 1024-tall frame.
+    const int n = 512, frame = quick ? 256 : 1024;
     scene::Scene ps = scene::parseScene(
         nlohmann::json{{"objects", nlohmann::json::array({{{"mesh", "memory.obj"}, {"lines", {{"enabled", false}}}, {"shading", {{"enabled", false}}}}})},
          {"camera", {{"elevation", 89.0}, {"azimuth", 0.0}, {"zoom", 1.6}}},

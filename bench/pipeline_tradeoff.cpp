@@ -166,8 +166,8 @@ int main(int argc, char** argv) {
         "(n = 100) and object-space curvature (quadric fit). The canvas (rice paper, N′ = "
      << base.canvas.impulses
      << ") is the same in all: a different N′ draws different noise — the same spectrum, not the same pixels — "
-        "so N′'s error against run time is the noise stage's spectrum error. Error: absolute difference of luma (0..1) per pixel, mean and 99th percentile. Time: median CPU "
-        "wall time of a frame with the GPU waited for, "
+        "so N′'s error against run time is the noise stage's spectrum error. Error: absolute difference of luma "
+        "(0..1) per pixel, mean and 99th percentile. Time: median CPU wall time of a frame with the GPU waited for, "
      << repeats << " frames per preset interleaved in one run.\n\n"
      << "| preset | curvature | diffusion n | frame ms | mean error | 99th pct error |\n"
         "|---|---|---|---|---|---|\n";
@@ -200,7 +200,7 @@ int main(int argc, char** argv) {
     md << line;
     std::fputs(line, stderr);
   }
-  md << "\nPictures, left to right: " ;
+  md << "\nPictures, left to right: ";
   for (const Preset& p : presets) md << p.name << ", ";
   md << "reference, the reference supersampled.\n\n![presets](pipeline_presets.png)\n";
 
