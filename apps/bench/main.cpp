@@ -5,11 +5,12 @@
 // per plot and an index (README.md) linking everything. A stage that fails is reported
 // (with its log) and the others still run; the exit code is then 1.
 #include <algorithm>
+#include <cctype>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <map>
 #include <string>
 #include <vector>
 

@@ -4,14 +4,11 @@
 // orbit, and write a one-page report. Each stage runs one of the shanshui programs; its key
 // is a content hash of the program, its arguments and its input files, and a stage whose
 // key and outputs are unchanged since the last run is reused instead of run again.
-#include <sys/wait.h>
-
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <functional>
-#include <map>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
