@@ -1,7 +1,9 @@
 #version 450 core
 // Ink diffusion, main region, step 2: the same two sweeps down each column over the row
 // results give the exact city-block distance r to the stroke region; ring pixels
-// (1 ≤ r ≤ d) take max(own ink, f^r · source ink). One invocation per column.
+// (1 ≤ r ≤ d) take max(own ink, f^r · source ink). One invocation per column. As in the
+// rows, only distances up to d are stored, and u_main (a copy of the ink) is written only
+// where a ring raises it.
 layout(local_size_x = 64) in;
 layout(r32f, binding = 0) readonly uniform image2D u_ink;
 layout(r32i, binding = 1) uniform iimage2D u_distance;
@@ -12,36 +14,35 @@ uniform float u_attenuation;
 
 const int kFar = 1 << 28;
 
+// One step of a sweep: the carried stroke is one step further; the pixel's stored result
+// wins if nearer (or as near with at least as much ink), else the carried one is stored
+// where it is within d. Returns with (d, v) the pixel's result.
+void step(ivec2 p, inout int d, inout float v, bool store) {
+  if (d < kFar) d += 1;
+  int dc = imageLoad(u_distance, p).r;
+  if (dc < d || (dc == d && imageLoad(u_source, p).r >= v)) {
+    d = dc;
+    v = imageLoad(u_source, p).r;
+  } else if (store && d <= u_ring_steps) {
+    imageStore(u_distance, p, ivec4(d));
+    imageStore(u_source, p, vec4(v));
+  }
+}
+
 void main() {
   int x = int(gl_GlobalInvocationID.x);
   ivec2 size = imageSize(u_ink);
   if (x >= size.x) return;
   int d = kFar;
   float v = 0.0;
-  for (int y = 0; y < size.y; ++y) {
-    int dc = imageLoad(u_distance, ivec2(x, y)).r;
-    float vc = imageLoad(u_source, ivec2(x, y)).r;
-    if (d < kFar) d += 1;
-    if (dc < d || (dc == d && vc >= v)) {
-      d = dc;
-      v = vc;
-    } else {
-      imageStore(u_distance, ivec2(x, y), ivec4(d));
-      imageStore(u_source, ivec2(x, y), vec4(v));
-    }
-  }
+  for (int y = 0; y < size.y; ++y) step(ivec2(x, y), d, v, true);
   d = kFar;
   v = 0.0;
   for (int y = size.y - 1; y >= 0; --y) {
-    int dc = imageLoad(u_distance, ivec2(x, y)).r;
-    float vc = imageLoad(u_source, ivec2(x, y)).r;
-    if (d < kFar) d += 1;
-    if (dc < d || (dc == d && vc >= v)) {
-      d = dc;
-      v = vc;
+    step(ivec2(x, y), d, v, false);
+    if (d >= 1 && d <= u_ring_steps) {
+      float ring = pow(u_attenuation, float(d)) * v;
+      if (ring > imageLoad(u_ink, ivec2(x, y)).r) imageStore(u_main, ivec2(x, y), vec4(ring));
     }
-    float ink = imageLoad(u_ink, ivec2(x, y)).r;
-    if (d >= 1 && d <= u_ring_steps) ink = max(ink, pow(u_attenuation, float(d)) * v);
-    imageStore(u_main, ivec2(x, y), vec4(ink));
   }
 }

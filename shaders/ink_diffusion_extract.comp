@@ -1,15 +1,49 @@
 #version 450 core
-// Ink diffusion, step 1: ink of the rendered picture, I = clamp(1 − lum / lum(paper), 0, 1).
-layout(local_size_x = 16, local_size_y = 16) in;
-layout(binding = 0) uniform sampler2D u_colour;
+// Ink diffusion, step 1: ink of the rendered picture, I = clamp(1 − lum / lum(paper), 0, 1),
+// and what each pixel may absorb per boundary iteration: I_p / n · absorbency, 0 on the
+// strokes (I > threshold), which do not absorb. One invocation per column and STRIP_ROWS
+// rows (on llvmpipe a loop is cheaper than an invocation per pixel). SEEDS: also marks the
+// blocks of SEED_SIZE² pixels holding ink above the residual, where the boundary
+// iterations start (with the main region's rings, which lie within d of a stroke).
+layout(local_size_x = 64) in;
+layout(rgba8, binding = 2) readonly uniform image2D u_colour;
+layout(binding = 1) uniform sampler2D u_absorbency;  // tiled over the picture
 layout(r32f, binding = 0) writeonly uniform image2D u_ink;
+layout(r32f, binding = 1) writeonly uniform image2D u_capacity;
 uniform vec3 u_paper;
+uniform vec2 u_absorbency_map;  // absorbency = clamp(y + x · texel, 0, 1)
+uniform float u_absorb;         // I_p / n
+uniform float u_threshold;
+#ifdef SEEDS
+layout(r8ui, binding = 3) writeonly uniform uimage2D u_seeds;
+uniform float u_residual;
+#endif
 
 void main() {
-  ivec2 p = ivec2(gl_GlobalInvocationID.xy);
-  if (any(greaterThanEqual(p, imageSize(u_ink)))) return;
+  ivec2 size = imageSize(u_ink);
+  int x = int(gl_GlobalInvocationID.x);
+  if (x >= size.x) return;
   const vec3 weights = vec3(0.2126, 0.7152, 0.0722);
-  float lum = dot(texelFetch(u_colour, p, 0).rgb, weights);
-  float ink = clamp(1.0 - lum / max(dot(u_paper, weights), 1e-6), 0.0, 1.0);
-  imageStore(u_ink, p, vec4(ink));
+  const float paper = max(dot(u_paper, weights), 1e-6);
+  // The tile's column, by float division: exact for integers below 2^23, and vectorises
+  // where an integer % does not.
+  const vec2 tile = vec2(textureSize(u_absorbency, 0));
+  const int tx = int(float(x) - tile.x * floor(float(x) / tile.x));
+  const int y0 = int(gl_WorkGroupID.y) * STRIP_ROWS, y1 = min(y0 + STRIP_ROWS, size.y);
+  bool seed = false;
+  for (int y = y0; y < y1; ++y) {
+    ivec2 p = ivec2(x, y);
+    float ink = clamp(1.0 - dot(imageLoad(u_colour, p).rgb, weights) / paper, 0.0, 1.0);
+    imageStore(u_ink, p, vec4(ink));
+    int ty = int(float(y) - tile.y * floor(float(y) / tile.y));
+    float a = clamp(u_absorbency_map.y + u_absorbency_map.x * texelFetch(u_absorbency, ivec2(tx, ty), 0).r, 0.0, 1.0);
+    imageStore(u_capacity, p, vec4(ink > u_threshold ? 0.0 : u_absorb * a));
+#ifdef SEEDS
+    seed = seed || ink > u_residual;
+    if (((y + 1) & (SEED_SIZE - 1)) == 0 || y + 1 == y1) {  // the block's last row
+      if (seed) imageStore(u_seeds, p / SEED_SIZE, uvec4(1u));
+      seed = false;
+    }
+#endif
+  }
 }

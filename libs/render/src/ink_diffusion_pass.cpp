@@ -1,6 +1,9 @@
 #include "shanshui/render/ink_diffusion_pass.h"
 
+#include <algorithm>
+#include <string>
 #include <utility>
+#include <vector>
 
 #include "shanshui/core/error.h"
 #include "shanshui/render/gl_check.h"
@@ -13,25 +16,54 @@ void bindImage(GLuint unit, const Texture2D& t, GLenum access) {
   glBindImageTexture(unit, t.id(), 0, GL_FALSE, 0, access, t.format());
 }
 
-void barrier() { glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT); }
+// Image stores made visible to the next dispatch, texel fetches and image copies.
+void barrier() {
+  glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
+}
 
 GLuint groups(int n, int size) { return static_cast<GLuint>((n + size - 1) / size); }
+
+// The boundary iterations' work groups (shaders/ink_diffusion_boundary.comp): 16
+// invocations of kBlock columns each, walking kStripRows rows — an area of 64 × 32 pixels.
+// Wider blocks and taller strips reload fewer neighbours ((kBlock + 6) / kBlock ink reads
+// per pixel, (kStripRows + 6) / kStripRows rows) but hold more registers and give fewer
+// work groups to spread over the cores.
+constexpr int kBlock = 4;
+constexpr int kGroupInvocations = 16;
+constexpr int kAreaWidth = kBlock * kGroupInvocations;
+constexpr int kStripRows = 32;
+// The main-region pass marks ink above the residual per block of kSeedSize² pixels; a
+// boundary work group runs only if a marked block lies within n pixels of its area.
+constexpr int kSeedSize = 8;
+static_assert(kStripRows % kSeedSize == 0, "the extract pass marks whole blocks per strip");
+
+std::vector<std::string> defines(std::vector<std::string> extra = {}) {
+  extra.push_back("BLOCK=" + std::to_string(kBlock));
+  extra.push_back("STRIP_ROWS=" + std::to_string(kStripRows));
+  extra.push_back("AREA_W=" + std::to_string(kAreaWidth));
+  extra.push_back("AREA_H=" + std::to_string(kStripRows));
+  extra.push_back("SEED_SIZE=" + std::to_string(kSeedSize));
+  return extra;
+}
 
 }  // namespace
 
 InkDiffusionPass::InkDiffusionPass()
-    : extract_({"ink_diffusion_extract.comp"}),
+    : extract_({"ink_diffusion_extract.comp"}, defines()),
+      extract_seeds_({"ink_diffusion_extract.comp"}, defines({"SEEDS"})),
       rows_({"ink_diffusion_rows.comp"}),
       columns_({"ink_diffusion_columns.comp"}),
-      demand_({"ink_diffusion_demand.comp"}),
-      supply_({"ink_diffusion_supply.comp"}),
-      apply_({"ink_diffusion_apply.comp"}),
-      output_({"ink_diffusion_output.comp"}) {}
+      active_({"ink_diffusion_active.comp"}, defines()),
+      boundary_({"ink_diffusion_boundary.comp"}, defines()),
+      boundary_idle_({"ink_diffusion_boundary.comp"}, defines({"IDLE"})),
+      output_({"ink_diffusion_output.comp"}, defines()) {}
 
 void InkDiffusionPass::ensureSize(int width, int height) {
   if (out_.width() == width && out_.height() == height) return;
-  for (Texture2D* t : {&ink0_, &main_, &next_, &demand_tex_, &supply_tex_, &source_}) *t = Texture2D(width, height, GL_R32F);
+  for (Texture2D* t : {&ink0_, &capacity_, &main_, &next_, &source_}) *t = Texture2D(width, height, GL_R32F);
   distance_ = Texture2D(width, height, GL_R32I);
+  seeds_ = Texture2D((width + kSeedSize - 1) / kSeedSize, (height + kSeedSize - 1) / kSeedSize, GL_R8UI);
+  active_tex_ = Texture2D((width + kAreaWidth - 1) / kAreaWidth, (height + kStripRows - 1) / kStripRows, GL_R8UI);
   out_ = Texture2D(width, height, GL_RGBA8);
 }
 
@@ -52,21 +84,49 @@ void InkDiffusionPass::run(const Texture2D& colour, const PaperTexture& texture,
   ink::validate(o);
   SHANSHUI_CHECK(texture.absorbency != nullptr);
   const int w = colour.width(), h = colour.height();
+  // Read and written as images, which fixes their formats.
+  SHANSHUI_CHECK(colour.format() == GL_RGBA8);
   SHANSHUI_CHECK(output.width() == w && output.height() == h && output.format() == GL_RGBA8);
+  SHANSHUI_CHECK(!texture.grain || texture.grain->format() == GL_R32F);
   ensureSize(w, h);
   if (timer) timer->begin("diffusion");
-  const GLuint gx = groups(w, 16), gy = groups(h, 16);
+  // Per-pixel passes: an invocation per column and kStripRows rows.
+  const GLuint sx = groups(w, 64), sy = groups(h, kStripRows);
 
-  extract_.use();
-  extract_.set("u_paper", paper);
-  glBindTextureUnit(0, colour.id());
+  // With two or more boundary iterations, the extraction also marks the blocks where ink
+  // starts above the residual, so the iterations can leave out the areas it cannot reach.
+  const bool idle = o.iterations >= 2;
+  last_idle_ = idle;
+  const Program& extract = idle ? extract_seeds_ : extract_;
+  extract.use();
+  extract.set("u_paper", paper);
+  extract.set("u_absorbency_map", texture.absorbency_map);
+  extract.set("u_absorb", static_cast<float>(o.iterations > 0 ? o.absorb / o.iterations : 0.0));
+  extract.set("u_threshold", static_cast<float>(o.threshold));
+  glBindTextureUnit(1, texture.absorbency->id());
   bindImage(0, ink0_, GL_WRITE_ONLY);
-  glDispatchCompute(gx, gy, 1);
+  bindImage(1, capacity_, GL_WRITE_ONLY);
+  bindImage(2, colour, GL_READ_ONLY);
+  if (idle) {
+    const GLubyte zero = 0;
+    glClearTexImage(seeds_.id(), 0, GL_RED_INTEGER, GL_UNSIGNED_BYTE, &zero);
+    extract.set("u_residual", static_cast<float>(o.residual));
+    bindImage(3, seeds_, GL_WRITE_ONLY);
+  }
+  glDispatchCompute(sx, sy, 1);
   barrier();
 
-  // Main region: rows, then columns (which also write the main-region ink).
+  // Main region: rows, then columns. Both store only distances up to d over images cleared
+  // to "far", and the columns raise a copy of the ink only where a ring does: fills and
+  // copies cost far less than a store per pixel.
+  const GLint far = 1 << 28;
+  const GLfloat none = 0.0f;
+  glClearTexImage(distance_.id(), 0, GL_RED_INTEGER, GL_INT, &far);
+  glClearTexImage(source_.id(), 0, GL_RED, GL_FLOAT, &none);
+  glCopyImageSubData(ink0_.id(), GL_TEXTURE_2D, 0, 0, 0, 0, main_.id(), GL_TEXTURE_2D, 0, 0, 0, 0, w, h, 1);
   rows_.use();
   rows_.set("u_threshold", static_cast<float>(o.threshold));
+  rows_.set("u_ring_steps", o.ring_steps);
   bindImage(0, ink0_, GL_READ_ONLY);
   bindImage(1, distance_, GL_READ_WRITE);
   bindImage(2, source_, GL_READ_WRITE);
@@ -78,33 +138,32 @@ void InkDiffusionPass::run(const Texture2D& colour, const PaperTexture& texture,
   bindImage(3, main_, GL_WRITE_ONLY);
   glDispatchCompute(groups(w, 64), 1, 1);
   barrier();
+  if (idle) {
+    active_.use();
+    // Ink above the residual lies within d of a marked block (a ring lies within d of its
+    // stroke, and holds no more ink than it), and moves one pixel per iteration.
+    active_.set("u_reach", o.iterations + o.ring_steps);
+    bindImage(0, seeds_, GL_READ_ONLY);
+    bindImage(1, active_tex_, GL_WRITE_ONLY);
+    glDispatchCompute(groups(active_tex_.width(), 8), groups(active_tex_.height(), 8), 1);
+    // Both ping-pong images start as the main region, so areas left out hold it throughout.
+    glCopyImageSubData(main_.id(), GL_TEXTURE_2D, 0, 0, 0, 0, next_.id(), GL_TEXTURE_2D, 0, 0, 0, 0, w, h, 1);
+    barrier();
+  }
 
   // Boundary diffusion: n iterations, ping-pong between main_ and next_.
   Texture2D* cur = &main_;
   Texture2D* nxt = &next_;
-  glBindTextureUnit(0, texture.absorbency->id());
-  // Uniforms are program state: set once, not per iteration.
-  if (o.iterations > 0) {
-    demand_.set("u_capacity", static_cast<float>(o.absorb / o.iterations));
-    demand_.set("u_residual", static_cast<float>(o.residual));
-    demand_.set("u_threshold", static_cast<float>(o.threshold));
-    demand_.set("u_absorbency_map", texture.absorbency_map);
-    supply_.set("u_residual", static_cast<float>(o.residual));
-  }
+  const GLuint bx = groups(w, kAreaWidth), by = groups(h, kStripRows);
   for (int it = 0; it < o.iterations; ++it) {
-    demand_.use();
+    const Program& boundary = idle ? boundary_idle_ : boundary_;
+    boundary.use();
+    boundary.set("u_residual", static_cast<float>(o.residual));
     bindImage(0, *cur, GL_READ_ONLY);
-    bindImage(1, ink0_, GL_READ_ONLY);
-    bindImage(2, demand_tex_, GL_READ_WRITE);
-    glDispatchCompute(gx, gy, 1);
-    barrier();
-    supply_.use();
-    bindImage(3, supply_tex_, GL_READ_WRITE);
-    glDispatchCompute(gx, gy, 1);
-    barrier();
-    apply_.use();
-    bindImage(4, *nxt, GL_WRITE_ONLY);
-    glDispatchCompute(gx, gy, 1);
+    bindImage(1, capacity_, GL_READ_ONLY);
+    bindImage(2, *nxt, GL_WRITE_ONLY);
+    if (idle) bindImage(3, active_tex_, GL_READ_ONLY);
+    glDispatchCompute(bx, by, 1);
     barrier();
     std::swap(cur, nxt);
   }
@@ -112,21 +171,30 @@ void InkDiffusionPass::run(const Texture2D& colour, const PaperTexture& texture,
 
   const Program* out = &output_;
   if (texture.grain) {
-    if (!output_canvas_.id()) output_canvas_ = Program({"ink_diffusion_output.comp"}, {"CANVAS"});
+    if (!output_canvas_.id()) output_canvas_ = Program({"ink_diffusion_output.comp"}, defines({"CANVAS"}));
     out = &output_canvas_;
     out->set("u_canvas_contrast", texture.contrast);
-    glBindTextureUnit(1, texture.grain->id());
+    bindImage(4, *texture.grain, GL_READ_ONLY);
   }
   out->use();
   out->set("u_paper", paper);
-  glBindTextureUnit(0, colour.id());
   bindImage(0, ink0_, GL_READ_ONLY);
   bindImage(1, *cur, GL_READ_ONLY);
   bindImage(2, output, GL_WRITE_ONLY);
-  glDispatchCompute(gx, gy, 1);
+  bindImage(3, colour, GL_READ_ONLY);
+  glDispatchCompute(sx, sy, 1);
   barrier();
   if (timer) timer->end();
   SHANSHUI_GL_CHECK("diffusion pass");
+}
+
+double InkDiffusionPass::lastActiveFraction() const {
+  if (!last_idle_) return 1.0;
+  std::vector<GLubyte> flags(static_cast<std::size_t>(active_tex_.width()) * active_tex_.height());
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glGetTextureImage(active_tex_.id(), 0, GL_RED_INTEGER, GL_UNSIGNED_BYTE, static_cast<GLsizei>(flags.size()), flags.data());
+  SHANSHUI_GL_CHECK("diffusion active areas");
+  return static_cast<double>(std::count(flags.begin(), flags.end(), GLubyte{1})) / static_cast<double>(flags.size());
 }
 
 }  // namespace shanshui::render

@@ -150,6 +150,7 @@ void Program::set(const char* name, int v) const { glProgramUniform1i(id_, locat
 void Program::set(const char* name, unsigned v) const { glProgramUniform1ui(id_, location(name), v); }
 void Program::set(const char* name, float v) const { glProgramUniform1f(id_, location(name), v); }
 void Program::set(const char* name, const glm::vec2& v) const { glProgramUniform2fv(id_, location(name), 1, &v.x); }
+void Program::set(const char* name, const glm::ivec2& v) const { glProgramUniform2iv(id_, location(name), 1, &v.x); }
 void Program::set(const char* name, const glm::vec3& v) const {
   glProgramUniform3fv(id_, location(name), 1, glm::value_ptr(v));
 }

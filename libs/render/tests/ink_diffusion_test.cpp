@@ -17,7 +17,7 @@ using InkGpu = test::HeadlessGl;
 const double kPaper[3] = {0.95, 0.93, 0.87};
 
 // A picture on paper with strokes of several greys (values exact in 8 bits), optionally
-// with strokes along the border.
+// with strokes along the left, right and bottom borders.
 image::Image picture(int w, int h, unsigned seed, bool border) {
   std::mt19937 rng(seed);
   std::uniform_int_distribution<int> u(0, 99), grey(0, 120);
@@ -25,7 +25,7 @@ image::Image picture(int w, int h, unsigned seed, bool border) {
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
       const int r = u(rng);
-      const bool stroke = r < 6 || (border && (x == 0 || y == h - 1));
+      const bool stroke = r < 6 || (border && (x == 0 || x == w - 1 || y == h - 1));
       const double t = stroke ? grey(rng) / 255.0 : (r < 15 ? 0.7 + 0.2 * (r % 3) : 1.0);
       for (int c = 0; c < 3; ++c) img.at(x, y, c) = std::round(static_cast<float>(kPaper[c] * t) * 255.0f) / 255.0f;
     }
@@ -45,9 +45,11 @@ TEST_F(InkGpu, MatchesTheCpuReferenceOnTheExtremeGrid) {
   const glm::vec3 paper(kPaper[0], kPaper[1], kPaper[2]);
   double worst_max = 0, worst_mean = 0;
   int cases = 0;
-  for (bool border : {false, true}) {
-    const image::Image img = picture(48, 36, border ? 2u : 1u, border);
-    const image::Image absorb = absorbencyImage(48, 36, 3);
+  // The pass packs four pixels to a texel and walks strips of rows: widths 48, 47 and 45
+  // leave 0, 1 and 3 pixels of padding, heights end in partial strips.
+  for (const auto& [w, h, border] : {std::tuple{48, 36, false}, std::tuple{47, 37, true}, std::tuple{45, 35, true}}) {
+    const image::Image img = picture(w, h, border ? 2u : 1u, border);
+    const image::Image absorb = absorbencyImage(w, h, 3);
     const Texture2D colour = Texture2D::fromImage(img, GL_RGBA8), absorbency = Texture2D::fromImage(absorb, GL_R8);
     // What the GPU sees: the 8-bit values, read back.
     const image::Image seen = colour.download(3);
@@ -65,7 +67,7 @@ TEST_F(InkGpu, MatchesTheCpuReferenceOnTheExtremeGrid) {
               o.ring_steps = d;
               o.absorb = ip;
               SCOPED_TRACE(testing::Message() << "n=" << n << " Ir=" << ir << " f=" << f << " d=" << d << " Ip=" << ip
-                                              << " border=" << border);
+                                              << " size=" << w << "x" << h << " border=" << border);
               pass.run(colour, absorbency, o, paper);
               const image::Image gpu = pass.inkAfter().download(1);
               const ink::InkField cpu = ink::diffuseInk(before, a, o);
@@ -88,7 +90,7 @@ TEST_F(InkGpu, MatchesTheCpuReferenceOnTheExtremeGrid) {
               ++cases;
             }
   }
-  EXPECT_EQ(cases, 64);
+  EXPECT_EQ(cases, 96);
   RecordProperty("worst_max_abs_difference", std::to_string(worst_max));
   RecordProperty("worst_mean_abs_difference", std::to_string(worst_mean));
   std::printf("GPU vs CPU ink: worst max |diff| %.3g, worst mean |diff| %.3g over %d parameter sets\n", worst_max,
@@ -114,6 +116,55 @@ TEST_F(InkGpu, A4096SquarePictureStaysFiniteAndConservesInk) {
     total += v;
   }
   EXPECT_NEAR(total, main.total(), 1e-5 * main.total());
+}
+
+// Ink in one corner of a larger sheet: the boundary iterations leave out the areas it
+// cannot reach in n iterations (plus the d rings), and the result is still the CPU's.
+TEST_F(InkGpu, AreasTheInkCannotReachAreLeftOutAndTheResultIsUnchanged) {
+  InkDiffusionPass pass;
+  const glm::vec3 paper(kPaper[0], kPaper[1], kPaper[2]);
+  const int w = 320, h = 224;
+  image::Image img(w, h, 3);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x)
+      for (int c = 0; c < 3; ++c) img.at(x, y, c) = std::round(static_cast<float>(kPaper[c]) * 255.0f) / 255.0f;
+  // Strokes in x 12…59, y 0…25: inside the first 64 × 32 area, so ink that spreads has to
+  // cross into areas holding no ink at the start.
+  const image::Image corner = picture(48, 26, 5, true);
+  for (int y = 0; y < corner.height; ++y)
+    for (int x = 0; x < corner.width; ++x)
+      for (int c = 0; c < 3; ++c) img.at(12 + x, y, c) = corner.at(x, y, c);
+  const image::Image absorb = absorbencyImage(w, h, 6);
+  const Texture2D colour = Texture2D::fromImage(img, GL_RGBA8), absorbency = Texture2D::fromImage(absorb, GL_R8);
+  const ink::InkField before = ink::inkFromImage(colour.download(3), kPaper);
+  const std::vector<float> a(absorb.pixels.begin(), absorb.pixels.end());
+  // (n, d, f, most areas computed): 35 areas of 64 × 32, of which the ink (marked in
+  // blocks of 8², so up to x 63, y 31) reaches four — six with rings of undiminished ink
+  // 40 pixels wide, which are not marked but hold ink above the residual; n = 1 runs
+  // everywhere.
+  for (const auto& [n, d, f, most] : {std::tuple{5, 3, 0.6, 4.0 / 35}, std::tuple{20, 8, 0.6, 4.0 / 35},
+                                      std::tuple{2, 0, 0.6, 4.0 / 35}, std::tuple{2, 40, 1.0, 6.0 / 35},
+                                      std::tuple{1, 3, 0.6, 1.0}}) {
+    SCOPED_TRACE(testing::Message() << "n=" << n << " d=" << d << " f=" << f);
+    ink::DiffusionOptions o;
+    o.iterations = n;
+    o.ring_steps = d;
+    o.attenuation = f;
+    o.residual = 0.05;
+    pass.run(colour, absorbency, o, paper);
+    const double fraction = pass.lastActiveFraction();
+    EXPECT_GT(fraction, 0.0);
+    EXPECT_LE(fraction, most + 1e-9);
+    const image::Image gpu = pass.inkAfter().download(1);
+    const ink::InkField cpu = ink::diffuseInk(before, a, o);
+    double max_diff = 0, total_gpu = 0;
+    for (std::size_t i = 0; i < cpu.ink.size(); ++i) {
+      max_diff = std::max(max_diff, std::abs(static_cast<double>(gpu.pixels[i]) - cpu.ink[i]));
+      total_gpu += gpu.pixels[i];
+    }
+    EXPECT_LT(max_diff, 2e-5);
+    EXPECT_NEAR(total_gpu, cpu.total(), 1e-5 * cpu.total());
+  }
 }
 
 TEST_F(InkGpu, OneByOneEmptyAndFullPicturesStayFinite) {

@@ -1,8 +1,9 @@
 // The GPU pass of the empirical ink diffusion (seed 001, Eqs. 6-8; SPEC.md section 9), in
 // compute shaders that follow the CPU reference in libs/ink step by step: ink of the
 // picture; main region from a separable city-block distance transform (two sweeps per
-// axis, cost independent of d); n boundary iterations of three gathers each; the picture
-// with the ink change painted in.
+// axis, cost independent of d); n boundary iterations, each one dispatch that fuses the
+// reference's three gathers and leaves out the areas ink cannot reach; the picture with
+// the ink change painted in.
 #pragma once
 
 #include <glm/glm.hpp>
@@ -44,13 +45,19 @@ class InkDiffusionPass {
 
   //! The ink field after the last run (R32F), for tests.
   const Texture2D& inkAfter() const { return *after_; }
+  //! The share of the picture's work-group areas that the last run's boundary iterations
+  //! computed: 1 when they ran everywhere, less when ink above the residual could not reach
+  //! some areas (reads back a small image; for tests and benches).
+  double lastActiveFraction() const;
 
  private:
   void ensureSize(int width, int height);
-  Program extract_, rows_, columns_, demand_, supply_, apply_, output_;
+  Program extract_, extract_seeds_, rows_, columns_, active_, boundary_, boundary_idle_, output_;
   Program output_canvas_;  //!< built on first use with a canvas grain
-  Texture2D ink0_, main_, next_, demand_tex_, supply_tex_, distance_, source_, out_;
+  Texture2D ink0_, capacity_, main_, next_, distance_, source_, out_;
+  Texture2D seeds_, active_tex_;  //!< one texel per work-group area of the boundary iterations
   const Texture2D* after_ = nullptr;
+  bool last_idle_ = false;  //!< the last run left out unreachable areas
 };
 
 }  // namespace shanshui::render

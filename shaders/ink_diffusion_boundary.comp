@@ -1,0 +1,92 @@
+#version 450 core
+// Ink diffusion, one boundary iteration in one dispatch: the three order-independent
+// gathers of libs/ink (demand, capped supply, transfer) fused, each invocation recomputing
+// the demands and supplies its pixels need instead of storing them between passes.
+//
+// Each invocation owns BLOCK adjacent columns and walks STRIP_ROWS rows down them (both
+// compile-time constants from the pass), carrying the rows it needs in registers:
+// reading ink row r gives the demand of row r − 1 (excess of rows r − 2 … r), the supply
+// of row r − 2 (demands of rows r − 3 … r − 1) and the new ink of row r − 3 (supplies of
+// rows r − 4 … r − 2). A pixel's demand and supply are computed by every invocation that
+// needs them, from the same values in the same order, so donor and receiver agree on
+// every transfer and ink is conserved up to float rounding. Per pixel this reads about
+// (2·BLOCK + 10) / BLOCK values instead of the 20 of three separate passes — on llvmpipe
+// the cost of a pass is mostly its image accesses.
+//
+// Loads outside the image return 0 and stores there are dropped (OpenGL 4.5, section
+// 8.26): outside pixels have no excess and no capacity, so they neither give nor take.
+//
+// IDLE: a work group whose area no ink above the residual can reach in this frame's
+// iterations (u_active = 0) leaves its pixels as they are; the pass copies the start into
+// both ping-pong images, so they already hold those pixels.
+layout(local_size_x = 16) in;
+layout(r32f, binding = 0) readonly uniform image2D u_ink;
+layout(r32f, binding = 1) readonly uniform image2D u_capacity;  // I_p / n · absorbency; 0 on strokes
+layout(r32f, binding = 2) writeonly uniform image2D u_next;
+#ifdef IDLE
+layout(r8ui, binding = 3) readonly uniform uimage2D u_active;  // one texel per work group
+#endif
+uniform float u_residual;
+
+const int B = BLOCK;
+
+// Σ over the 8 neighbours of column c + 1 of three rows; the same order for every caller.
+#define NEIGHBOURS(a, b, c, k) (a[k] + a[k + 1] + a[k + 2] + b[k] + b[k + 2] + c[k] + c[k + 1] + c[k + 2])
+
+void main() {
+#ifdef IDLE
+  if (imageLoad(u_active, ivec2(gl_WorkGroupID.xy)).r == 0u) return;
+#endif
+  ivec2 size = imageSize(u_ink);
+  int x0 = int(gl_GlobalInvocationID.x) * B;
+  int y0 = int(gl_WorkGroupID.y) * STRIP_ROWS;
+  if (x0 >= size.x) return;
+  float e0[B + 6], e1[B + 6], e2[B + 6];   // excess, columns x0 − 3 …, rows r − 2, r − 1, r
+  float d0[B + 4], d1[B + 4], d2[B + 4];   // demand, columns x0 − 2 …, rows r − 3 … r − 1
+  float s0[B + 2], s1[B + 2], s2[B + 2];   // supply, columns x0 − 1 …, rows r − 4 … r − 2
+  float l0[B], l1[B];                      // loss (all a donor sends), columns x0 …, rows r − 3, r − 2
+  float i0[B], i1[B], i2[B], i3[B];        // ink, columns x0 …, rows r − 3 … r
+  for (int c = 0; c < B + 6; ++c) e1[c] = e2[c] = 0.0;
+  for (int c = 0; c < B + 4; ++c) d1[c] = d2[c] = 0.0;
+  for (int c = 0; c < B + 2; ++c) s1[c] = s2[c] = 0.0;
+  for (int c = 0; c < B; ++c) l1[c] = i1[c] = i2[c] = i3[c] = 0.0;
+  const int last = min(y0 + STRIP_ROWS, size.y) + 2;  // row r that gives the strip's last row
+  for (int r = y0 - 3; r <= last; ++r) {
+    e0 = e1;
+    e1 = e2;
+    i0 = i1;
+    i1 = i2;
+    i2 = i3;
+    for (int c = 0; c < B + 6; ++c) {
+      float ink = imageLoad(u_ink, ivec2(x0 - 3 + c, r)).r;
+      e2[c] = max(0.0, ink - u_residual);
+      if (c >= 3 && c < B + 3) i3[c - 3] = ink;
+    }
+    // Demand of row r − 1: capacity / Σ excess of the neighbours (0 without excess).
+    d0 = d1;
+    d1 = d2;
+    for (int c = 0; c < B + 4; ++c) {
+      float sum = NEIGHBOURS(e0, e1, e2, c);
+      d2[c] = sum > 0.0 ? imageLoad(u_capacity, ivec2(x0 - 2 + c, r - 1)).r / sum : 0.0;
+    }
+    // Supply of row r − 2: the excess, scaled down together if the neighbours ask for more
+    // (a hair under the exact share, so float rounding cannot overdraw the donor).
+    s0 = s1;
+    s1 = s2;
+    l0 = l1;
+    for (int c = 0; c < B + 2; ++c) {
+      float asked = NEIGHBOURS(d0, d1, d2, c);
+      float excess = e0[c + 2];
+      float supply = excess * asked > excess ? excess / asked * (1.0 - 4e-7) : excess;
+      s2[c] = supply;
+      if (c >= 1 && c < B + 1) l1[c - 1] = supply * asked;
+    }
+    // New ink of row r − 3: what it receives less what it sends.
+    int y = r - 3;
+    if (y < y0) continue;
+    for (int c = 0; c < B; ++c) {
+      float next = i0[c] + d0[c + 2] * NEIGHBOURS(s0, s1, s2, c) - l0[c];
+      imageStore(u_next, ivec2(x0 + c, y), vec4(max(next, 0.0)));
+    }
+  }
+}
