@@ -10,7 +10,7 @@ layout(r32i, binding = 1) uniform iimage2D u_distance;
 layout(r32f, binding = 2) uniform image2D u_source;
 layout(r32f, binding = 3) writeonly uniform image2D u_main;
 uniform int u_ring_steps;
-uniform float u_attenuation;
+uniform float u_ring_ink[RING_TABLE];  // f^r for r = 0 … d (pow per pixel costs more on llvmpipe)
 
 const int kFar = 1 << 28;
 
@@ -41,7 +41,7 @@ void main() {
   for (int y = size.y - 1; y >= 0; --y) {
     step(ivec2(x, y), d, v, false);
     if (d >= 1 && d <= u_ring_steps) {
-      float ring = pow(u_attenuation, float(d)) * v;
+      float ring = u_ring_ink[d] * v;
       if (ring > imageLoad(u_ink, ivec2(x, y)).r) imageStore(u_main, ivec2(x, y), vec4(ring));
     }
   }

@@ -1,6 +1,7 @@
 #include "shanshui/render/ink_diffusion_pass.h"
 
 #include <algorithm>
+#include <cmath>
 #include <string>
 #include <utility>
 #include <vector>
@@ -35,6 +36,8 @@ constexpr int kStripRows = 32;
 // The main-region pass marks ink above the residual per block of kSeedSize² pixels; a
 // boundary work group runs only if a marked block lies within n pixels of its area.
 constexpr int kSeedSize = 8;
+// The columns pass reads f^r from a table: one entry per ring, d ≤ 256 (ink::validate).
+constexpr int kMaxRingSteps = 256;
 static_assert(kStripRows % kSeedSize == 0, "the extract pass marks whole blocks per strip");
 
 std::vector<std::string> defines(std::vector<std::string> extra = {}) {
@@ -52,7 +55,7 @@ InkDiffusionPass::InkDiffusionPass()
     : extract_({"ink_diffusion_extract.comp"}, defines()),
       extract_seeds_({"ink_diffusion_extract.comp"}, defines({"SEEDS"})),
       rows_({"ink_diffusion_rows.comp"}),
-      columns_({"ink_diffusion_columns.comp"}),
+      columns_({"ink_diffusion_columns.comp"}, {"RING_TABLE=" + std::to_string(kMaxRingSteps + 1)}),
       active_({"ink_diffusion_active.comp"}, defines()),
       boundary_({"ink_diffusion_boundary.comp"}, defines()),
       boundary_idle_({"ink_diffusion_boundary.comp"}, defines({"IDLE"})),
@@ -134,7 +137,9 @@ void InkDiffusionPass::run(const Texture2D& colour, const PaperTexture& texture,
   barrier();
   columns_.use();
   columns_.set("u_ring_steps", o.ring_steps);
-  columns_.set("u_attenuation", static_cast<float>(o.attenuation));
+  std::vector<float> ring_ink(static_cast<std::size_t>(o.ring_steps) + 1);
+  for (int r = 0; r <= o.ring_steps; ++r) ring_ink[r] = static_cast<float>(std::pow(o.attenuation, r));
+  glProgramUniform1fv(columns_.id(), glGetUniformLocation(columns_.id(), "u_ring_ink"), o.ring_steps + 1, ring_ink.data());
   bindImage(3, main_, GL_WRITE_ONLY);
   glDispatchCompute(groups(w, 64), 1, 1);
   barrier();
