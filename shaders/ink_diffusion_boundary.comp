@@ -3,8 +3,9 @@
 // gathers of libs/ink (demand, capped supply, transfer) fused, each invocation recomputing
 // the demands and supplies its pixels need instead of storing them between passes.
 //
-// Each invocation owns BLOCK adjacent columns and walks STRIP_ROWS rows down them (both
-// compile-time constants from the pass), carrying the rows it needs in registers:
+// Each invocation owns BLOCK adjacent columns and walks STRIP_ROWS rows down them, in work
+// groups of GROUP_INVOCATIONS (compile-time constants from the pass), carrying the rows it
+// needs in registers:
 // reading ink row r gives the demand of row r − 1 (excess of rows r − 2 … r), the supply
 // of row r − 2 (demands of rows r − 3 … r − 1) and the new ink of row r − 3 (supplies of
 // rows r − 4 … r − 2). A pixel's demand and supply are computed by every invocation that
@@ -19,7 +20,7 @@
 // IDLE: a work group whose area no ink above the residual can reach in this frame's
 // iterations (u_active = 0) leaves its pixels as they are; the pass copies the start into
 // both ping-pong images, so they already hold those pixels.
-layout(local_size_x = 16) in;
+layout(local_size_x = GROUP_INVOCATIONS) in;
 layout(r32f, binding = 0) readonly uniform image2D u_ink;
 layout(r32f, binding = 1) readonly uniform image2D u_capacity;  // I_p / n · absorbency; 0 on strokes
 layout(r32f, binding = 2) writeonly uniform image2D u_next;

@@ -138,13 +138,18 @@ TEST_F(InkGpu, AreasTheInkCannotReachAreLeftOutAndTheResultIsUnchanged) {
   const Texture2D colour = Texture2D::fromImage(img, GL_RGBA8), absorbency = Texture2D::fromImage(absorb, GL_R8);
   const ink::InkField before = ink::inkFromImage(colour.download(3), kPaper);
   const std::vector<float> a(absorb.pixels.begin(), absorb.pixels.end());
-  // (n, d, f, most areas computed): 35 areas of 64 × 32, of which the ink (marked in
-  // blocks of 8², so up to x 63, y 31) reaches four — six with rings of undiminished ink
-  // 40 pixels wide, which are not marked but hold ink above the residual; n = 1 runs
-  // everywhere.
-  for (const auto& [n, d, f, most] : {std::tuple{5, 3, 0.6, 4.0 / 35}, std::tuple{20, 8, 0.6, 4.0 / 35},
-                                      std::tuple{2, 0, 0.6, 4.0 / 35}, std::tuple{2, 40, 1.0, 6.0 / 35},
-                                      std::tuple{1, 3, 0.6, 1.0}}) {
+  // The ink is marked in blocks of 8², so up to x 63, y 31; after n iterations it can reach
+  // n further, and rings of undiminished ink (f = 1) d further still: exactly the areas
+  // overlapping [0, 63 + n + d] × [0, 31 + n + d] are computed. n = 1 runs everywhere.
+  const glm::ivec2 area = InkDiffusionPass::workGroupArea();
+  const int areas_x = (w + area.x - 1) / area.x, areas_y = (h + area.y - 1) / area.y;
+  for (const auto& [n, d, f] : {std::tuple{5, 3, 0.6}, std::tuple{20, 8, 0.6}, std::tuple{2, 0, 0.6},
+                                std::tuple{2, 40, 1.0}, std::tuple{1, 3, 0.6}}) {
+    const int reach = n + d;
+    const double expected =
+        n < 2 ? 1.0
+              : static_cast<double>(std::min(areas_x, (63 + reach) / area.x + 1) * std::min(areas_y, (31 + reach) / area.y + 1)) /
+                    (areas_x * areas_y);
     SCOPED_TRACE(testing::Message() << "n=" << n << " d=" << d << " f=" << f);
     ink::DiffusionOptions o;
     o.iterations = n;
@@ -152,9 +157,7 @@ TEST_F(InkGpu, AreasTheInkCannotReachAreLeftOutAndTheResultIsUnchanged) {
     o.attenuation = f;
     o.residual = 0.05;
     pass.run(colour, absorbency, o, paper);
-    const double fraction = pass.lastActiveFraction();
-    EXPECT_GT(fraction, 0.0);
-    EXPECT_LE(fraction, most + 1e-9);
+    EXPECT_DOUBLE_EQ(pass.lastActiveFraction(), expected);
     const image::Image gpu = pass.inkAfter().download(1);
     const ink::InkField cpu = ink::diffuseInk(before, a, o);
     double max_diff = 0, total_gpu = 0;

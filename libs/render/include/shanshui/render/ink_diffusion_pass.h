@@ -49,6 +49,8 @@ class InkDiffusionPass {
   //! computed: 1 when they ran everywhere, less when ink above the residual could not reach
   //! some areas (reads back a small image; for tests and benches).
   double lastActiveFraction() const;
+  //! The pixels one work group of the boundary iterations covers (the unit left out).
+  static glm::ivec2 workGroupArea();
 
  private:
   void ensureSize(int width, int height);
