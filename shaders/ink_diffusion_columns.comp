@@ -2,13 +2,12 @@
 // Ink diffusion, main region, step 2: the same two sweeps down each column over the row
 // results give the exact city-block distance r to the stroke region; ring pixels
 // (1 ≤ r ≤ d) take max(own ink, f^r · source ink). One invocation per column. As in the
-// rows, only distances up to d are stored, and u_main (a copy of the ink) is written only
-// where a ring raises it.
+// rows, only distances up to d are stored, and u_main (the ink, from the extraction) is
+// written only where a ring raises it.
 layout(local_size_x = 64) in;
-layout(r32f, binding = 0) readonly uniform image2D u_ink;
 layout(r32i, binding = 1) uniform iimage2D u_distance;
 layout(r32f, binding = 2) uniform image2D u_source;
-layout(r32f, binding = 3) writeonly uniform image2D u_main;
+layout(r32f, binding = 3) uniform image2D u_main;  // the ink, raised where a ring is darker
 uniform int u_ring_steps;
 uniform float u_ring_ink[RING_TABLE];  // f^r for r = 0 … d (pow per pixel costs more on llvmpipe)
 
@@ -31,7 +30,7 @@ void step(ivec2 p, inout int d, inout float v, bool store) {
 
 void main() {
   int x = int(gl_GlobalInvocationID.x);
-  ivec2 size = imageSize(u_ink);
+  ivec2 size = imageSize(u_main);
   if (x >= size.x) return;
   int d = kFar;
   float v = 0.0;
@@ -42,7 +41,7 @@ void main() {
     step(ivec2(x, y), d, v, false);
     if (d >= 1 && d <= u_ring_steps) {
       float ring = u_ring_ink[d] * v;
-      if (ring > imageLoad(u_ink, ivec2(x, y)).r) imageStore(u_main, ivec2(x, y), vec4(ring));
+      if (ring > imageLoad(u_main, ivec2(x, y)).r) imageStore(u_main, ivec2(x, y), vec4(ring));
     }
   }
 }

@@ -6,6 +6,7 @@
 // blocks of SEED_SIZE² pixels holding ink above the residual, where the boundary
 // iterations start (with the main region's rings, which lie within d of a stroke).
 layout(local_size_x = 64) in;
+#include "ink_diffusion_ink.glsl"
 layout(rgba8, binding = 2) readonly uniform image2D u_colour;
 layout(binding = 1) uniform sampler2D u_absorbency;  // tiled over the picture
 layout(r32f, binding = 0) writeonly uniform image2D u_ink;
@@ -23,8 +24,6 @@ void main() {
   ivec2 size = imageSize(u_ink);
   int x = int(gl_GlobalInvocationID.x);
   if (x >= size.x) return;
-  const vec3 weights = vec3(0.2126, 0.7152, 0.0722);
-  const float paper = max(dot(u_paper, weights), 1e-6);
   // The tile's column, by float division: exact for integers below 2^23, and vectorises
   // where an integer % does not.
   const vec2 tile = vec2(textureSize(u_absorbency, 0));
@@ -33,7 +32,7 @@ void main() {
   bool seed = false;
   for (int y = y0; y < y1; ++y) {
     ivec2 p = ivec2(x, y);
-    float ink = clamp(1.0 - dot(imageLoad(u_colour, p).rgb, weights) / paper, 0.0, 1.0);
+    float ink = inkOf(imageLoad(u_colour, p).rgb, u_paper);
     imageStore(u_ink, p, vec4(ink));
     int ty = int(float(y) - tile.y * floor(float(y) / tile.y));
     float a = clamp(u_absorbency_map.y + u_absorbency_map.x * texelFetch(u_absorbency, ivec2(tx, ty), 0).r, 0.0, 1.0);

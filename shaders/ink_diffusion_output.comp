@@ -4,8 +4,8 @@
 // paper's grain, × (1 + contrast · canvas noise), over everything. One invocation per
 // column and STRIP_ROWS rows.
 layout(local_size_x = 64) in;
+#include "ink_diffusion_ink.glsl"
 layout(rgba8, binding = 3) readonly uniform image2D u_colour;
-layout(r32f, binding = 0) readonly uniform image2D u_before;
 layout(r32f, binding = 1) readonly uniform image2D u_after;
 layout(rgba8, binding = 2) writeonly uniform image2D u_out;
 uniform vec3 u_paper;
@@ -21,7 +21,8 @@ void main() {
   const int y0 = int(gl_WorkGroupID.y) * STRIP_ROWS, y1 = min(y0 + STRIP_ROWS, size.y);
   for (int y = y0; y < y1; ++y) {
     ivec2 p = ivec2(x, y);
-    vec3 c = imageLoad(u_colour, p).rgb - u_paper * (imageLoad(u_after, p).r - imageLoad(u_before, p).r);
+    vec3 c = imageLoad(u_colour, p).rgb;
+    c -= u_paper * (imageLoad(u_after, p).r - inkOf(c, u_paper));
 #ifdef CANVAS
     c *= 1.0 + u_canvas_contrast * imageLoad(u_canvas, p).r;
 #endif

@@ -68,7 +68,7 @@ InkDiffusionPass::InkDiffusionPass()
 
 void InkDiffusionPass::ensureSize(int width, int height) {
   if (out_.width() == width && out_.height() == height) return;
-  for (Texture2D* t : {&ink0_, &capacity_, &main_, &next_, &source_}) *t = Texture2D(width, height, GL_R32F);
+  for (Texture2D* t : {&capacity_, &main_, &next_, &source_}) *t = Texture2D(width, height, GL_R32F);
   distance_ = Texture2D(width, height, GL_R32I);
   seeds_ = Texture2D((width + kSeedSize - 1) / kSeedSize, (height + kSeedSize - 1) / kSeedSize, GL_R8UI);
   active_tex_ = Texture2D((width + kAreaWidth - 1) / kAreaWidth, (height + kStripRows - 1) / kStripRows, GL_R8UI);
@@ -101,7 +101,8 @@ void InkDiffusionPass::run(const Texture2D& colour, const PaperTexture& texture,
   // Per-pixel passes: an invocation per column and kStripRows rows.
   const GLuint sx = groups(w, 64), sy = groups(h, kStripRows);
 
-  // With two or more boundary iterations, the extraction also marks the blocks where ink
+  // The ink goes straight into main_, which the main region then raises. With two or more
+  // boundary iterations, the extraction also marks the blocks where ink
   // starts above the residual, so the iterations can leave out the areas it cannot reach.
   const bool idle = o.iterations >= 2;
   last_idle_ = idle;
@@ -112,7 +113,7 @@ void InkDiffusionPass::run(const Texture2D& colour, const PaperTexture& texture,
   extract.set("u_absorb", static_cast<float>(o.iterations > 0 ? o.absorb / o.iterations : 0.0));
   extract.set("u_threshold", static_cast<float>(o.threshold));
   glBindTextureUnit(1, texture.absorbency->id());
-  bindImage(0, ink0_, GL_WRITE_ONLY);
+  bindImage(0, main_, GL_WRITE_ONLY);
   bindImage(1, capacity_, GL_WRITE_ONLY);
   bindImage(2, colour, GL_READ_ONLY);
   if (idle) {
@@ -125,17 +126,16 @@ void InkDiffusionPass::run(const Texture2D& colour, const PaperTexture& texture,
   barrier();
 
   // Main region: rows, then columns. Both store only distances up to d over images cleared
-  // to "far", and the columns raise a copy of the ink only where a ring does: fills and
-  // copies cost far less than a store per pixel.
+  // to "far" (a fill costs far less than a store per pixel), and the columns raise the
+  // extracted ink only where a ring does.
   const GLint far = 1 << 28;
   const GLfloat none = 0.0f;
   glClearTexImage(distance_.id(), 0, GL_RED_INTEGER, GL_INT, &far);
   glClearTexImage(source_.id(), 0, GL_RED, GL_FLOAT, &none);
-  glCopyImageSubData(ink0_.id(), GL_TEXTURE_2D, 0, 0, 0, 0, main_.id(), GL_TEXTURE_2D, 0, 0, 0, 0, w, h, 1);
   rows_.use();
   rows_.set("u_threshold", static_cast<float>(o.threshold));
   rows_.set("u_ring_steps", o.ring_steps);
-  bindImage(0, ink0_, GL_READ_ONLY);
+  bindImage(0, main_, GL_READ_ONLY);
   bindImage(1, distance_, GL_READ_WRITE);
   bindImage(2, source_, GL_READ_WRITE);
   glDispatchCompute(groups(h, 64), 1, 1);
@@ -145,7 +145,7 @@ void InkDiffusionPass::run(const Texture2D& colour, const PaperTexture& texture,
   std::vector<float> ring_ink(static_cast<std::size_t>(o.ring_steps) + 1);
   for (int r = 0; r <= o.ring_steps; ++r) ring_ink[r] = static_cast<float>(std::pow(o.attenuation, r));
   glProgramUniform1fv(columns_.id(), glGetUniformLocation(columns_.id(), "u_ring_ink"), o.ring_steps + 1, ring_ink.data());
-  bindImage(3, main_, GL_WRITE_ONLY);
+  bindImage(3, main_, GL_READ_WRITE);
   glDispatchCompute(groups(w, 64), 1, 1);
   barrier();
   if (idle) {
@@ -188,7 +188,6 @@ void InkDiffusionPass::run(const Texture2D& colour, const PaperTexture& texture,
   }
   out->use();
   out->set("u_paper", paper);
-  bindImage(0, ink0_, GL_READ_ONLY);
   bindImage(1, *cur, GL_READ_ONLY);
   bindImage(2, output, GL_WRITE_ONLY);
   bindImage(3, colour, GL_READ_ONLY);

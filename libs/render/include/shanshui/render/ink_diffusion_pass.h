@@ -56,7 +56,7 @@ class InkDiffusionPass {
   void ensureSize(int width, int height);
   Program extract_, extract_seeds_, rows_, columns_, active_, boundary_, boundary_idle_, output_;
   Program output_canvas_;  //!< built on first use with a canvas grain
-  Texture2D ink0_, capacity_, main_, next_, distance_, source_, out_;
+  Texture2D capacity_, main_, next_, distance_, source_, out_;
   Texture2D seeds_, active_tex_;  //!< one texel per work-group area of the boundary iterations
   const Texture2D* after_ = nullptr;
   bool last_idle_ = false;  //!< the last run left out unreachable areas
