@@ -6,13 +6,18 @@
 // Only distances up to d (u_ring_steps) can make a ring pixel, so only those are stored:
 // the pass clears the images to "far" first (a fill costs far less than a store per
 // pixel), and a larger distance left as "far" changes no ring — the smallest distance to a
-// ring pixel is found through pixels that are themselves within d.
+// ring pixel is found through pixels that are themselves within d. Blocks of BLOCK_SIZE
+// pixels that no stroke lies within d of (u_near = 0) hold no such distance and are
+// skipped: the stroke carried into them is farther than d, so it leaves them "far". An
+// invocation's row and its 7 neighbours share a block row, so on llvmpipe the skip is
+// taken by whole vectors.
 layout(local_size_x = 64) in;
 layout(r32f, binding = 0) readonly uniform image2D u_ink;
 layout(r32i, binding = 1) uniform iimage2D u_distance;
 layout(r32f, binding = 2) uniform image2D u_source;
 uniform float u_threshold;
 uniform int u_ring_steps;
+layout(r8ui, binding = 3) readonly uniform uimage2D u_near;
 
 const int kFar = 1 << 28;
 
@@ -20,32 +25,45 @@ void main() {
   int y = int(gl_GlobalInvocationID.x);
   ivec2 size = imageSize(u_ink);
   if (y >= size.y) return;
+  const int blocks = (size.x + BLOCK_SIZE - 1) / BLOCK_SIZE, by = y / BLOCK_SIZE;
   int d = kFar;
   float v = 0.0;
-  for (int x = 0; x < size.x; ++x) {
-    float ink = imageLoad(u_ink, ivec2(x, y)).r;
-    if (ink > u_threshold) {
-      d = 0;
-      v = ink;
-    } else if (d < kFar) {
-      d += 1;
+  for (int b = 0; b < blocks; ++b) {
+    if (imageLoad(u_near, ivec2(b, by)).r == 0u) {
+      d = kFar;
+      continue;
     }
-    if (d <= u_ring_steps) {
-      imageStore(u_distance, ivec2(x, y), ivec4(d));
-      imageStore(u_source, ivec2(x, y), vec4(v));
+    for (int x = b * BLOCK_SIZE; x < min((b + 1) * BLOCK_SIZE, size.x); ++x) {
+      float ink = imageLoad(u_ink, ivec2(x, y)).r;
+      if (ink > u_threshold) {
+        d = 0;
+        v = ink;
+      } else if (d < kFar) {
+        d += 1;
+      }
+      if (d <= u_ring_steps) {
+        imageStore(u_distance, ivec2(x, y), ivec4(d));
+        imageStore(u_source, ivec2(x, y), vec4(v));
+      }
     }
   }
   d = kFar;
   v = 0.0;
-  for (int x = size.x - 1; x >= 0; --x) {
-    if (d < kFar) d += 1;
-    int dc = imageLoad(u_distance, ivec2(x, y)).r;
-    if (dc < d || (dc == d && imageLoad(u_source, ivec2(x, y)).r >= v)) {
-      d = dc;
-      v = imageLoad(u_source, ivec2(x, y)).r;
-    } else if (d <= u_ring_steps) {
-      imageStore(u_distance, ivec2(x, y), ivec4(d));
-      imageStore(u_source, ivec2(x, y), vec4(v));
+  for (int b = blocks - 1; b >= 0; --b) {
+    if (imageLoad(u_near, ivec2(b, by)).r == 0u) {
+      d = kFar;
+      continue;
+    }
+    for (int x = min((b + 1) * BLOCK_SIZE, size.x) - 1; x >= b * BLOCK_SIZE; --x) {
+      if (d < kFar) d += 1;
+      int dc = imageLoad(u_distance, ivec2(x, y)).r;
+      if (dc < d || (dc == d && imageLoad(u_source, ivec2(x, y)).r >= v)) {
+        d = dc;
+        v = imageLoad(u_source, ivec2(x, y)).r;
+      } else if (d <= u_ring_steps) {
+        imageStore(u_distance, ivec2(x, y), ivec4(d));
+        imageStore(u_source, ivec2(x, y), vec4(v));
+      }
     }
   }
 }

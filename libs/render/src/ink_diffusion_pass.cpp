@@ -35,12 +35,13 @@ constexpr int kBlock = 2;
 constexpr int kGroupInvocations = 32;
 constexpr int kAreaWidth = kBlock * kGroupInvocations;
 constexpr int kStripRows = 16;
-// The main-region pass marks ink above the residual per block of kSeedSize² pixels; a
-// boundary work group runs only if a marked block lies within n pixels of its area.
-constexpr int kSeedSize = 8;
+// The extraction marks ink above the residual and strokes per block of kMarkBlock²
+// pixels: a boundary work group runs only if a block with ink lies within n + d pixels of
+// its area, and the main region's sweeps skip blocks no stroke lies within d of.
+constexpr int kMarkBlock = 8;
 // The columns pass reads f^r from a table: one entry per ring, d ≤ 256 (ink::validate).
 constexpr int kMaxRingSteps = 256;
-static_assert(kStripRows % kSeedSize == 0, "the extract pass marks whole blocks per strip");
+static_assert(kStripRows % kMarkBlock == 0, "the extraction marks whole blocks per strip");
 
 std::vector<std::string> defines(std::vector<std::string> extra = {}) {
   extra.push_back("BLOCK=" + std::to_string(kBlock));
@@ -48,7 +49,7 @@ std::vector<std::string> defines(std::vector<std::string> extra = {}) {
   extra.push_back("STRIP_ROWS=" + std::to_string(kStripRows));
   extra.push_back("AREA_W=" + std::to_string(kAreaWidth));
   extra.push_back("AREA_H=" + std::to_string(kStripRows));
-  extra.push_back("SEED_SIZE=" + std::to_string(kSeedSize));
+  extra.push_back("BLOCK_SIZE=" + std::to_string(kMarkBlock));
   return extra;
 }
 
@@ -58,10 +59,9 @@ glm::ivec2 InkDiffusionPass::workGroupArea() { return {kAreaWidth, kStripRows}; 
 
 InkDiffusionPass::InkDiffusionPass()
     : extract_({"ink_diffusion_extract.comp"}, defines()),
-      extract_seeds_({"ink_diffusion_extract.comp"}, defines({"SEEDS"})),
-      rows_({"ink_diffusion_rows.comp"}),
-      columns_({"ink_diffusion_columns.comp"}, {"RING_TABLE=" + std::to_string(kMaxRingSteps + 1)}),
-      active_({"ink_diffusion_active.comp"}, defines()),
+      rows_({"ink_diffusion_rows.comp"}, defines()),
+      columns_({"ink_diffusion_columns.comp"}, defines({"RING_TABLE=" + std::to_string(kMaxRingSteps + 1)})),
+      reach_({"ink_diffusion_reach.comp"}, defines()),
       boundary_({"ink_diffusion_boundary.comp"}, defines()),
       boundary_idle_({"ink_diffusion_boundary.comp"}, defines({"IDLE"})),
       output_({"ink_diffusion_output.comp"}, defines()) {}
@@ -70,7 +70,8 @@ void InkDiffusionPass::ensureSize(int width, int height) {
   if (out_.width() == width && out_.height() == height) return;
   for (Texture2D* t : {&capacity_, &main_, &next_, &source_}) *t = Texture2D(width, height, GL_R32F);
   distance_ = Texture2D(width, height, GL_R32I);
-  seeds_ = Texture2D((width + kSeedSize - 1) / kSeedSize, (height + kSeedSize - 1) / kSeedSize, GL_R8UI);
+  const int blocks_x = (width + kMarkBlock - 1) / kMarkBlock, blocks_y = (height + kMarkBlock - 1) / kMarkBlock;
+  for (Texture2D* t : {&seeds_, &strokes_, &near_}) *t = Texture2D(blocks_x, blocks_y, GL_R8UI);
   active_tex_ = Texture2D((width + kAreaWidth - 1) / kAreaWidth, (height + kStripRows - 1) / kStripRows, GL_R8UI);
   out_ = Texture2D(width, height, GL_RGBA8);
 }
@@ -101,61 +102,61 @@ void InkDiffusionPass::run(const Texture2D& colour, const PaperTexture& texture,
   // Per-pixel passes: an invocation per column and kStripRows rows.
   const GLuint sx = groups(w, 64), sy = groups(h, kStripRows);
 
-  // The ink goes straight into main_, which the main region then raises. With two or more
-  // boundary iterations, the extraction also marks the blocks where ink
-  // starts above the residual, so the iterations can leave out the areas it cannot reach.
+  // The ink goes straight into main_, which the main region then raises; the marks of ink
+  // above the residual and of strokes per block go into seeds_ and strokes_.
   const bool idle = o.iterations >= 2;
   last_idle_ = idle;
-  const Program& extract = idle ? extract_seeds_ : extract_;
-  extract.use();
-  extract.set("u_paper", paper);
-  extract.set("u_absorbency_map", texture.absorbency_map);
-  extract.set("u_absorb", static_cast<float>(o.iterations > 0 ? o.absorb / o.iterations : 0.0));
-  extract.set("u_threshold", static_cast<float>(o.threshold));
+  const GLubyte zero = 0;
+  glClearTexImage(seeds_.id(), 0, GL_RED_INTEGER, GL_UNSIGNED_BYTE, &zero);
+  glClearTexImage(strokes_.id(), 0, GL_RED_INTEGER, GL_UNSIGNED_BYTE, &zero);
+  extract_.use();
+  extract_.set("u_paper", paper);
+  extract_.set("u_absorbency_map", texture.absorbency_map);
+  extract_.set("u_absorb", static_cast<float>(o.iterations > 0 ? o.absorb / o.iterations : 0.0));
+  extract_.set("u_threshold", static_cast<float>(o.threshold));
+  extract_.set("u_residual", static_cast<float>(o.residual));
   glBindTextureUnit(1, texture.absorbency->id());
   bindImage(0, main_, GL_WRITE_ONLY);
   bindImage(1, capacity_, GL_WRITE_ONLY);
   bindImage(2, colour, GL_READ_ONLY);
-  if (idle) {
-    const GLubyte zero = 0;
-    glClearTexImage(seeds_.id(), 0, GL_RED_INTEGER, GL_UNSIGNED_BYTE, &zero);
-    extract.set("u_residual", static_cast<float>(o.residual));
-    bindImage(3, seeds_, GL_WRITE_ONLY);
-  }
+  bindImage(3, seeds_, GL_WRITE_ONLY);
+  bindImage(4, strokes_, GL_WRITE_ONLY);
   glDispatchCompute(sx, sy, 1);
   barrier();
 
-  // Main region: rows, then columns. Both store only distances up to d over images cleared
-  // to "far" (a fill costs far less than a store per pixel), and the columns raise the
-  // extracted ink only where a ring does.
-  const GLint far = 1 << 28;
-  const GLfloat none = 0.0f;
-  glClearTexImage(distance_.id(), 0, GL_RED_INTEGER, GL_INT, &far);
-  glClearTexImage(source_.id(), 0, GL_RED, GL_FLOAT, &none);
-  rows_.use();
-  rows_.set("u_threshold", static_cast<float>(o.threshold));
-  rows_.set("u_ring_steps", o.ring_steps);
-  bindImage(0, main_, GL_READ_ONLY);
-  bindImage(1, distance_, GL_READ_WRITE);
-  bindImage(2, source_, GL_READ_WRITE);
-  glDispatchCompute(groups(h, 64), 1, 1);
-  barrier();
-  columns_.use();
-  columns_.set("u_ring_steps", o.ring_steps);
-  std::vector<float> ring_ink(static_cast<std::size_t>(o.ring_steps) + 1);
-  for (int r = 0; r <= o.ring_steps; ++r) ring_ink[r] = static_cast<float>(std::pow(o.attenuation, r));
-  glProgramUniform1fv(columns_.id(), glGetUniformLocation(columns_.id(), "u_ring_ink"), o.ring_steps + 1, ring_ink.data());
-  bindImage(3, main_, GL_READ_WRITE);
-  glDispatchCompute(groups(w, 64), 1, 1);
-  barrier();
+  // Main region (none when d = 0): the blocks within d of a stroke, then rows and columns.
+  // Both store only distances up to d over images cleared to "far" (a fill costs far less
+  // than a store per pixel), and the columns raise the extracted ink only where a ring does.
+  if (o.ring_steps > 0) {
+    reach(strokes_, near_, glm::ivec2(kMarkBlock), o.ring_steps);
+    const GLint far = 1 << 28;
+    const GLfloat none = 0.0f;
+    glClearTexImage(distance_.id(), 0, GL_RED_INTEGER, GL_INT, &far);
+    glClearTexImage(source_.id(), 0, GL_RED, GL_FLOAT, &none);
+    rows_.use();
+    rows_.set("u_threshold", static_cast<float>(o.threshold));
+    rows_.set("u_ring_steps", o.ring_steps);
+    bindImage(0, main_, GL_READ_ONLY);
+    bindImage(1, distance_, GL_READ_WRITE);
+    bindImage(2, source_, GL_READ_WRITE);
+    bindImage(3, near_, GL_READ_ONLY);
+    glDispatchCompute(groups(h, 64), 1, 1);
+    barrier();
+    columns_.use();
+    columns_.set("u_ring_steps", o.ring_steps);
+    std::vector<float> ring_ink(static_cast<std::size_t>(o.ring_steps) + 1);
+    for (int r = 0; r <= o.ring_steps; ++r) ring_ink[r] = static_cast<float>(std::pow(o.attenuation, r));
+    glProgramUniform1fv(columns_.id(), glGetUniformLocation(columns_.id(), "u_ring_ink"), o.ring_steps + 1,
+                        ring_ink.data());
+    bindImage(3, main_, GL_READ_WRITE);
+    bindImage(4, near_, GL_READ_ONLY);
+    glDispatchCompute(groups(w, 64), 1, 1);
+    barrier();
+  }
   if (idle) {
-    active_.use();
     // Ink above the residual lies within d of a marked block (a ring lies within d of its
     // stroke, and holds no more ink than it), and moves one pixel per iteration.
-    active_.set("u_reach", o.iterations + o.ring_steps);
-    bindImage(0, seeds_, GL_READ_ONLY);
-    bindImage(1, active_tex_, GL_WRITE_ONLY);
-    glDispatchCompute(groups(active_tex_.width(), 8), groups(active_tex_.height(), 8), 1);
+    reach(seeds_, active_tex_, glm::ivec2(kAreaWidth, kStripRows), o.iterations + o.ring_steps);
     // Both ping-pong images start as the main region, so areas left out hold it throughout.
     glCopyImageSubData(main_.id(), GL_TEXTURE_2D, 0, 0, 0, 0, next_.id(), GL_TEXTURE_2D, 0, 0, 0, 0, w, h, 1);
     barrier();
@@ -195,6 +196,16 @@ void InkDiffusionPass::run(const Texture2D& colour, const PaperTexture& texture,
   barrier();
   if (timer) timer->end();
   SHANSHUI_GL_CHECK("diffusion pass");
+}
+
+void InkDiffusionPass::reach(const Texture2D& marks, const Texture2D& reached, glm::ivec2 area, int pixels) const {
+  reach_.use();
+  reach_.set("u_area", area);
+  reach_.set("u_reach", pixels);
+  bindImage(0, marks, GL_READ_ONLY);
+  bindImage(1, reached, GL_WRITE_ONLY);
+  glDispatchCompute(groups(reached.width(), 8), groups(reached.height(), 8), 1);
+  barrier();
 }
 
 double InkDiffusionPass::lastActiveFraction() const {

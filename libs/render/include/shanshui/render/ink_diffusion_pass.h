@@ -54,10 +54,14 @@ class InkDiffusionPass {
 
  private:
   void ensureSize(int width, int height);
-  Program extract_, extract_seeds_, rows_, columns_, active_, boundary_, boundary_idle_, output_;
+  //! Marks in `reached` (one texel per `area` of pixels) the areas within `pixels` of a
+  //! block marked in `marks`.
+  void reach(const Texture2D& marks, const Texture2D& reached, glm::ivec2 area, int pixels) const;
+  Program extract_, rows_, columns_, reach_, boundary_, boundary_idle_, output_;
   Program output_canvas_;  //!< built on first use with a canvas grain
   Texture2D capacity_, main_, next_, distance_, source_, out_;
-  Texture2D seeds_, active_tex_;  //!< one texel per work-group area of the boundary iterations
+  Texture2D seeds_, strokes_, near_;  //!< one texel per block: ink above the residual, strokes, near a stroke
+  Texture2D active_tex_;              //!< one texel per work-group area of the boundary iterations
   const Texture2D* after_ = nullptr;
   bool last_idle_ = false;  //!< the last run left out unreachable areas
 };
