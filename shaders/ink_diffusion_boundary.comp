@@ -17,16 +17,14 @@
 // Loads outside the image return 0 and stores there are dropped (OpenGL 4.5, section
 // 8.26): outside pixels have no excess and no capacity, so they neither give nor take.
 //
-// IDLE: a work group whose area no ink above the residual can reach in this frame's
-// iterations (u_active = 0) leaves its pixels as they are; the pass copies the start into
-// both ping-pong images, so they already hold those pixels.
+// A work group whose area no ink above the residual can reach in this frame's iterations
+// (u_active = 0) leaves its pixels as they are; the pass copies the start into both
+// ping-pong images, so they already hold those pixels.
 layout(local_size_x = GROUP_INVOCATIONS) in;
 layout(r32f, binding = 0) readonly uniform image2D u_ink;
 layout(r32f, binding = 1) readonly uniform image2D u_capacity;  // I_p / n · absorbency; 0 on strokes
 layout(r32f, binding = 2) writeonly uniform image2D u_next;
-#ifdef IDLE
 layout(r8ui, binding = 3) readonly uniform uimage2D u_active;  // one texel per work group
-#endif
 uniform float u_residual;
 
 const int B = BLOCK;
@@ -35,9 +33,7 @@ const int B = BLOCK;
 #define NEIGHBOURS(a, b, c, k) (a[k] + a[k + 1] + a[k + 2] + b[k] + b[k + 2] + c[k] + c[k + 1] + c[k + 2])
 
 void main() {
-#ifdef IDLE
   if (imageLoad(u_active, ivec2(gl_WorkGroupID.xy)).r == 0u) return;
-#endif
   ivec2 size = imageSize(u_ink);
   int x0 = int(gl_GlobalInvocationID.x) * B;
   int y0 = int(gl_WorkGroupID.y) * STRIP_ROWS;

@@ -63,7 +63,6 @@ InkDiffusionPass::InkDiffusionPass()
       columns_({"ink_diffusion_columns.comp"}, defines({"RING_TABLE=" + std::to_string(kMaxRingSteps + 1)})),
       reach_({"ink_diffusion_reach.comp"}, defines()),
       boundary_({"ink_diffusion_boundary.comp"}, defines()),
-      boundary_idle_({"ink_diffusion_boundary.comp"}, defines({"IDLE"})),
       output_({"ink_diffusion_output.comp"}, defines()) {}
 
 void InkDiffusionPass::ensureSize(int width, int height) {
@@ -104,8 +103,6 @@ void InkDiffusionPass::run(const Texture2D& colour, const PaperTexture& texture,
 
   // The ink goes straight into main_, which the main region then raises; the marks of ink
   // above the residual and of strokes per block go into seeds_ and strokes_.
-  const bool idle = o.iterations >= 2;
-  last_idle_ = idle;
   const GLubyte zero = 0;
   glClearTexImage(seeds_.id(), 0, GL_RED_INTEGER, GL_UNSIGNED_BYTE, &zero);
   glClearTexImage(strokes_.id(), 0, GL_RED_INTEGER, GL_UNSIGNED_BYTE, &zero);
@@ -153,7 +150,8 @@ void InkDiffusionPass::run(const Texture2D& colour, const PaperTexture& texture,
     glDispatchCompute(groups(w, 64), 1, 1);
     barrier();
   }
-  if (idle) {
+  last_iterations_ = o.iterations;
+  if (o.iterations > 0) {
     // Ink above the residual lies within d of a marked block (a ring lies within d of its
     // stroke, and holds no more ink than it), and moves one pixel per iteration.
     reach(seeds_, active_tex_, glm::ivec2(kAreaWidth, kStripRows), o.iterations + o.ring_steps);
@@ -166,14 +164,13 @@ void InkDiffusionPass::run(const Texture2D& colour, const PaperTexture& texture,
   Texture2D* cur = &main_;
   Texture2D* nxt = &next_;
   const GLuint bx = groups(w, kAreaWidth), by = groups(h, kStripRows);
+  boundary_.use();
+  boundary_.set("u_residual", static_cast<float>(o.residual));
+  bindImage(1, capacity_, GL_READ_ONLY);
+  bindImage(3, active_tex_, GL_READ_ONLY);
   for (int it = 0; it < o.iterations; ++it) {
-    const Program& boundary = idle ? boundary_idle_ : boundary_;
-    boundary.use();
-    boundary.set("u_residual", static_cast<float>(o.residual));
     bindImage(0, *cur, GL_READ_ONLY);
-    bindImage(1, capacity_, GL_READ_ONLY);
     bindImage(2, *nxt, GL_WRITE_ONLY);
-    if (idle) bindImage(3, active_tex_, GL_READ_ONLY);
     glDispatchCompute(bx, by, 1);
     barrier();
     std::swap(cur, nxt);
@@ -209,7 +206,7 @@ void InkDiffusionPass::reach(const Texture2D& marks, const Texture2D& reached, g
 }
 
 double InkDiffusionPass::lastActiveFraction() const {
-  if (!last_idle_) return 1.0;
+  if (last_iterations_ == 0) return 0.0;
   std::vector<GLubyte> flags(static_cast<std::size_t>(active_tex_.width()) * active_tex_.height());
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
   glGetTextureImage(active_tex_.id(), 0, GL_RED_INTEGER, GL_UNSIGNED_BYTE, static_cast<GLsizei>(flags.size()), flags.data());

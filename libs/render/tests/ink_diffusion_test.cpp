@@ -140,16 +140,14 @@ TEST_F(InkGpu, AreasTheInkCannotReachAreLeftOutAndTheResultIsUnchanged) {
   const std::vector<float> a(absorb.pixels.begin(), absorb.pixels.end());
   // The ink is marked in blocks of 8², so up to x 63, y 31; after n iterations it can reach
   // n further, and rings of undiminished ink (f = 1) d further still: exactly the areas
-  // overlapping [0, 63 + n + d] × [0, 31 + n + d] are computed. n = 1 runs everywhere.
+  // overlapping [0, 63 + n + d] × [0, 31 + n + d] are computed (none without iterations).
   const glm::ivec2 area = InkDiffusionPass::workGroupArea();
   const int areas_x = (w + area.x - 1) / area.x, areas_y = (h + area.y - 1) / area.y;
   for (const auto& [n, d, f] : {std::tuple{5, 3, 0.6}, std::tuple{20, 8, 0.6}, std::tuple{2, 0, 0.6},
-                                std::tuple{2, 40, 1.0}, std::tuple{1, 3, 0.6}}) {
+                                std::tuple{2, 40, 1.0}, std::tuple{1, 3, 0.6}, std::tuple{0, 3, 0.6}}) {
     const int reach = n + d;
-    const double expected =
-        n < 2 ? 1.0
-              : static_cast<double>(std::min(areas_x, (63 + reach) / area.x + 1) * std::min(areas_y, (31 + reach) / area.y + 1)) /
-                    (areas_x * areas_y);
+    const int covered = std::min(areas_x, (63 + reach) / area.x + 1) * std::min(areas_y, (31 + reach) / area.y + 1);
+    const double expected = n == 0 ? 0.0 : static_cast<double>(covered) / (areas_x * areas_y);
     SCOPED_TRACE(testing::Message() << "n=" << n << " d=" << d << " f=" << f);
     ink::DiffusionOptions o;
     o.iterations = n;

@@ -46,8 +46,8 @@ class InkDiffusionPass {
   //! The ink field after the last run (R32F), for tests.
   const Texture2D& inkAfter() const { return *after_; }
   //! The share of the picture's work-group areas that the last run's boundary iterations
-  //! computed: 1 when they ran everywhere, less when ink above the residual could not reach
-  //! some areas (reads back a small image; for tests and benches).
+  //! computed: 1 when ink above the residual could reach every area, 0 without iterations
+  //! (reads back a small image; for tests and benches).
   double lastActiveFraction() const;
   //! The pixels one work group of the boundary iterations covers (the unit left out).
   static glm::ivec2 workGroupArea();
@@ -57,13 +57,13 @@ class InkDiffusionPass {
   //! Marks in `reached` (one texel per `area` of pixels) the areas within `pixels` of a
   //! block marked in `marks`.
   void reach(const Texture2D& marks, const Texture2D& reached, glm::ivec2 area, int pixels) const;
-  Program extract_, rows_, columns_, reach_, boundary_, boundary_idle_, output_;
+  Program extract_, rows_, columns_, reach_, boundary_, output_;
   Program output_canvas_;  //!< built on first use with a canvas grain
   Texture2D capacity_, main_, next_, distance_, source_, out_;
   Texture2D seeds_, strokes_, near_;  //!< one texel per block: ink above the residual, strokes, near a stroke
   Texture2D active_tex_;              //!< one texel per work-group area of the boundary iterations
   const Texture2D* after_ = nullptr;
-  bool last_idle_ = false;  //!< the last run left out unreachable areas
+  int last_iterations_ = 0;  //!< n of the last run
 };
 
 }  // namespace shanshui::render
