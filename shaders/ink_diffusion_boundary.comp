@@ -5,14 +5,13 @@
 //
 // Each invocation owns BLOCK adjacent columns and walks STRIP_ROWS rows down them, in work
 // groups of GROUP_INVOCATIONS (compile-time constants from the pass), carrying the rows it
-// needs in registers:
-// reading ink row r gives the demand of row r − 1 (excess of rows r − 2 … r), the supply
-// of row r − 2 (demands of rows r − 3 … r − 1) and the new ink of row r − 3 (supplies of
-// rows r − 4 … r − 2). A pixel's demand and supply are computed by every invocation that
-// needs them, from the same values in the same order, so donor and receiver agree on
-// every transfer and ink is conserved up to float rounding. Per pixel this reads about
-// (2·BLOCK + 10) / BLOCK values instead of the 20 of three separate passes — on llvmpipe
-// the cost of a pass is mostly its image accesses.
+// needs in registers: reading ink row r gives the demand of row r − 1 (excess of rows
+// r − 2 … r), the supply of row r − 2 (demands of rows r − 3 … r − 1) and the new ink of
+// row r − 3 (supplies of rows r − 4 … r − 2). A pixel's demand and supply are computed by
+// every invocation that needs them, from the same values in the same order, so donor and
+// receiver agree on every transfer and ink is conserved up to float rounding. One dispatch
+// and about (2·BLOCK + 10) / BLOCK reads per pixel replace three dispatches and 20 reads:
+// on llvmpipe a pass costs mostly its invocations and image accesses, not its arithmetic.
 //
 // Loads outside the image return 0 and stores there are dropped (OpenGL 4.5, section
 // 8.26): outside pixels have no excess and no capacity, so they neither give nor take.

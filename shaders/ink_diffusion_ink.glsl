@@ -3,5 +3,7 @@
 // the extraction's value to the bit and an untouched pixel keeps its colour exactly.
 float inkOf(vec3 colour, vec3 paper) {
   const vec3 weights = vec3(0.2126, 0.7152, 0.0722);
-  return clamp(1.0 - dot(colour, weights) / max(dot(paper, weights), 1e-6), 0.0, 1.0);
+  // precise: the same operations in both shaders, whatever each compiler would fuse.
+  precise float ink = clamp(1.0 - dot(colour, weights) / max(dot(paper, weights), 1e-6), 0.0, 1.0);
+  return ink;
 }
