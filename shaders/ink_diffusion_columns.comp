@@ -5,7 +5,7 @@
 // rows, only distances up to d are stored, and u_main (the ink, from the extraction) is
 // written only where a ring raises it. Blocks that no stroke lies within d of are skipped
 // as in the rows (an invocation's column and its 7 neighbours share a block column).
-layout(local_size_x = 64) in;
+layout(local_size_x = LINE_GROUP) in;  // invocations (rows or columns) per work group
 layout(r32i, binding = 1) uniform iimage2D u_distance;
 layout(r32f, binding = 2) uniform image2D u_source;
 layout(r32f, binding = 3) uniform image2D u_main;  // the ink, raised where a ring is darker

@@ -7,7 +7,7 @@
 // boundary iterations start, with the main region's rings, which lie within d of a
 // stroke) and where strokes are (u_strokes: the main region's sweeps skip blocks farther
 // than d from any).
-layout(local_size_x = 64) in;
+layout(local_size_x = LINE_GROUP) in;  // invocations (rows or columns) per work group
 #include "ink_diffusion_ink.glsl"
 layout(rgba8, binding = 2) readonly uniform image2D u_colour;
 layout(binding = 1) uniform sampler2D u_absorbency;  // tiled over the picture

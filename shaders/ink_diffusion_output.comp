@@ -3,7 +3,7 @@
 // c − paper · (I_after − I_before); unchanged pixels keep their colour. CANVAS: then the
 // paper's grain, × (1 + contrast · canvas noise), over everything. One invocation per
 // column and STRIP_ROWS rows.
-layout(local_size_x = 64) in;
+layout(local_size_x = LINE_GROUP) in;  // invocations (rows or columns) per work group
 #include "ink_diffusion_ink.glsl"
 layout(rgba8, binding = 3) readonly uniform image2D u_colour;
 layout(r32f, binding = 1) readonly uniform image2D u_after;

@@ -11,7 +11,7 @@
 // skipped: the stroke carried into them is farther than d, so it leaves them "far". An
 // invocation's row and its 7 neighbours share a block row, so on llvmpipe the skip is
 // taken by whole vectors.
-layout(local_size_x = 64) in;
+layout(local_size_x = LINE_GROUP) in;  // invocations (rows or columns) per work group
 layout(r32f, binding = 0) readonly uniform image2D u_ink;
 layout(r32i, binding = 1) uniform iimage2D u_distance;
 layout(r32f, binding = 2) uniform image2D u_source;

@@ -41,6 +41,9 @@ constexpr int kStripRows = 16;
 constexpr int kMarkBlock = 8;
 // The columns pass reads f^r from a table: one entry per ring, d ≤ 256 (ink::validate).
 constexpr int kMaxRingSteps = 256;
+// The per-pixel passes (extraction, output) and the row and column sweeps: one invocation
+// per column (or row), this many to a work group.
+constexpr int kLineGroup = 64;
 static_assert(kStripRows % kMarkBlock == 0, "the extraction marks whole blocks per strip");
 
 std::vector<std::string> defines(std::vector<std::string> extra = {}) {
@@ -50,6 +53,7 @@ std::vector<std::string> defines(std::vector<std::string> extra = {}) {
   extra.push_back("AREA_W=" + std::to_string(kAreaWidth));
   extra.push_back("AREA_H=" + std::to_string(kStripRows));
   extra.push_back("BLOCK_SIZE=" + std::to_string(kMarkBlock));
+  extra.push_back("LINE_GROUP=" + std::to_string(kLineGroup));
   return extra;
 }
 
@@ -99,7 +103,7 @@ void InkDiffusionPass::run(const Texture2D& colour, const PaperTexture& texture,
   ensureSize(w, h);
   if (timer) timer->begin("diffusion");
   // Per-pixel passes: an invocation per column and kStripRows rows.
-  const GLuint sx = groups(w, 64), sy = groups(h, kStripRows);
+  const GLuint sx = groups(w, kLineGroup), sy = groups(h, kStripRows);
 
   // The ink goes straight into main_, which the main region then raises; the marks of ink
   // above the residual and of strokes per block go into seeds_ and strokes_.
@@ -137,7 +141,7 @@ void InkDiffusionPass::run(const Texture2D& colour, const PaperTexture& texture,
     bindImage(1, distance_, GL_READ_WRITE);
     bindImage(2, source_, GL_READ_WRITE);
     bindImage(3, near_, GL_READ_ONLY);
-    glDispatchCompute(groups(h, 64), 1, 1);
+    glDispatchCompute(groups(h, kLineGroup), 1, 1);
     barrier();
     columns_.use();
     columns_.set("u_ring_steps", o.ring_steps);
@@ -147,7 +151,7 @@ void InkDiffusionPass::run(const Texture2D& colour, const PaperTexture& texture,
                         ring_ink.data());
     bindImage(3, main_, GL_READ_WRITE);
     bindImage(4, near_, GL_READ_ONLY);
-    glDispatchCompute(groups(w, 64), 1, 1);
+    glDispatchCompute(groups(w, kLineGroup), 1, 1);
     barrier();
   }
   last_iterations_ = o.iterations;
