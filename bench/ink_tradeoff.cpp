@@ -108,7 +108,7 @@ CurvatureRow measureCurvature(const Surface& s, const char* source, int size) {
   }
   std::sort(ms.begin(), ms.end());
   row.gbuffer_ms = ms[ms.size() / 2];
-  const image::Image nc = r.passTarget("gbuffer")->colour(0).download(4);
+  const image::Image nc = r.normalsAndCurvature();
   const image::Image pos = r.worldPositions();
   const glm::dvec3 eye = cam.eye();
   std::vector<double> err;

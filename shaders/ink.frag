@@ -10,7 +10,7 @@
 #include "ink_gaussian_cdf.glsl"
 #endif
 
-layout(binding = 0) uniform sampler2D u_normal_curvature;
+layout(binding = 0) uniform sampler2D u_normal_curvature;  // encoded: see ink_gbuffer.frag
 layout(binding = 1) uniform sampler2D u_surface_id;
 layout(binding = 2) uniform sampler2D u_depth;
 uniform mat4 u_inverse_view_projection;
@@ -84,7 +84,9 @@ void main() {
 #endif
   vec3 position = worldPosition(p, depth);
   vec4 nc = texelFetch(u_normal_curvature, p, 0);
-  vec3 n = normalize(nc.xyz);
+  vec3 n = normalize(nc.xyz * 2.0 - 1.0);
+  // k / (1 + k) back to k; the largest code stands for 65534, not infinity (no 0 · ∞).
+  float k = nc.w / (1.0 - min(nc.w, 65534.0 / 65535.0));
 
   // Feature lines: col = 1 − k·R_CurveFactor, a line where col < Curv0 (smoothstep of the
   // soft width), silhouettes where N·V is small, outlines where the depth jumps away.
@@ -92,7 +94,7 @@ void main() {
 #ifdef LINES
   int line_flags = int(o.line_misc.w);
   if ((line_flags & kLinesOn) != 0) {
-    col = 1.0 - nc.w * o.line_color.w;
+    col = 1.0 - k * o.line_color.w;
     float threshold = o.bg_color.w, soft = o.line_misc.x;
     if ((line_flags & kNormalOnly) == 0) {
       line_weight = soft > 0.0 ? 1.0 - smoothstep(threshold - 0.5 * soft, threshold + 0.5 * soft, col)

@@ -24,7 +24,7 @@ uniform sampler2D u_noise;     // r: erosion noise, g: noise added before quanti
 #endif
 uniform float u_object_id;     // (index + 1) / 255
 
-layout(location = 0) out vec4 o_normal_curvature;
+layout(location = 0) out vec4 o_normal_curvature;  // RGBA16: n / 2 + 1/2, k / (1 + k)
 layout(location = 1) out vec4 o_surface_id;  // erosion noise, added noise, wrinkle luma, id
 
 void main() {
@@ -38,7 +38,10 @@ void main() {
   float dp = length(fwidth(v_world));
   k = dp > 0.0 ? length(fwidth(n)) / dp * u_feature_size : 0.0;
 #endif
-  o_normal_curvature = vec4(n, k);
+  // Unsigned normalised 16 bits (half floats cost a software rasteriser a conversion per
+  // channel): the normal's components from [-1, 1], the curvature (never negative) from
+  // [0, ∞) with k / (1 + k), relative precision ~1e-4 up to k ≈ 10 (ink.frag decodes).
+  o_normal_curvature = vec4(n * 0.5 + 0.5, max(k, 0.0) / (1.0 + max(k, 0.0)));
   vec2 noise = vec2(1.0, 0.5);  // no erosion, nothing added
 #ifdef SURFACE
   noise = texture(u_noise, v_noise_uv).rg;

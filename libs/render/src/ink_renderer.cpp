@@ -18,7 +18,7 @@ namespace shanshui::render {
 
 namespace {
 
-// std430 mirror of ObjectParams in shaders/ink_objects.glsl.
+// std430 (and std140) mirror of ObjectParams in shaders/ink_objects.glsl.
 struct ObjectParamsGpu {
   glm::vec4 line_color, bg_color, line_misc, tones, thresholds, shade_misc, shade_misc2;
 };
@@ -277,8 +277,11 @@ void InkRenderer::setScene(const scene::Scene& s) {
 
 void InkRenderer::ensureTargets(int width, int height) {
   if (final_.width() == width && final_.height() == height) return;
-  gbuffer_ = Framebuffer(width, height, {GL_RGBA16F, GL_RGBA8}, true);
-  if (scene_.hasAnimation()) static_gbuffer_ = Framebuffer(width, height, {GL_RGBA16F, GL_RGBA8}, true);
+  // Normal and curvature in 16-bit unsigned normalised channels (encoded in
+  // shaders/ink_gbuffer.frag): llvmpipe converts to half floats in software, and an RGBA16F
+  // target cost ~10 ms more a frame at 1024² (measured side by side).
+  gbuffer_ = Framebuffer(width, height, {GL_RGBA16, GL_RGBA8}, true);
+  if (scene_.hasAnimation()) static_gbuffer_ = Framebuffer(width, height, {GL_RGBA16, GL_RGBA8}, true);
   static_layer_key_.clear();
   std::vector<GLenum> out{GL_RGBA8};
   if (debug_outputs_) out.insert(out.end(), {GL_RG16F, GL_R16F});
@@ -319,7 +322,9 @@ void InkRenderer::uploadObjectParams(const OrbitCamera& camera, int height) {
     params_capacity_ = bytes;
   }
   glNamedBufferSubData(params_buffer_, 0, static_cast<GLsizeiptr>(bytes), params.data());
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, params_buffer_);
+  // One object: a uniform block (see shaders/ink_objects.glsl); more: a storage buffer.
+  if (objects_.size() == 1) glBindBufferBase(GL_UNIFORM_BUFFER, 0, params_buffer_);
+  else glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, params_buffer_);
 }
 
 std::string InkRenderer::requestKey(const OrbitCamera& c, int width, int height) const {
@@ -498,6 +503,16 @@ image::Image InkRenderer::worldPositions() const {
       for (int c = 0; c < 3; ++c) out.at(x, y, c) = static_cast<float>(w[c] / w.w);
       out.at(x, y, 3) = 1.0f;
     }
+  }
+  return out;
+}
+
+image::Image InkRenderer::normalsAndCurvature() const {
+  image::Image out = gbuffer_.colour(0).download(4);
+  for (std::size_t i = 0; i < out.pixels.size(); i += 4) {  // as shaders/ink_gbuffer.frag encodes
+    for (std::size_t c = 0; c < 3; ++c) out.pixels[i + c] = out.pixels[i + c] * 2.0f - 1.0f;
+    const float w = std::min(out.pixels[i + 3], 65534.0f / 65535.0f);
+    out.pixels[i + 3] = w / (1.0f - w);
   }
   return out;
 }

@@ -49,7 +49,7 @@ double median(std::vector<double> v) {
 
 // Curvature the G-buffer holds (dimensionless) at object pixels away from the silhouette.
 std::vector<double> gbufferCurvature(InkRenderer& r, const OrbitCamera& cam) {
-  const image::Image nc = r.passTarget("gbuffer")->colour(0).download(4), pos = r.worldPositions();
+  const image::Image nc = r.normalsAndCurvature(), pos = r.worldPositions();
   std::vector<double> k;
   const glm::vec3 eye(cam.eye());
   for (int y = 0; y < nc.height; ++y) {
@@ -94,7 +94,7 @@ TEST_F(Ink, TonesFollowEquationsTwoAndThreeFromTheNormals) {
     ASSERT_EQ(r.passesBuilt(), (std::vector<std::string>{"gbuffer", "ink"}));
     ASSERT_EQ(r.variants().at("ink"), std::vector<std::string>{"SHADING SINGLE_OBJECT DEBUG_OUTPUTS"}) << "no line code";
     r.render(sceneCamera(s, r.worldBounds(), 1.0, {-40, 30, 1.0}), 200, 200);
-    const image::Image nc = r.passTarget("gbuffer")->colour(0).download(4);
+    const image::Image nc = r.normalsAndCurvature();
     const image::Image pos = r.worldPositions();
     const image::Image tone = r.passTarget("ink")->colour(2).download(1);
     const scene::ShadingParams& p = s.objects[0].shading;

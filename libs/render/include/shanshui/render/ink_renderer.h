@@ -76,7 +76,7 @@ class InkRenderer {
   std::size_t triangleCount() const;
 
   //! The last frame's images, for tests and debug views: "gbuffer" (colour 0: normal and
-  //! dimensionless curvature; 1: erosion noise, added noise, wrinkle luma, object id / 255;
+  //! dimensionless curvature, encoded — normalsAndCurvature() decodes them; 1: erosion noise, added noise, wrinkle luma, object id / 255;
   //! depth), "ink" (colour 0: the picture before diffusion; with debug outputs 1: line
   //! weight and col_i, 2: tone), "diffusion" (the picture after it, when the scene
   //! diffuses ink), "canvas" (colour 0: the canvas noise, R32F, unit variance; when the
@@ -86,6 +86,11 @@ class InkRenderer {
   //! World positions of the last frame rebuilt from its depth buffer (as the ink pass does):
   //! RGBA, xyz and 1 where a surface was drawn, 0 on the background; row 0 at the top.
   image::Image worldPositions() const;
+
+  //! The last frame's G-buffer normals (xyz, as interpolated and turned to the viewer) and
+  //! dimensionless curvature (w), decoded from their 16-bit storage; row 0 at the top.
+  //! Meaningful where worldPositions() has w = 1.
+  image::Image normalsAndCurvature() const;
 
   //! The paper absorbency the diffusion uses when the scene has no canvas (value noise, one
   //! channel, tiled over the picture from GL's bottom-left); null otherwise.
