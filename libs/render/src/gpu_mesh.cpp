@@ -10,6 +10,13 @@
 
 namespace shanshui::render {
 
+namespace {
+
+// Triangles per chunk of the front-to-back orders (see the constructor).
+constexpr std::size_t kChunkTriangles = 1024;
+
+}  // namespace
+
 GpuMesh::GpuMesh(const mesh::Mesh& m, const glm::dvec3& centre, const std::vector<float>* scalar,
                  bool sorted_orders)
     : sorted_(sorted_orders) {
@@ -22,19 +29,35 @@ GpuMesh::GpuMesh(const mesh::Mesh& m, const glm::dvec3& centre, const std::vecto
   glNamedBufferStorage(buffers_[0], static_cast<GLsizeiptr>(positions.size() * sizeof(glm::vec3)), positions.data(), 0);
   glNamedBufferStorage(buffers_[1], static_cast<GLsizeiptr>(normals.size() * sizeof(glm::vec3)), normals.data(), 0);
   if (sorted_orders) {
-    // The original order, then the triangles sorted by centroid along +x, −x, +y, −y, +z, −z.
+    // The original order, then six orders for cameras looking along +x, −x, +y, −y, +z, −z:
+    // the mesh's own order cut into chunks of kChunkTriangles, the chunks sorted by their
+    // mean centroid, each chunk's triangles left in the mesh's order. Meshes come with
+    // neighbouring triangles near each other in the order (grids row by row), and a
+    // rasteriser that shades vertices per batch of indices (llvmpipe) shades a shared vertex
+    // once only while its triangles are near in the order. Sorting single triangles wrecked
+    // that: at 1024² on the sample terrain the G-buffer cost 5-18 ms more than the file's
+    // order (by view direction), while sorted chunks cost 2-6 ms less than it.
+    const std::size_t n = m.triangles.size(), chunks = (n + kChunkTriangles - 1) / kChunkTriangles;
     std::vector<glm::uvec3> all(m.triangles);
-    all.reserve(m.triangles.size() * 7);
-    std::vector<std::pair<double, std::uint32_t>> keyed(m.triangles.size());
+    all.reserve(n * 7);
+    std::vector<std::pair<double, std::size_t>> keyed(chunks);
     for (int axis = 0; axis < 3; ++axis) {
-      for (std::size_t t = 0; t < m.triangles.size(); ++t) {
-        const glm::uvec3& tri = m.triangles[t];
-        keyed[t] = {m.positions[tri.x][axis] + m.positions[tri.y][axis] + m.positions[tri.z][axis],
-                    static_cast<std::uint32_t>(t)};
+      for (std::size_t c = 0; c < chunks; ++c) {
+        double sum = 0.0;
+        const std::size_t end = std::min(n, (c + 1) * kChunkTriangles);
+        for (std::size_t t = c * kChunkTriangles; t < end; ++t) {
+          const glm::uvec3& tri = m.triangles[t];
+          sum += m.positions[tri.x][axis] + m.positions[tri.y][axis] + m.positions[tri.z][axis];
+        }
+        keyed[c] = {sum / static_cast<double>(end - c * kChunkTriangles), c};
       }
       std::sort(keyed.begin(), keyed.end());
-      for (const auto& k : keyed) all.push_back(m.triangles[k.second]);
-      for (auto it = keyed.rbegin(); it != keyed.rend(); ++it) all.push_back(m.triangles[it->second]);
+      auto append = [&](std::size_t c) {
+        const auto first = m.triangles.begin() + static_cast<std::ptrdiff_t>(c * kChunkTriangles);
+        all.insert(all.end(), first, first + static_cast<std::ptrdiff_t>(std::min(kChunkTriangles, n - c * kChunkTriangles)));
+      };
+      for (const auto& k : keyed) append(k.second);
+      for (auto it = keyed.rbegin(); it != keyed.rend(); ++it) append(it->second);
     }
     glNamedBufferStorage(buffers_[2], static_cast<GLsizeiptr>(all.size() * sizeof(glm::uvec3)), all.data(), 0);
   } else {

@@ -29,8 +29,10 @@ class GpuMesh {
 
   //! Draws the triangles roughly front to back for a camera looking along `view_dir`
   //! (model space), so early depth tests reject hidden fragments before they are shaded:
-  //! six orders, by the centroids' position along ±x, ±y, ±z, are kept and the one closest
-  //! to the view direction is used. Needs the mesh built with sorted_orders.
+  //! six orders of chunks of the mesh's own order, by the chunks' position along ±x, ±y,
+  //! ±z, are kept and the one closest to the view direction is used (chunks, not single
+  //! triangles, keep shared vertices near in the order). Needs the mesh built with
+  //! sorted_orders.
   void drawFrontToBack(const glm::vec3& view_dir) const;
   std::size_t triangleCount() const { return static_cast<std::size_t>(indexCount_ / 3); }
 
