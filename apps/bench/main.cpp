@@ -34,7 +34,7 @@ const std::vector<StageDef> kStages = {
     {"quilt", {"bench_quilt_tradeoff"}, "image quilting: search and seam modes, error against the exhaustive search"},
     {"param", {"bench_param_tradeoff"}, "parameterization: every method's distortion and time; a developable ridge has an isometric answer"},
     {"curvature", {"bench_curvature_tradeoff", "bench_ink_tradeoff"},
-     "curvature estimators on analytic surfaces, per vertex and per pixel; the ink frame against Lambert"},
+     "curvature estimators on analytic surfaces, per vertex and per pixel; the ink frame against Lambert; wrinkle filters"},
     {"diffusion", {"bench_diffusion_tradeoff"}, "ink diffusion: distance transform against rings, n against a converged result"},
     {"noise", {"bench_canvas_tradeoff"}, "paper canvas: N′ against the analytic Gabor spectrum; temporal coherence"},
     {"pipeline", {"bench_pipeline_tradeoff"}, "the whole frame at quality presets against a high-quality reference"},

@@ -105,9 +105,9 @@ TEST(BenchCli, QuickStagesWriteTablesPointsAndPlots) {
     EXPECT_GE(colours(image::loadImage(dir / target)), 3u) << target;
     ++plots;
   }
-  // quilt 2, param 1, curvature 3 (object space, per pixel, the CDF), diffusion 2, canvas 2,
-  // pipeline 1; and the pictures.
-  EXPECT_EQ(plots, 11) << index;
+  // quilt 2, param 1, curvature 4 (object space, per pixel, the CDF, the wrinkle filter),
+  // diffusion 2, canvas 2, pipeline 1; and the pictures.
+  EXPECT_EQ(plots, 12) << index;
   EXPECT_GE(colours(image::loadImage(dir / "canvas_dolly.png")), 3u);
   EXPECT_TRUE(fs::exists(dir / "pipeline_presets.png"));
 

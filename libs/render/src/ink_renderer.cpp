@@ -32,6 +32,18 @@ constexpr int kErosionCells = 4;
 
 bool wrinkled(const scene::Object& o) { return !o.wrinkle.texture.empty() && o.shading.enabled; }
 
+// The wrinkle texture's minification filter. Nearest is the default: on llvmpipe bilinear
+// filtering cost ~5 ms a frame at 1024² on the sample scene, and a texel of the right mip
+// level is about a pixel (bench/ink_tradeoff.cpp measures both against trilinear).
+GLenum minFilter(scene::TextureFilter f) {
+  switch (f) {
+    case scene::TextureFilter::Nearest: return GL_NEAREST_MIPMAP_NEAREST;
+    case scene::TextureFilter::Bilinear: return GL_LINEAR_MIPMAP_NEAREST;
+    case scene::TextureFilter::Trilinear: return GL_LINEAR_MIPMAP_LINEAR;
+  }
+  return GL_NEAREST_MIPMAP_NEAREST;
+}
+
 std::vector<std::string> gbufferDefines(const scene::Scene& s, const scene::Object& o) {
   std::vector<std::string> d;
   if (s.usesShading()) d.emplace_back("SURFACE");
@@ -263,6 +275,7 @@ void InkRenderer::setScene(const scene::Scene& s) {
     g.centre = glm::dvec3(t * glm::dvec4(g.model_bounds.centre(), 1.0));
     g.radius = std::max(0.5 * glm::length(g.model_bounds.size()) * scale, 1e-12);
     g.feature_size = g.model_feature_size * scale;
+    if (g.wrinkle) glTextureParameteri(g.wrinkle->id(), GL_TEXTURE_MIN_FILTER, static_cast<GLint>(minFilter(s.objects[i].wrinkle.filter)));
     for (int c = 0; c < 8; ++c) {
       const glm::dvec3 corner((c & 1) ? g.model_bounds.max.x : g.model_bounds.min.x,
                               (c & 2) ? g.model_bounds.max.y : g.model_bounds.min.y,

@@ -161,6 +161,44 @@ TEST_F(Ink, WrinklesAreMappedOnlyWhereTheLinePassGaveBackground) {
   EXPECT_GT(off_lines, 5000);
 }
 
+// The G-buffer's wrinkle luma over the object (channel 2 of its second target).
+std::vector<float> wrinkleLuma(InkRenderer& r, const OrbitCamera& cam, int size) {
+  r.render(cam, size, size);
+  const image::Image surface = r.passTarget("gbuffer")->colour(1).download(4), pos = r.worldPositions();
+  std::vector<float> out;
+  for (int y = 0; y < size; ++y)
+    for (int x = 0; x < size; ++x)
+      if (pos.at(x, y, 3) > 0.5f) out.push_back(surface.at(x, y, 2));
+  return out;
+}
+
+TEST_F(Ink, WrinkleFilterAppliesLiveAndOnlyWhereTheTextureIsMinified) {
+  // Random texels, so every mip level has detail to filter.
+  auto noise = std::make_shared<image::Image>(64, 64, 1);
+  for (std::size_t i = 0; i < noise->pixels.size(); ++i) noise->pixels[i] = static_cast<float>((i * 2654435761u) % 1000) / 999.0f;
+  const mesh::Mesh sphere = test::uvSphere(1.0, 32, 64);
+  for (const double repeat : {4.0, 0.02}) {  // minified (2-4 texels a pixel), magnified
+    SCOPED_TRACE(repeat);
+    auto with = [&](const char* filter) {
+      return sceneWith({{"wrinkle", {{"texture", "noise.png"}, {"uv", "planar"}, {"repeat", repeat}, {"filter", filter}}}});
+    };
+    const scene::Scene nearest = with("nearest"), trilinear = with("trilinear");
+    InkRenderer a(nearest, prepare(nearest, sphere, noise)), b(trilinear, prepare(trilinear, sphere, noise));
+    const OrbitCamera cam = sceneCamera(nearest, a.worldBounds(), 1.0, {20, 30, 1.0});
+    const std::vector<float> n = wrinkleLuma(a, cam, 128), t = wrinkleLuma(b, cam, 128);
+    ASSERT_EQ(n.size(), t.size());
+    ASSERT_GT(n.size(), 3000u);
+    double differ = 0;
+    for (std::size_t i = 0; i < n.size(); ++i) differ += std::abs(n[i] - t[i]) > 1e-3 ? 1 : 0;
+    if (repeat > 1) EXPECT_GT(differ / n.size(), 0.3) << "nearest and trilinear sample alike where minified";
+    else EXPECT_EQ(differ, 0) << "magnified, every filter is bilinear";
+    a.setScene(trilinear);  // no rebuild: the same renderer now samples trilinearly
+    OrbitCamera moved = cam;
+    moved.azimuth_deg += 1e-9;  // not the cached frame
+    EXPECT_EQ(wrinkleLuma(a, moved, 128), wrinkleLuma(b, moved, 128));
+  }
+}
+
 TEST_F(Ink, UnchangedFramesArePresentedFromTheCache) {
   const scene::Scene s = sceneWith({});
   InkRenderer r(s, prepare(s, test::uvSphere(1.0)));

@@ -264,6 +264,9 @@ WrinkleParams readWrinkle(Reader r) {
   p.inner_tex_factor = r.number("inner_tex_factor", p.inner_tex_factor, 0.01, 100);
   p.repeat = r.number("repeat", p.repeat, 0, 1e4, true);
   p.uv = r.choice<UvSource>("uv", p.uv, {{"mesh", UvSource::Mesh}, {"planar", UvSource::Planar}});
+  p.filter = r.choice<TextureFilter>("filter", p.filter, {{"nearest", TextureFilter::Nearest},
+                                                          {"bilinear", TextureFilter::Bilinear},
+                                                          {"trilinear", TextureFilter::Trilinear}});
   r.finish();
   return p;
 }
@@ -496,7 +499,10 @@ json toJson(const Scene& s) {
     jo["wrinkle"] = {{"texture", w.texture},
                      {"inner_tex_factor", w.inner_tex_factor},
                      {"repeat", w.repeat},
-                     {"uv", w.uv == UvSource::Mesh ? "mesh" : "planar"}};
+                     {"uv", w.uv == UvSource::Mesh ? "mesh" : "planar"},
+                     {"filter", w.filter == TextureFilter::Nearest    ? "nearest"
+                                : w.filter == TextureFilter::Bilinear ? "bilinear"
+                                                                      : "trilinear"}};
     j["objects"].push_back(jo);
   }
   j["light"] = {{"direction", toArray(s.light.direction)}};

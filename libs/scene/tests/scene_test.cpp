@@ -134,6 +134,7 @@ TEST(Scene, EveryKindOfBadValueNamesItsKeyPath) {
       {"objects.0.lines.line_color", json::array({1, 1}), "list of 3"},
       {"objects.0.lines", 3, "expected an object"},
       {"objects.0.wrinkle.uv", "cylinder", "not one of"},
+      {"objects.0.wrinkle.filter", "anisotropic", "not one of"},
       {"objects.0.max_vertices", 2.5, "expected an integer"},
       {"objects.0.z_scale", 0, "out of range; expected (0, 1000]"},
       {"objects.0.transform.scale", json::array({1, 0, 1}), "objects.0.transform.scale.1"},

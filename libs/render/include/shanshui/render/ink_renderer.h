@@ -76,11 +76,11 @@ class InkRenderer {
   std::size_t triangleCount() const;
 
   //! The last frame's images, for tests and debug views: "gbuffer" (colour 0: normal and
-  //! dimensionless curvature, encoded — normalsAndCurvature() decodes them; 1: erosion noise, added noise, wrinkle luma, object id / 255;
-  //! depth), "ink" (colour 0: the picture before diffusion; with debug outputs 1: line
-  //! weight and col_i, 2: tone), "diffusion" (the picture after it, when the scene
-  //! diffuses ink), "canvas" (colour 0: the canvas noise, R32F, unit variance; when the
-  //! scene has one). Null for other names.
+  //! dimensionless curvature, encoded — normalsAndCurvature() decodes them; 1: erosion
+  //! noise, added noise, wrinkle luma, object id / 255; depth), "ink" (colour 0: the
+  //! picture before diffusion; with debug outputs 1: line weight and col_i, 2: tone),
+  //! "diffusion" (the picture after it, when the scene diffuses ink), "canvas" (colour 0:
+  //! the canvas noise, R32F, unit variance; when the scene has one). Null for other names.
   const Framebuffer* passTarget(const std::string& pass) const;
 
   //! World positions of the last frame rebuilt from its depth buffer (as the ink pass does):

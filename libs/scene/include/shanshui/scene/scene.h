@@ -73,12 +73,17 @@ enum class UvSource {
   Planar,  //!< x and y over the object's larger horizontal extent (terrain)
 };
 
+//! How the wrinkle texture is sampled where it is minified (magnified it is always
+//! bilinear): one texel of the nearest mip level, bilinear in it, or trilinear.
+enum class TextureFilter { Nearest, Bilinear, Trilinear };
+
 //! Wrinkle (cun) texture mapping (seed 001 Eq. 5). No texture: no wrinkle code is built.
 struct WrinkleParams {
   std::string texture;              //!< image path relative to the scene file; empty = none
   double inner_tex_factor = 1.0;    //!< R_InnerTexFactor, t_w = luma(W) / factor; [0.01, 100]
   double repeat = 4.0;              //!< texture repetitions per UV unit; (0, 1e4]
   UvSource uv = UvSource::Mesh;
+  TextureFilter filter = TextureFilter::Nearest;
 };
 
 struct Object {
