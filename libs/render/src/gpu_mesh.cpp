@@ -54,7 +54,8 @@ GpuMesh::GpuMesh(const mesh::Mesh& m, const glm::dvec3& centre, const std::vecto
       std::sort(keyed.begin(), keyed.end());
       auto append = [&](std::size_t c) {
         const auto first = m.triangles.begin() + static_cast<std::ptrdiff_t>(c * kChunkTriangles);
-        all.insert(all.end(), first, first + static_cast<std::ptrdiff_t>(std::min(kChunkTriangles, n - c * kChunkTriangles)));
+        const auto count = static_cast<std::ptrdiff_t>(std::min(kChunkTriangles, n - c * kChunkTriangles));
+        all.insert(all.end(), first, first + count);
       };
       for (const auto& k : keyed) append(k.second);
       for (auto it = keyed.rbegin(); it != keyed.rend(); ++it) append(it->second);

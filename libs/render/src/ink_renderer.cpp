@@ -275,7 +275,10 @@ void InkRenderer::setScene(const scene::Scene& s) {
     g.centre = glm::dvec3(t * glm::dvec4(g.model_bounds.centre(), 1.0));
     g.radius = std::max(0.5 * glm::length(g.model_bounds.size()) * scale, 1e-12);
     g.feature_size = g.model_feature_size * scale;
-    if (g.wrinkle) glTextureParameteri(g.wrinkle->id(), GL_TEXTURE_MIN_FILTER, static_cast<GLint>(minFilter(s.objects[i].wrinkle.filter)));
+    if (g.wrinkle) {
+      const GLint filter = static_cast<GLint>(minFilter(s.objects[i].wrinkle.filter));
+      glTextureParameteri(g.wrinkle->id(), GL_TEXTURE_MIN_FILTER, filter);
+    }
     for (int c = 0; c < 8; ++c) {
       const glm::dvec3 corner((c & 1) ? g.model_bounds.max.x : g.model_bounds.min.x,
                               (c & 2) ? g.model_bounds.max.y : g.model_bounds.min.y,

@@ -175,12 +175,15 @@ std::vector<float> wrinkleLuma(InkRenderer& r, const OrbitCamera& cam, int size)
 TEST_F(Ink, WrinkleFilterAppliesLiveAndOnlyWhereTheTextureIsMinified) {
   // Random texels, so every mip level has detail to filter.
   auto noise = std::make_shared<image::Image>(64, 64, 1);
-  for (std::size_t i = 0; i < noise->pixels.size(); ++i) noise->pixels[i] = static_cast<float>((i * 2654435761u) % 1000) / 999.0f;
+  for (std::size_t i = 0; i < noise->pixels.size(); ++i) {
+    noise->pixels[i] = static_cast<float>((i * 2654435761u) % 1000) / 999.0f;
+  }
   const mesh::Mesh sphere = test::uvSphere(1.0, 32, 64);
   for (const double repeat : {4.0, 0.02}) {  // minified (2-4 texels a pixel), magnified
     SCOPED_TRACE(repeat);
     auto with = [&](const char* filter) {
-      return sceneWith({{"wrinkle", {{"texture", "noise.png"}, {"uv", "planar"}, {"repeat", repeat}, {"filter", filter}}}});
+      const json wrinkle = {{"texture", "noise.png"}, {"uv", "planar"}, {"repeat", repeat}, {"filter", filter}};
+      return sceneWith({{"wrinkle", wrinkle}});
     };
     const scene::Scene nearest = with("nearest"), trilinear = with("trilinear");
     InkRenderer a(nearest, prepare(nearest, sphere, noise)), b(trilinear, prepare(trilinear, sphere, noise));
