@@ -1,5 +1,6 @@
 #include "shanshui/render/canvas_metrics.h"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -118,30 +119,58 @@ std::vector<double> radialPowerSpectrum(const image::Image& img) {
   return power;
 }
 
-SpectrumPeak spectrumPeak(const image::Image& img) {
-  const int w = img.width, h = img.height;
-  double sum = 0, sum2 = 0;
-  for (float v : img.pixels) {
-    sum += v;
-    sum2 += static_cast<double>(v) * v;
-  }
-  const double mean = sum / (static_cast<double>(w) * h);
-  const std::vector<double> mean_power = radialPowerSpectrum(img);
-  // The peak as the centroid of the radial profile where it is above half its maximum: a
-  // single periodogram is noisy bin to bin, the centroid of the peak's top is not.
+namespace {
+
+// Ring index (+ 1/2) of the centroid of a radial profile where it is above half its
+// maximum (element 0, the mean, left out); 0 for a profile without power.
+double halfMaximumCentroid(const std::vector<double>& profile) {
   double top = 0;
-  for (std::size_t b = 1; b < mean_power.size(); ++b) top = std::max(top, mean_power[b]);
-  double weighted = 0, total = 0, all_weighted = 0, all_total = 0;
+  for (std::size_t b = 1; b < profile.size(); ++b) top = std::max(top, profile[b]);
+  double weighted = 0, total = 0;
+  for (std::size_t b = 1; b < profile.size(); ++b) {
+    if (profile[b] < 0.5 * top) continue;
+    weighted += (static_cast<double>(b) + 0.5) * profile[b];
+    total += profile[b];
+  }
+  return total > 0 ? weighted / total : 0.0;
+}
+
+}  // namespace
+
+SpectrumPeak spectrumPeak(const image::Image& img) { return spectrumPeak(std::vector<image::Image>{img}); }
+
+SpectrumPeak spectrumPeak(const std::vector<image::Image>& realisations) {
+  SHANSHUI_CHECK(!realisations.empty());
+  const int w = realisations.front().width, h = realisations.front().height;
+  std::vector<double> mean_power;
+  double contrast = 0;
+  for (const image::Image& img : realisations) {
+    SHANSHUI_CHECK(img.width == w && img.height == h && img.channels == 1);
+    double sum = 0, sum2 = 0;
+    for (float v : img.pixels) {
+      sum += v;
+      sum2 += static_cast<double>(v) * v;
+    }
+    const double mean = sum / (static_cast<double>(w) * h);
+    contrast += std::sqrt(std::max(sum2 / (static_cast<double>(w) * h) - mean * mean, 0.0)) / static_cast<double>(realisations.size());
+    const std::vector<double> power = radialPowerSpectrum(img);
+    mean_power.resize(power.size(), 0.0);
+    for (std::size_t b = 0; b < power.size(); ++b) mean_power[b] += power[b] / static_cast<double>(realisations.size());
+  }
+  // The peaks as centroids of the radial profiles where they are above half their maximum:
+  // a single periodogram is noisy bin to bin, the centroid of the peak's top is not. The
+  // energy of a ring is its mean power times its circumference, 2π(b + 1/2).
+  std::vector<double> energy(mean_power.size(), 0.0);
+  for (std::size_t b = 1; b < mean_power.size(); ++b) energy[b] = mean_power[b] * (static_cast<double>(b) + 0.5);
+  const double peak = halfMaximumCentroid(mean_power), energy_peak = halfMaximumCentroid(energy);
+  double all_weighted = 0, all_total = 0;
   for (std::size_t b = 1; b < mean_power.size(); ++b) {
     all_weighted += (static_cast<double>(b) + 0.5) * mean_power[b];
     all_total += mean_power[b];
-    if (mean_power[b] < 0.5 * top) continue;
-    weighted += (static_cast<double>(b) + 0.5) * mean_power[b];
-    total += mean_power[b];
   }
-  const double peak = total > 0 ? weighted / total : 0.0;
   const double mean_frequency = all_total > 0 ? all_weighted / all_total : 0.0;
-  return {peak / std::min(w, h), mean_frequency / std::min(w, h), std::sqrt(std::max(sum2 / (static_cast<double>(w) * h) - mean * mean, 0.0))};
+  const double rings = std::min(w, h);
+  return {peak / rings, mean_frequency / rings, contrast, energy_peak / rings};
 }
 
 }  // namespace shanshui::render

@@ -16,6 +16,9 @@ namespace shanshui::render {
 
 namespace {
 
+// The canvas's 32-bit seed: the scene seed, decorrelated from the other noises it seeds.
+std::uint32_t canvasSeed(std::uint64_t scene_seed) { return noise::noiseSeed32(scene_seed ^ 0xCA57A5ull); }
+
 // Components of one vertex the geometry shader emits: gl_Position, g_offset, g_impulse.
 constexpr int kComponentsPerVertex = 4 + 2 + 4;
 
@@ -71,7 +74,7 @@ double maxTriangleArea(const mesh::Mesh& m) {
 }
 
 CanvasPass::CanvasPass(const scene::Canvas& canvas, std::uint64_t seed, const mesh::Bounds& world_bounds)
-    : canvas_(canvas), seed_(noise::noiseSeed32(seed ^ 0xCA57A5ull)), dynamic_(canvas.type != scene::CanvasType::Static) {
+    : canvas_(canvas), seed_(canvasSeed(seed)), dynamic_(canvas.type != scene::CanvasType::Static) {
   SHANSHUI_CHECK(canvas.type != scene::CanvasType::None);
   if (canvas.pattern() == scene::CanvasPattern::Silk) defines_.emplace_back("CANVAS_SILK");
   if (dynamic_) quads_ = maxQuadsPerInvocation();
@@ -158,9 +161,10 @@ GLsizei CanvasPass::uploadVisibleDome(const glm::dmat4& model_view_projection) {
   return static_cast<GLsizei>(visible.size() * 3);
 }
 
-void CanvasPass::setParams(const scene::Canvas& canvas) {
+void CanvasPass::setParams(const scene::Canvas& canvas, std::uint64_t seed) {
   SHANSHUI_CHECK(canvas.type == canvas_.type && canvas.pattern() == canvas_.pattern());
   canvas_ = canvas;
+  seed_ = canvasSeed(seed);
   static_key_.clear();
 }
 

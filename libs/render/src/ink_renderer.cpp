@@ -137,7 +137,7 @@ image::Image erosionNoise(int size, std::uint64_t seed) {
 std::string InkRenderer::structureKey(const scene::Scene& s) {
   std::ostringstream k;
   k << s.objects.size() << "|" << s.usesLines() << s.usesShading() << s.usesWrinkles() << s.hasAnimation() << "|"
-    << static_cast<int>(s.canvas.type) << static_cast<int>(s.canvas.pattern()) << s.diffusion.enabled() << "|" << s.seed;
+    << static_cast<int>(s.canvas.type) << static_cast<int>(s.canvas.pattern()) << s.diffusion.enabled();
   for (const scene::Object& o : s.objects) {
     k << "|" << s.resolve(o.mesh.empty() ? o.dem : o.mesh).string() << "," << o.z_scale << "," << o.max_vertices << ","
       << o.recentre << "," << joined(gbufferDefines(s, o));
@@ -160,13 +160,6 @@ InkRenderer::InkRenderer(const scene::Scene& s, const std::vector<scene::LoadedO
     passes_.emplace_back("diffusion");
     diffusion_.emplace();
   }
-  if (s.diffusion.enabled() && !canvas) {
-    // Without a canvas the paper's absorbency is value noise in [0.5, 1].
-    image::Image noise = erosionNoise(256, s.seed ^ 0xAB50Bull);
-    image::Image a(noise.width, noise.height, 1);
-    for (std::size_t i = 0; i < a.pixels.size(); ++i) a.pixels[i] = 0.5f + 0.5f * noise.pixels[2 * i];
-    absorbency_ = Texture2D::fromImage(a, GL_R8);
-  }
 
   for (std::size_t i = 0; i < objects.size(); ++i) {
     const scene::ObjectAsset& a = *objects[i].geometry;
@@ -188,9 +181,6 @@ InkRenderer::InkRenderer(const scene::Scene& s, const std::vector<scene::LoadedO
     if (it == gbuffer_programs_.end()) gbuffer_programs_.push_back({defines, Program()});
     objects_.push_back(std::move(g));
   }
-  // Value noise is smooth at texel scale: one texel of the right mip level is enough when
-  // minified (a quarter of the bilinear fetches); magnified it is still filtered.
-  if (shading_) noise_ = Texture2D::tiledFromImage(erosionNoise(256, s.seed), GL_RG8, GL_NEAREST_MIPMAP_NEAREST);
   glCreateVertexArrays(1, &empty_vao_);
   glCreateBuffers(1, &params_buffer_);
   buildPrograms();
@@ -264,8 +254,9 @@ void InkRenderer::setScene(const scene::Scene& s) {
   if (structureKey(s) != structureKey(scene_)) {
     throw makeError("InkRenderer::setScene: the scene's files, passes or variants changed; build a new renderer");
   }
+  if (!noise_seed_ || *noise_seed_ != s.seed) seedNoise(s);
   scene_ = s;
-  if (canvas_) canvas_->setParams(s.canvas);
+  if (canvas_) canvas_->setParams(s.canvas, s.seed);
   world_bounds_ = {glm::dvec3(std::numeric_limits<double>::max()), glm::dvec3(std::numeric_limits<double>::lowest())};
   for (std::size_t i = 0; i < objects_.size(); ++i) {
     GpuObject& g = objects_[i];
@@ -289,6 +280,20 @@ void InkRenderer::setScene(const scene::Scene& s) {
     }
   }
   last_key_.clear();
+}
+
+void InkRenderer::seedNoise(const scene::Scene& s) {
+  // Value noise is smooth at texel scale: one texel of the right mip level is enough when
+  // minified (a quarter of the bilinear fetches); magnified it is still filtered.
+  if (shading_) noise_ = Texture2D::tiledFromImage(erosionNoise(256, s.seed), GL_RG8, GL_NEAREST_MIPMAP_NEAREST);
+  if (s.diffusion.enabled() && s.canvas.type == scene::CanvasType::None) {
+    // Without a canvas the paper's absorbency is value noise in [0.5, 1].
+    image::Image noise = erosionNoise(256, s.seed ^ 0xAB50Bull);
+    image::Image a(noise.width, noise.height, 1);
+    for (std::size_t i = 0; i < a.pixels.size(); ++i) a.pixels[i] = 0.5f + 0.5f * noise.pixels[2 * i];
+    absorbency_ = Texture2D::fromImage(a, GL_R8);
+  }
+  noise_seed_ = s.seed;
 }
 
 void InkRenderer::ensureTargets(int width, int height) {

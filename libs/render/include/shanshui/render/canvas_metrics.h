@@ -44,6 +44,10 @@ struct SpectrumPeak {
   double frequency = 0.0;  //!< cycles per pixel: centroid of the radial power above half its maximum
   double mean_frequency = 0.0;  //!< cycles per pixel: power-weighted mean over all rings (broad spectra)
   double contrast = 0.0;   //!< standard deviation
+  //! cycles per pixel: the same centroid of the radial energy (ring-summed power, the
+  //! energy per unit |f|), which peaks at the cut-off of a low-pass spectrum whose ring
+  //! average is flat-topped from 0 (the rice paper's) instead of on its lowest rings
+  double energy_frequency = 0.0;
 };
 
 //! The ring-averaged periodogram of a one-channel image: mean removed, Hann window, |DFT|²
@@ -55,5 +59,9 @@ std::vector<double> radialPowerSpectrum(const image::Image& img);
 //! The peak of the radially averaged power spectrum (Hann-windowed) of a one-channel image,
 //! and its contrast.
 SpectrumPeak spectrumPeak(const image::Image& img);
+//! The same of the mean spectrum (and mean contrast) of independent realisations of one
+//! noise, all one-channel and of one size: where the measured peak lies on rings of many
+//! bins, its spread falls about as 1/√count.
+SpectrumPeak spectrumPeak(const std::vector<image::Image>& realisations);
 
 }  // namespace shanshui::render

@@ -34,8 +34,8 @@ class CanvasPass {
   //! `world_bounds` with 20 times its radius.
   CanvasPass(const scene::Canvas& canvas, std::uint64_t seed, const mesh::Bounds& world_bounds);
 
-  //! New parameters (same type and pattern).
-  void setParams(const scene::Canvas& canvas);
+  //! New parameters (same type and pattern) and scene seed.
+  void setParams(const scene::Canvas& canvas, std::uint64_t seed);
 
   //! Recompiles the programs from the current shader sources (hot reload); on an error
   //! the old ones stay and the error is thrown.

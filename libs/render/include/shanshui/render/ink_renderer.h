@@ -124,6 +124,8 @@ class InkRenderer {
   void drawObjects(const Framebuffer& target, bool clear, int which, const OrbitCamera& camera,
                    const glm::mat4& view_projection, double time);
   void buildPrograms();
+  //! (Re)makes the textures drawn from the scene seed: erosion noise, paper absorbency.
+  void seedNoise(const scene::Scene& s);
   void ensureTargets(int width, int height);
   void uploadObjectParams(const OrbitCamera& camera, int height);
   glm::dmat4 modelAt(std::size_t object, double time) const;
@@ -142,6 +144,7 @@ class InkRenderer {
   GLuint params_buffer_ = 0;
   std::size_t params_capacity_ = 0;
   std::optional<Texture2D> noise_;
+  std::optional<std::uint64_t> noise_seed_;  //!< the seed noise_ and absorbency_ were drawn from
 
   Framebuffer gbuffer_, static_gbuffer_, final_;
   Framebuffer diffused_;                        //!< the picture after ink diffusion
