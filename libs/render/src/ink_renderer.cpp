@@ -466,8 +466,8 @@ const Framebuffer& InkRenderer::render(const OrbitCamera& camera, int width, int
   if (timing) timer_.begin("ink");
   glDisable(GL_DEPTH_TEST);
   glBindVertexArray(empty_vao_);
-  glBindTextureUnit(0, gbuffer_.colour(0).id());
-  glBindTextureUnit(1, gbuffer_.colour(1).id());
+  glBindImageTexture(0, gbuffer_.colour(0).id(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA16);
+  glBindImageTexture(1, gbuffer_.colour(1).id(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA8);
   glBindTextureUnit(2, gbuffer_.depth().id());
   final_.bind();
   const Program& ink = ink_program_;
@@ -483,7 +483,7 @@ const Framebuffer& InkRenderer::render(const OrbitCamera& camera, int width, int
   const double radius = 0.5 * glm::length(world_bounds_.size());
   ink.set("u_fade_range", glm::vec2(static_cast<float>(to_centre - 0.5 * radius), static_cast<float>(to_centre + radius)));
   if (canvas_ && !diffusion_) {
-    glBindTextureUnit(3, canvas_noise_->id());
+    glBindImageTexture(2, canvas_noise_->id(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_R32F);
     ink.set("u_canvas_contrast", static_cast<float>(scene_.canvas.contrast));
   }
   glDrawArrays(GL_TRIANGLES, 0, 3);
