@@ -3,7 +3,8 @@
 //  1. Camera paths over the sample scene (orbit, dolly 0.5×-2×, pan): the masked warping
 //     error between consecutive frames (frame t−1 warped to t with the known depth and
 //     camera) for the dynamic canvases, the static screen-space baseline and a plain
-//     object-space texture; and the peak frequency and contrast of each through the dolly.
+//     object-space texture; and the peak frequency and contrast of each through the dolly,
+//     on spectra averaged over seeds, beside the estimator's own spread at a fixed view.
 //     Pictures of the dolly.
 //  2. N′ ∈ {8, 16, 32, 64, 128}: the canvas pass's GPU time on the sample scene at 1024² as
 //     a ratio to its G-buffer pass (interleaved in one run), and the error of a facing
@@ -63,11 +64,6 @@ struct Frame {
   image::Image picture;
 };
 
-// What `kind` shows in the view with scene `s` but seed `seed` (the renderer's seed changes
-// live; it is left with `s`).
-image::Image seeded(render::InkRenderer& r, const scene::Scene& s, std::uint64_t seed, Kind kind,
-                    const render::OrbitCamera& cam, int w, int h);
-
 Frame renderFrame(render::InkRenderer& r, Kind kind, const render::OrbitCamera& cam, int w, int h) {
   const render::Framebuffer& fb = r.render(cam, w, h);
   Frame f;
@@ -97,6 +93,8 @@ Frame renderFrame(render::InkRenderer& r, Kind kind, const render::OrbitCamera& 
   return f;
 }
 
+// What `kind` shows in the view with scene `s` but seed `seed` (the renderer's seed changes
+// live; it is left with `s`).
 image::Image seeded(render::InkRenderer& r, const scene::Scene& s, std::uint64_t seed, Kind kind,
                     const render::OrbitCamera& cam, int w, int h) {
   scene::Scene t = s;
