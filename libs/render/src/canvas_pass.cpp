@@ -16,9 +16,6 @@ namespace shanshui::render {
 
 namespace {
 
-// The canvas's 32-bit seed: the scene seed, decorrelated from the other noises it seeds.
-std::uint32_t canvasSeed(std::uint64_t scene_seed) { return noise::noiseSeed32(scene_seed ^ 0xCA57A5ull); }
-
 // Components of one vertex the geometry shader emits: gl_Position, g_offset, g_impulse.
 constexpr int kComponentsPerVertex = 4 + 2 + 4;
 
@@ -63,6 +60,8 @@ mesh::Mesh icosphere(int levels) {
   }
   return m;
 }
+
+std::uint32_t canvasSeed(std::uint64_t scene_seed) { return noise::noiseSeed32(scene_seed ^ 0xCA57A5ull); }
 
 double maxTriangleArea(const mesh::Mesh& m) {
   double best = 0;

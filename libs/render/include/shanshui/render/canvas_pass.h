@@ -5,6 +5,7 @@
 // pass turns into paper brightness and the diffusion into absorbency.
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -97,5 +98,9 @@ mesh::Mesh icosphere(int levels);
 
 //! The largest triangle area of a mesh.
 double maxTriangleArea(const mesh::Mesh& m);
+
+//! The canvas kernels' 32-bit seed for a scene seed (decorrelated from the other noises
+//! the scene seed draws).
+std::uint32_t canvasSeed(std::uint64_t scene_seed);
 
 }  // namespace shanshui::render
