@@ -127,7 +127,7 @@ int main(int argc, char** argv) {
       const Diff diff = difference(a.ink, b.ink);
       o.iterations = 0;
       const double gpu_ms = gpuMs(pass, input, o, paper);
-      const image::Image gpu = pass.inkAfter().download(1);
+      const image::Image gpu = pass.inkAfter();
       const Diff gdiff = difference(std::vector<double>(gpu.pixels.begin(), gpu.pixels.end()), a.ink);
       char line[256];
       std::snprintf(line, sizeof line, "| %d | %.1f | %.1f | %s | %.2e | %.1f | %.2e |\n", d, ta, tb, ra == rb ? "yes" : "NO",

@@ -3,40 +3,45 @@
 // gathers of libs/ink (demand, capped supply, transfer) fused, each invocation recomputing
 // the demands and supplies its pixels need instead of storing them between passes.
 //
-// Each invocation owns BLOCK adjacent columns and walks STRIP_ROWS rows down them, in work
-// groups of GROUP_INVOCATIONS (compile-time constants from the pass), carrying the rows it
-// needs in registers: reading ink row r gives the demand of row r − 1 (excess of rows
-// r − 2 … r), the supply of row r − 2 (demands of rows r − 3 … r − 1) and the new ink of
-// row r − 3 (supplies of rows r − 4 … r − 2). A pixel's demand and supply are computed by
-// every invocation that needs them, from the same values in the same order, so donor and
-// receiver agree on every transfer and ink is conserved up to float rounding. One dispatch
-// and about (2·BLOCK + 10) / BLOCK reads per pixel replace three dispatches and 20 reads:
-// on llvmpipe a pass costs mostly its invocations and image accesses, not its arithmetic.
+// The ink and the capacity are packed two pixels to a texel (pixel x in channel x & 1 of
+// texel x / 2; see InkDiffusionPass). Each invocation owns BLOCK adjacent columns (BLOCK / 2
+// texels) and walks STRIP_ROWS rows down them, in work groups of GROUP_INVOCATIONS
+// (compile-time constants from the pass), carrying the rows it needs in registers: reading
+// ink row r gives the demand of row r − 1 (excess of rows r − 2 … r), the supply of row
+// r − 2 (demands of rows r − 3 … r − 1) and the new ink of row r − 3 (supplies of rows
+// r − 4 … r − 2). A pixel's demand and supply are computed by every invocation that needs
+// them, from the same values in the same order, so donor and receiver agree on every
+// transfer and ink is conserved up to float rounding. One dispatch and (BLOCK + 6) / BLOCK
+// texel reads per pixel replace three dispatches and 20 reads: on llvmpipe a pass costs
+// mostly its invocations and image accesses, not its arithmetic, and a two-channel load
+// costs what a one-channel one does.
 //
 // Loads outside the image return 0 and stores there are dropped (OpenGL 4.5, section
 // 8.26): outside pixels have no excess and no capacity, so they neither give nor take.
+// The unused half of the last texel of an odd width holds 0 in both images, so it is
+// outside in the same sense, and it stays 0.
 //
 // A work group whose area no ink above the residual can reach in this frame's iterations
 // (u_active = 0) leaves its pixels as they are; the pass copies the start into both
 // ping-pong images, so they already hold those pixels.
 layout(local_size_x = GROUP_INVOCATIONS) in;
-layout(r32f, binding = 0) readonly uniform image2D u_ink;
-layout(r32f, binding = 1) readonly uniform image2D u_capacity;  // I_p / n · absorbency; 0 on strokes
-layout(r32f, binding = 2) writeonly uniform image2D u_next;
+layout(rg32f, binding = 0) readonly uniform image2D u_ink;
+layout(rg32f, binding = 1) readonly uniform image2D u_capacity;  // I_p / n · absorbency; 0 on strokes
+layout(rg32f, binding = 2) writeonly uniform image2D u_next;
 layout(r8ui, binding = 3) readonly uniform uimage2D u_active;  // one texel per work group
 uniform float u_residual;
 
-const int B = BLOCK;
+const int B = BLOCK, T = BLOCK / 2;  // columns and texels an invocation owns
 
 // Σ over the 8 neighbours of column c + 1 of three rows; the same order for every caller.
 #define NEIGHBOURS(a, b, c, k) (a[k] + a[k + 1] + a[k + 2] + b[k] + b[k + 2] + c[k] + c[k + 1] + c[k + 2])
 
 void main() {
   if (imageLoad(u_active, ivec2(gl_WorkGroupID.xy)).r == 0u) return;
-  ivec2 size = imageSize(u_ink);
-  int x0 = int(gl_GlobalInvocationID.x) * B;
+  ivec2 size = imageSize(u_ink);  // in texels
+  int t0 = int(gl_GlobalInvocationID.x) * T;  // first texel owned; columns x0 = 2 · t0 …
   int y0 = int(gl_WorkGroupID.y) * STRIP_ROWS;
-  if (x0 >= size.x) return;
+  if (t0 >= size.x) return;
   float e0[B + 6], e1[B + 6], e2[B + 6];   // excess, columns x0 − 3 …, rows r − 2, r − 1, r
   float d0[B + 4], d1[B + 4], d2[B + 4];   // demand, columns x0 − 2 …, rows r − 3 … r − 1
   float s0[B + 2], s1[B + 2], s2[B + 2];   // supply, columns x0 − 1 …, rows r − 4 … r − 2
@@ -53,17 +58,26 @@ void main() {
     i0 = i1;
     i1 = i2;
     i2 = i3;
-    for (int c = 0; c < B + 6; ++c) {
-      float ink = imageLoad(u_ink, ivec2(x0 - 3 + c, r)).r;
-      e2[c] = max(0.0, ink - u_residual);
-      if (c >= 3 && c < B + 3) i3[c - 3] = ink;
+    float row[B + 8];  // ink, columns x0 − 4 … x0 + B + 3 (texels t0 − 2 … t0 + T + 1)
+    for (int t = 0; t < T + 4; ++t) {
+      vec2 pair = imageLoad(u_ink, ivec2(t0 - 2 + t, r)).rg;
+      row[2 * t] = pair.r;
+      row[2 * t + 1] = pair.g;
     }
+    for (int c = 0; c < B + 6; ++c) e2[c] = max(0.0, row[c + 1] - u_residual);
+    for (int c = 0; c < B; ++c) i3[c] = row[c + 4];
     // Demand of row r − 1: capacity / Σ excess of the neighbours (0 without excess).
     d0 = d1;
     d1 = d2;
+    float capacity[B + 4];  // columns x0 − 2 … x0 + B + 1 (texels t0 − 1 … t0 + T)
+    for (int t = 0; t < T + 2; ++t) {
+      vec2 pair = imageLoad(u_capacity, ivec2(t0 - 1 + t, r - 1)).rg;
+      capacity[2 * t] = pair.r;
+      capacity[2 * t + 1] = pair.g;
+    }
     for (int c = 0; c < B + 4; ++c) {
       float sum = NEIGHBOURS(e0, e1, e2, c);
-      d2[c] = sum > 0.0 ? imageLoad(u_capacity, ivec2(x0 - 2 + c, r - 1)).r / sum : 0.0;
+      d2[c] = sum > 0.0 ? capacity[c] / sum : 0.0;
     }
     // Supply of row r − 2: the excess, scaled down together if the neighbours ask for more
     // (a hair under the exact share, so float rounding cannot overdraw the donor).
@@ -80,9 +94,8 @@ void main() {
     // New ink of row r − 3: what it receives less what it sends.
     int y = r - 3;
     if (y < y0) continue;
-    for (int c = 0; c < B; ++c) {
-      float next = i0[c] + d0[c + 2] * NEIGHBOURS(s0, s1, s2, c) - l0[c];
-      imageStore(u_next, ivec2(x0 + c, y), vec4(max(next, 0.0)));
-    }
+    float next[B];
+    for (int c = 0; c < B; ++c) next[c] = max(i0[c] + d0[c + 2] * NEIGHBOURS(s0, s1, s2, c) - l0[c], 0.0);
+    for (int t = 0; t < T; ++t) imageStore(u_next, ivec2(t0 + t, y), vec4(next[2 * t], next[2 * t + 1], 0.0, 0.0));
   }
 }

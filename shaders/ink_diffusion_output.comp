@@ -1,31 +1,53 @@
 #version 450 core
 // Ink diffusion, last step: the picture with the ink change painted in,
-// c − paper · (I_after − I_before); unchanged pixels keep their colour. CANVAS: then the
-// paper's grain, × (1 + contrast · canvas noise), over everything. One invocation per
-// column and STRIP_ROWS rows.
+// c − paper · (I_after − I_before); unchanged pixels keep their colour, and alpha passes
+// through. One invocation per
+// pair of columns (a texel of u_after, which holds two pixels: x in channel x & 1) and
+// STRIP_ROWS rows.
+//
+// CANVAS: the paper's grain, × (1 + contrast · canvas noise), then goes over everything,
+// so every pixel is written. Without it the pass has copied the picture into u_out first,
+// and only the pixels whose ink changed are written: none in the areas u_active leaves out
+// (no ink above the residual and no stroke within n + d), and an RGBA8 store costs
+// llvmpipe more than the copy.
 layout(local_size_x = LINE_GROUP) in;  // invocations (rows or columns) per work group
 #include "ink_diffusion_ink.glsl"
 layout(rgba8, binding = 3) readonly uniform image2D u_colour;
-layout(r32f, binding = 1) readonly uniform image2D u_after;
+layout(rg32f, binding = 1) readonly uniform image2D u_after;
 layout(rgba8, binding = 2) writeonly uniform image2D u_out;
 uniform vec3 u_paper;
 #ifdef CANVAS
 layout(r32f, binding = 4) readonly uniform image2D u_canvas;
 uniform float u_canvas_contrast;
+#else
+layout(r8ui, binding = 5) readonly uniform uimage2D u_active;  // one texel per AREA_W × AREA_H pixels
 #endif
 
 void main() {
   ivec2 size = imageSize(u_out);
-  int x = int(gl_GlobalInvocationID.x);
+  int x = 2 * int(gl_GlobalInvocationID.x);  // the pair's first column
   if (x >= size.x) return;
   const int y0 = int(gl_WorkGroupID.y) * STRIP_ROWS, y1 = min(y0 + STRIP_ROWS, size.y);
-  for (int y = y0; y < y1; ++y) {
-    ivec2 p = ivec2(x, y);
-    vec3 c = imageLoad(u_colour, p).rgb;
-    c -= u_paper * (imageLoad(u_after, p).r - inkOf(c, u_paper));
-#ifdef CANVAS
-    c *= 1.0 + u_canvas_contrast * imageLoad(u_canvas, p).r;
+#ifndef CANVAS
+  // The pair lies in one area (AREA_W is even) and the strip in one row of areas.
+  if (imageLoad(u_active, ivec2(x / AREA_W, y0 / AREA_H)).r == 0u) return;
 #endif
-    imageStore(u_out, p, vec4(clamp(c, 0.0, 1.0), 1.0));
+  const int columns = min(2, size.x - x);
+  for (int y = y0; y < y1; ++y) {
+    vec2 after = imageLoad(u_after, ivec2(x / 2, y)).rg;
+    for (int i = 0; i < columns; ++i) {
+      ivec2 p = ivec2(x + i, y);
+      vec4 colour = imageLoad(u_colour, p);
+      vec3 c = colour.rgb;
+      float before = inkOf(c, u_paper);
+#ifdef CANVAS
+      c -= u_paper * (after[i] - before);
+      c *= 1.0 + u_canvas_contrast * imageLoad(u_canvas, p).r;
+#else
+      if (after[i] == before) continue;
+      c -= u_paper * (after[i] - before);
+#endif
+      imageStore(u_out, p, vec4(clamp(c, 0.0, 1.0), colour.a));
+    }
   }
 }

@@ -12,7 +12,7 @@
 // invocation's row and its 7 neighbours share a block row, so on llvmpipe the skip is
 // taken by whole vectors.
 layout(local_size_x = LINE_GROUP) in;  // invocations (rows or columns) per work group
-layout(r32f, binding = 0) readonly uniform image2D u_ink;
+layout(rg32f, binding = 0) readonly uniform image2D u_ink;  // two pixels to a texel (x in channel x & 1)
 layout(r32i, binding = 1) uniform iimage2D u_distance;
 layout(r32f, binding = 2) uniform image2D u_source;
 uniform float u_threshold;
@@ -23,7 +23,7 @@ const int kFar = 1 << 28;
 
 void main() {
   int y = int(gl_GlobalInvocationID.x);
-  ivec2 size = imageSize(u_ink);
+  ivec2 size = imageSize(u_distance);
   if (y >= size.y) return;
   const int blocks = (size.x + BLOCK_SIZE - 1) / BLOCK_SIZE, by = y / BLOCK_SIZE;
   int d = kFar;
@@ -34,7 +34,7 @@ void main() {
       continue;
     }
     for (int x = b * BLOCK_SIZE; x < min((b + 1) * BLOCK_SIZE, size.x); ++x) {
-      float ink = imageLoad(u_ink, ivec2(x, y)).r;
+      float ink = imageLoad(u_ink, ivec2(x >> 1, y))[x & 1];
       if (ink > u_threshold) {
         d = 0;
         v = ink;

@@ -24,15 +24,21 @@ void barrier() {
 
 GLuint groups(int n, int size) { return static_cast<GLuint>((n + size - 1) / size); }
 
-// The boundary iterations' work groups (shaders/ink_diffusion_boundary.comp): 32
+// The ink and the capacity are packed two pixels to an RG32F texel, pixel x in channel
+// x & 1 of texel x / 2: on llvmpipe a two-channel image load costs what a one-channel one
+// does, so the boundary iterations read half the texels. The unused half of the last
+// texel of an odd width holds 0 (no ink, no capacity: absent).
+int packedWidth(int width) { return (width + 1) / 2; }
+
+// The boundary iterations' work groups (shaders/ink_diffusion_boundary.comp): 8
 // invocations of kBlock columns each, walking kStripRows rows — an area of 64 × 16 pixels.
-// Wider blocks and taller strips reload fewer neighbours ((kBlock + 6) / kBlock ink reads
+// Wider blocks and taller strips reload fewer neighbours ((kBlock + 6) / kBlock texel reads
 // per pixel, (kStripRows + 6) / kStripRows rows) but hold more registers, give fewer work
-// groups and coarser areas to leave out. On llvmpipe (1024², sample scene, six alternating
-// runs each) blocks of 2 and 8 columns cost the same within the noise and 4 about 25 %
-// more; 2 keeps a real GPU's registers free.
-constexpr int kBlock = 2;
-constexpr int kGroupInvocations = 32;
+// groups and coarser areas to leave out. On llvmpipe (1024², five iterations over ink
+// everywhere, 15 alternating runs each) 8 columns cost half what 2 or 4 do with the ink
+// packed two pixels to a texel, while with one pixel to a texel 8 and 2 cost the same.
+constexpr int kBlock = 8;
+constexpr int kGroupInvocations = 8;
 constexpr int kAreaWidth = kBlock * kGroupInvocations;
 constexpr int kStripRows = 16;
 // The extraction marks ink above the residual and strokes per block of kMarkBlock²
@@ -42,7 +48,7 @@ constexpr int kMarkBlock = 8;
 // The columns pass reads f^r from a table: one entry per ring, d ≤ 256 (ink::validate).
 constexpr int kMaxRingSteps = 256;
 // The per-pixel passes (extraction, output) and the row and column sweeps: one invocation
-// per column (or row), this many to a work group.
+// per pair of columns (or per row), this many to a work group.
 constexpr int kLineGroup = 64;
 static_assert(kStripRows % kMarkBlock == 0, "the extraction marks whole blocks per strip");
 
@@ -71,7 +77,8 @@ InkDiffusionPass::InkDiffusionPass()
 
 void InkDiffusionPass::ensureSize(int width, int height) {
   if (out_.width() == width && out_.height() == height) return;
-  for (Texture2D* t : {&capacity_, &main_, &next_, &source_}) *t = Texture2D(width, height, GL_R32F);
+  for (Texture2D* t : {&capacity_, &main_, &next_}) *t = Texture2D(packedWidth(width), height, GL_RG32F);
+  source_ = Texture2D(width, height, GL_R32F);
   distance_ = Texture2D(width, height, GL_R32I);
   const int blocks_x = (width + kMarkBlock - 1) / kMarkBlock, blocks_y = (height + kMarkBlock - 1) / kMarkBlock;
   for (Texture2D* t : {&seeds_, &strokes_, &near_}) *t = Texture2D(blocks_x, blocks_y, GL_R8UI);
@@ -102,8 +109,8 @@ void InkDiffusionPass::run(const Texture2D& colour, const PaperTexture& texture,
   SHANSHUI_CHECK(!texture.grain || texture.grain->format() == GL_R32F);
   ensureSize(w, h);
   if (timer) timer->begin("diffusion");
-  // Per-pixel passes: an invocation per column and kStripRows rows.
-  const GLuint sx = groups(w, kLineGroup), sy = groups(h, kStripRows);
+  // Per-pixel passes: an invocation per pair of columns and kStripRows rows.
+  const GLuint sx = groups(packedWidth(w), kLineGroup), sy = groups(h, kStripRows);
 
   // The ink goes straight into main_, which the main region then raises; the marks of ink
   // above the residual and of strokes per block go into seeds_ and strokes_.
@@ -151,16 +158,17 @@ void InkDiffusionPass::run(const Texture2D& colour, const PaperTexture& texture,
                         ring_ink.data());
     bindImage(3, main_, GL_READ_WRITE);
     bindImage(4, near_, GL_READ_ONLY);
-    glDispatchCompute(groups(w, kLineGroup), 1, 1);
+    glDispatchCompute(groups(packedWidth(w), kLineGroup), 1, 1);
     barrier();
   }
   last_iterations_ = o.iterations;
+  // The areas where anything can change: ink above the residual lies within d of a marked
+  // block (a ring lies within d of its stroke, and holds no more ink than it) and moves
+  // one pixel per iteration; rings lie within d of a stroke, which is marked too.
+  reach(seeds_, active_tex_, glm::ivec2(kAreaWidth, kStripRows), o.iterations + o.ring_steps);
   if (o.iterations > 0) {
-    // Ink above the residual lies within d of a marked block (a ring lies within d of its
-    // stroke, and holds no more ink than it), and moves one pixel per iteration.
-    reach(seeds_, active_tex_, glm::ivec2(kAreaWidth, kStripRows), o.iterations + o.ring_steps);
     // Both ping-pong images start as the main region, so areas left out hold it throughout.
-    glCopyImageSubData(main_.id(), GL_TEXTURE_2D, 0, 0, 0, 0, next_.id(), GL_TEXTURE_2D, 0, 0, 0, 0, w, h, 1);
+    glCopyImageSubData(main_.id(), GL_TEXTURE_2D, 0, 0, 0, 0, next_.id(), GL_TEXTURE_2D, 0, 0, 0, 0, packedWidth(w), h, 1);
     barrier();
   }
 
@@ -181,12 +189,19 @@ void InkDiffusionPass::run(const Texture2D& colour, const PaperTexture& texture,
   }
   after_ = cur;
 
+  // With a canvas grain every pixel changes; without one the output starts as the picture
+  // and only pixels whose ink changed are written (an image copy costs llvmpipe far less
+  // than the stores).
   const Program* out = &output_;
   if (texture.grain) {
     if (!output_canvas_.id()) output_canvas_ = Program({"ink_diffusion_output.comp"}, defines({"CANVAS"}));
     out = &output_canvas_;
     out->set("u_canvas_contrast", texture.contrast);
     bindImage(4, *texture.grain, GL_READ_ONLY);
+  } else {
+    glCopyImageSubData(colour.id(), GL_TEXTURE_2D, 0, 0, 0, 0, output.id(), GL_TEXTURE_2D, 0, 0, 0, 0, w, h, 1);
+    barrier();
+    bindImage(5, active_tex_, GL_READ_ONLY);
   }
   out->use();
   out->set("u_paper", paper);
@@ -207,6 +222,14 @@ void InkDiffusionPass::reach(const Texture2D& marks, const Texture2D& reached, g
   bindImage(1, reached, GL_WRITE_ONLY);
   glDispatchCompute(groups(reached.width(), 8), groups(reached.height(), 8), 1);
   barrier();
+}
+
+image::Image InkDiffusionPass::inkAfter() const {
+  const image::Image packed = after_->download(2);
+  image::Image ink(out_.width(), out_.height(), 1);
+  for (int y = 0; y < ink.height; ++y)
+    for (int x = 0; x < ink.width; ++x) ink.at(x, y) = packed.at(x / 2, y, x & 1);
+  return ink;
 }
 
 double InkDiffusionPass::lastActiveFraction() const {

@@ -45,8 +45,9 @@ TEST_F(InkGpu, MatchesTheCpuReferenceOnTheExtremeGrid) {
   const glm::vec3 paper(kPaper[0], kPaper[1], kPaper[2]);
   double worst_max = 0, worst_mean = 0;
   int cases = 0;
-  // The pass packs four pixels to a texel and walks strips of rows: widths 48, 47 and 45
-  // leave 0, 1 and 3 pixels of padding, heights end in partial strips.
+  // The pass packs two pixels to a texel, its boundary invocations own 8 columns each and
+  // walk strips of rows: widths 48, 47 and 45 end on a whole invocation, in a half-empty
+  // texel and 3 columns short of a whole invocation; heights end in partial strips.
   for (const auto& [w, h, border] : {std::tuple{48, 36, false}, std::tuple{47, 37, true}, std::tuple{45, 35, true}}) {
     const image::Image img = picture(w, h, border ? 2u : 1u, border);
     const image::Image absorb = absorbencyImage(w, h, 3);
@@ -69,7 +70,7 @@ TEST_F(InkGpu, MatchesTheCpuReferenceOnTheExtremeGrid) {
               SCOPED_TRACE(testing::Message() << "n=" << n << " Ir=" << ir << " f=" << f << " d=" << d << " Ip=" << ip
                                               << " size=" << w << "x" << h << " border=" << border);
               pass.run(colour, absorbency, o, paper);
-              const image::Image gpu = pass.inkAfter().download(1);
+              const image::Image gpu = pass.inkAfter();
               const ink::InkField cpu = ink::diffuseInk(before, a, o);
               double max_diff = 0, sum_diff = 0, total_gpu = 0;
               for (std::size_t i = 0; i < cpu.ink.size(); ++i) {
@@ -109,7 +110,7 @@ TEST_F(InkGpu, A4096SquarePictureStaysFiniteAndConservesInk) {
   pass.run(colour, absorbency, o, glm::vec3(kPaper[0], kPaper[1], kPaper[2]));
   // Conservation of the boundary stage: the main region is the CPU's (exact transform).
   const ink::InkField main = ink::mainDiffusionDistance(ink::inkFromImage(colour.download(3), kPaper), o);
-  const image::Image after = pass.inkAfter().download(1);
+  const image::Image after = pass.inkAfter();
   double total = 0;
   for (float v : after.pixels) {
     ASSERT_TRUE(std::isfinite(v) && v >= 0.0f);
@@ -119,7 +120,9 @@ TEST_F(InkGpu, A4096SquarePictureStaysFiniteAndConservesInk) {
 }
 
 // Ink in one corner of a larger sheet: the boundary iterations leave out the areas it
-// cannot reach in n iterations (plus the d rings), and the result is still the CPU's.
+// cannot reach in n iterations (plus the d rings), and the result is still the CPU's. The
+// picture (no canvas) is written only where the ink changed: everywhere else it is the
+// input to the bit.
 TEST_F(InkGpu, AreasTheInkCannotReachAreLeftOutAndTheResultIsUnchanged) {
   InkDiffusionPass pass;
   const glm::vec3 paper(kPaper[0], kPaper[1], kPaper[2]);
@@ -143,20 +146,26 @@ TEST_F(InkGpu, AreasTheInkCannotReachAreLeftOutAndTheResultIsUnchanged) {
   // overlapping [0, 63 + n + d] × [0, 31 + n + d] are computed (none without iterations).
   const glm::ivec2 area = InkDiffusionPass::workGroupArea();
   const int areas_x = (w + area.x - 1) / area.x, areas_y = (h + area.y - 1) / area.y;
-  for (const auto& [n, d, f] : {std::tuple{5, 3, 0.6}, std::tuple{20, 8, 0.6}, std::tuple{2, 0, 0.6},
-                                std::tuple{2, 40, 1.0}, std::tuple{1, 3, 0.6}, std::tuple{0, 3, 0.6}}) {
+  const image::Image seen = colour.download(4);
+  // The last case has strokes but no ink above the residual: its rings still change the
+  // picture.
+  for (const auto& [n, d, f, residual, threshold] :
+       {std::tuple{5, 3, 0.6, 0.05, 0.8}, std::tuple{20, 8, 0.6, 0.05, 0.8}, std::tuple{2, 0, 0.6, 0.05, 0.8},
+        std::tuple{2, 40, 1.0, 0.05, 0.8}, std::tuple{1, 3, 0.6, 0.05, 0.8}, std::tuple{0, 3, 0.6, 0.05, 0.8},
+        std::tuple{0, 6, 0.9, 1.0, 0.5}}) {
     const int reach = n + d;
     const int covered = std::min(areas_x, (63 + reach) / area.x + 1) * std::min(areas_y, (31 + reach) / area.y + 1);
     const double expected = n == 0 ? 0.0 : static_cast<double>(covered) / (areas_x * areas_y);
-    SCOPED_TRACE(testing::Message() << "n=" << n << " d=" << d << " f=" << f);
+    SCOPED_TRACE(testing::Message() << "n=" << n << " d=" << d << " f=" << f << " residual=" << residual);
     ink::DiffusionOptions o;
     o.iterations = n;
     o.ring_steps = d;
     o.attenuation = f;
-    o.residual = 0.05;
-    pass.run(colour, absorbency, o, paper);
+    o.residual = residual;
+    o.threshold = threshold;
+    const image::Image out = pass.run(colour, absorbency, o, paper).download(4);
     EXPECT_DOUBLE_EQ(pass.lastActiveFraction(), expected);
-    const image::Image gpu = pass.inkAfter().download(1);
+    const image::Image gpu = pass.inkAfter();
     const ink::InkField cpu = ink::diffuseInk(before, a, o);
     double max_diff = 0, total_gpu = 0;
     for (std::size_t i = 0; i < cpu.ink.size(); ++i) {
@@ -165,6 +174,23 @@ TEST_F(InkGpu, AreasTheInkCannotReachAreLeftOutAndTheResultIsUnchanged) {
     }
     EXPECT_LT(max_diff, 2e-5);
     EXPECT_NEAR(total_gpu, cpu.total(), 1e-5 * cpu.total());
+    // The picture: the CPU's to one 8-bit step, and the input itself wherever the ink did
+    // not change (alpha included).
+    const image::Image expected_picture = ink::applyInk(seen, before, cpu, kPaper);
+    std::size_t changed = 0;
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x) {
+        const std::size_t i = static_cast<std::size_t>(y) * w + x;
+        const bool same = cpu.ink[i] == before.ink[i];
+        changed += !same;
+        for (int c = 0; c < 4; ++c) {
+          if (same) {
+            ASSERT_EQ(out.at(x, y, c), seen.at(x, y, c)) << x << "," << y;
+          }
+          ASSERT_NEAR(out.at(x, y, c), expected_picture.at(x, y, c), 1.0 / 255 + 1e-4) << x << "," << y;
+        }
+      }
+    EXPECT_GT(changed, 100u);
   }
 }
 

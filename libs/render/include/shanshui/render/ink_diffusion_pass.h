@@ -8,6 +8,7 @@
 
 #include <glm/glm.hpp>
 
+#include "shanshui/image/image.h"
 #include "shanshui/ink/diffusion.h"
 #include "shanshui/render/gl_resources.h"
 #include "shanshui/render/gpu_timer.h"
@@ -43,8 +44,8 @@ class InkDiffusionPass {
   void run(const Texture2D& colour, const PaperTexture& texture, const ink::DiffusionOptions& options,
            const glm::vec3& paper, const Texture2D& output, GpuTimer* timer = nullptr);
 
-  //! The ink field after the last run (R32F), for tests.
-  const Texture2D& inkAfter() const { return *after_; }
+  //! The ink field after the last run (one channel, row 0 at the top), for tests.
+  image::Image inkAfter() const;
   //! The share of the picture's work-group areas that the last run's boundary iterations
   //! computed: 1 when ink above the residual could reach every area, 0 without iterations
   //! (reads back a small image; for tests and benches).
