@@ -1,10 +1,11 @@
 #version 450 core
 // Ink diffusion, main region, step 1 of the separable city-block distance transform: along
-// each row, the distance to the nearest stroke pixel and that pixel's ink (ties keep the
-// larger ink), by a forward and a backward sweep. One invocation per row.
+// each row, the nearest stroke pixel (its distance and ink as one key, see
+// ink_diffusion_nearest.glsl; ties keep the larger ink), by a forward and a backward
+// sweep. One invocation per row.
 //
 // Only distances up to d (u_ring_steps) can make a ring pixel, so only those are stored:
-// the pass clears the images to "far" first (a fill costs far less than a store per
+// the pass clears the image to "far" first (a fill costs far less than a store per
 // pixel), and a larger distance left as "far" changes no ring — the smallest distance to a
 // ring pixel is found through pixels that are themselves within d. Blocks of BLOCK_SIZE
 // pixels that no stroke lies within d of (u_near = 0) hold no such distance and are
@@ -12,58 +13,41 @@
 // invocation's row and its 7 neighbours share a block row, so on llvmpipe the skip is
 // taken by whole vectors.
 layout(local_size_x = LINE_GROUP) in;  // invocations (rows or columns) per work group
+#include "ink_diffusion_nearest.glsl"
 layout(rg32f, binding = 0) readonly uniform image2D u_ink;  // two pixels to a texel (x in channel x & 1)
-layout(r32i, binding = 1) uniform iimage2D u_distance;
-layout(r32f, binding = 2) uniform image2D u_source;
+layout(r32ui, binding = 1) uniform uimage2D u_nearest;
 uniform float u_threshold;
 uniform int u_ring_steps;
 layout(r8ui, binding = 3) readonly uniform uimage2D u_near;
 
-const int kFar = 1 << 28;
-
 void main() {
   int y = int(gl_GlobalInvocationID.x);
-  ivec2 size = imageSize(u_distance);
+  ivec2 size = imageSize(u_nearest);
   if (y >= size.y) return;
   const int blocks = (size.x + BLOCK_SIZE - 1) / BLOCK_SIZE, by = y / BLOCK_SIZE;
-  int d = kFar;
-  float v = 0.0;
+  uint key = kFar;
   for (int b = 0; b < blocks; ++b) {
     if (imageLoad(u_near, ivec2(b, by)).r == 0u) {
-      d = kFar;
+      key = kFar;
       continue;
     }
     for (int x = b * BLOCK_SIZE; x < min((b + 1) * BLOCK_SIZE, size.x); ++x) {
       float ink = imageLoad(u_ink, ivec2(x >> 1, y))[x & 1];
-      if (ink > u_threshold) {
-        d = 0;
-        v = ink;
-      } else if (d < kFar) {
-        d += 1;
-      }
-      if (d <= u_ring_steps) {
-        imageStore(u_distance, ivec2(x, y), ivec4(d));
-        imageStore(u_source, ivec2(x, y), vec4(v));
-      }
+      key = ink > u_threshold ? strokeKey(ink) : further(key, u_ring_steps);
+      if (key != kFar) imageStore(u_nearest, ivec2(x, y), uvec4(key));
     }
   }
-  d = kFar;
-  v = 0.0;
+  key = kFar;
   for (int b = blocks - 1; b >= 0; --b) {
     if (imageLoad(u_near, ivec2(b, by)).r == 0u) {
-      d = kFar;
+      key = kFar;
       continue;
     }
     for (int x = min((b + 1) * BLOCK_SIZE, size.x) - 1; x >= b * BLOCK_SIZE; --x) {
-      if (d < kFar) d += 1;
-      int dc = imageLoad(u_distance, ivec2(x, y)).r;
-      if (dc < d || (dc == d && imageLoad(u_source, ivec2(x, y)).r >= v)) {
-        d = dc;
-        v = imageLoad(u_source, ivec2(x, y)).r;
-      } else if (d <= u_ring_steps) {
-        imageStore(u_distance, ivec2(x, y), ivec4(d));
-        imageStore(u_source, ivec2(x, y), vec4(v));
-      }
+      key = further(key, u_ring_steps);
+      uint stored = imageLoad(u_nearest, ivec2(x, y)).r;
+      if (stored <= key) key = stored;
+      else imageStore(u_nearest, ivec2(x, y), uvec4(key));
     }
   }
 }

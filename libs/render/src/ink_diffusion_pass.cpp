@@ -78,8 +78,7 @@ InkDiffusionPass::InkDiffusionPass()
 void InkDiffusionPass::ensureSize(int width, int height) {
   if (out_.width() == width && out_.height() == height) return;
   for (Texture2D* t : {&capacity_, &main_, &next_}) *t = Texture2D(packedWidth(width), height, GL_RG32F);
-  source_ = Texture2D(width, height, GL_R32F);
-  distance_ = Texture2D(width, height, GL_R32I);
+  nearest_ = Texture2D(width, height, GL_R32UI);
   const int blocks_x = (width + kMarkBlock - 1) / kMarkBlock, blocks_y = (height + kMarkBlock - 1) / kMarkBlock;
   for (Texture2D* t : {&seeds_, &strokes_, &near_}) *t = Texture2D(blocks_x, blocks_y, GL_R8UI);
   active_tex_ = Texture2D((width + kAreaWidth - 1) / kAreaWidth, (height + kStripRows - 1) / kStripRows, GL_R8UI);
@@ -133,20 +132,17 @@ void InkDiffusionPass::run(const Texture2D& colour, const PaperTexture& texture,
   barrier();
 
   // Main region (none when d = 0): the blocks within d of a stroke, then rows and columns.
-  // Both store only distances up to d over images cleared to "far" (a fill costs far less
+  // Both store only strokes within d over an image cleared to "far" (a fill costs far less
   // than a store per pixel), and the columns raise the extracted ink only where a ring does.
   if (o.ring_steps > 0) {
     reach(strokes_, near_, glm::ivec2(kMarkBlock), o.ring_steps);
-    const GLint far = 1 << 28;
-    const GLfloat none = 0.0f;
-    glClearTexImage(distance_.id(), 0, GL_RED_INTEGER, GL_INT, &far);
-    glClearTexImage(source_.id(), 0, GL_RED, GL_FLOAT, &none);
+    const GLuint far = 0xFFFFFFFFu;  // kFar of shaders/ink_diffusion_nearest.glsl
+    glClearTexImage(nearest_.id(), 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &far);
     rows_.use();
     rows_.set("u_threshold", static_cast<float>(o.threshold));
     rows_.set("u_ring_steps", o.ring_steps);
     bindImage(0, main_, GL_READ_ONLY);
-    bindImage(1, distance_, GL_READ_WRITE);
-    bindImage(2, source_, GL_READ_WRITE);
+    bindImage(1, nearest_, GL_READ_WRITE);
     bindImage(3, near_, GL_READ_ONLY);
     glDispatchCompute(groups(h, kLineGroup), 1, 1);
     barrier();

@@ -60,7 +60,7 @@ class InkDiffusionPass {
   void reach(const Texture2D& marks, const Texture2D& reached, glm::ivec2 area, int pixels) const;
   Program extract_, rows_, columns_, reach_, boundary_, output_;
   Program output_canvas_;  //!< built on first use with a canvas grain
-  Texture2D capacity_, main_, next_, distance_, source_, out_;
+  Texture2D capacity_, main_, next_, nearest_, out_;
   Texture2D seeds_, strokes_, near_;  //!< one texel per block: ink above the residual, strokes, near a stroke
   Texture2D active_tex_;              //!< one texel per work-group area of the boundary iterations
   const Texture2D* after_ = nullptr;
