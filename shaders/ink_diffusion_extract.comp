@@ -4,11 +4,11 @@
 // strokes (I > threshold), which do not absorb. Both are stored two pixels to a texel
 // (pixel x in channel x & 1 of texel x / 2; the unused half of an odd width's last texel
 // holds 0). One invocation per texel column (two pixel columns) and STRIP_ROWS rows (on
-// llvmpipe a loop is cheaper than an invocation per pixel). It also marks, per
-// block of BLOCK_SIZE² pixels, where ink lies above the residual or a stroke is (u_seeds:
-// where the boundary iterations start, and the main region's rings, which lie within d
-// of a stroke; nothing changes farther than n + d from a mark) and where strokes are
-// (u_strokes: the main region's sweeps skip blocks farther than d from any).
+// llvmpipe a loop is cheaper than an invocation per pixel). It also marks, per block of
+// BLOCK_SIZE² pixels, where ink lies above the residual or a stroke is (u_seeds: where the
+// boundary iterations start, and the main region's rings, which lie within d of a stroke;
+// nothing changes farther than n + d from a mark) and where strokes are (u_strokes: the
+// main region's sweeps skip blocks farther than d from any).
 layout(local_size_x = LINE_GROUP) in;  // invocations (rows or columns) per work group
 #include "ink_diffusion_ink.glsl"
 layout(rgba8, binding = 2) readonly uniform image2D u_colour;

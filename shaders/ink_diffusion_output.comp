@@ -1,9 +1,8 @@
 #version 450 core
 // Ink diffusion, last step: the picture with the ink change painted in,
 // c − paper · (I_after − I_before); unchanged pixels keep their colour, and alpha passes
-// through. One invocation per
-// pair of columns (a texel of u_after, which holds two pixels: x in channel x & 1) and
-// STRIP_ROWS rows.
+// through. One invocation per pair of columns (a texel of u_after, which holds two pixels:
+// x in channel x & 1) and STRIP_ROWS rows.
 //
 // CANVAS: the paper's grain, × (1 + contrast · canvas noise), then goes over everything,
 // so every pixel is written. Without it the pass has copied the picture into u_out first,
@@ -40,12 +39,12 @@ void main() {
       vec4 colour = imageLoad(u_colour, p);
       vec3 c = colour.rgb;
       float before = inkOf(c, u_paper);
+#ifndef CANVAS
+      if (after[i] == before) continue;  // the copy holds it
+#endif
+      c -= u_paper * (after[i] - before);
 #ifdef CANVAS
-      c -= u_paper * (after[i] - before);
       c *= 1.0 + u_canvas_contrast * imageLoad(u_canvas, p).r;
-#else
-      if (after[i] == before) continue;
-      c -= u_paper * (after[i] - before);
 #endif
       imageStore(u_out, p, vec4(clamp(c, 0.0, 1.0), colour.a));
     }
