@@ -195,8 +195,10 @@ void InkDiffusionPass::run(const Texture2D& colour, const PaperTexture& texture,
     out->set("u_canvas_contrast", texture.contrast);
     bindImage(4, *texture.grain, GL_READ_ONLY);
   } else {
-    glCopyImageSubData(colour.id(), GL_TEXTURE_2D, 0, 0, 0, 0, output.id(), GL_TEXTURE_2D, 0, 0, 0, 0, w, h, 1);
-    barrier();
+    if (output.id() != colour.id()) {
+      glCopyImageSubData(colour.id(), GL_TEXTURE_2D, 0, 0, 0, 0, output.id(), GL_TEXTURE_2D, 0, 0, 0, 0, w, h, 1);
+      barrier();
+    }
     bindImage(5, active_tex_, GL_READ_ONLY);
   }
   out->use();

@@ -194,6 +194,34 @@ TEST_F(InkGpu, AreasTheInkCannotReachAreLeftOutAndTheResultIsUnchanged) {
   }
 }
 
+// Diffusing a picture in place gives what a separate output gets, with and without a
+// canvas grain.
+TEST_F(InkGpu, InPlaceEqualsASeparateOutput) {
+  InkDiffusionPass pass;
+  const glm::vec3 paper(kPaper[0], kPaper[1], kPaper[2]);
+  const image::Image img = picture(47, 37, 8, true);
+  const Texture2D absorbency = Texture2D::fromImage(absorbencyImage(47, 37, 9), GL_R8);
+  image::Image noise(47, 37, 1);
+  std::mt19937 rng(10);
+  std::normal_distribution<float> g(0.0f, 1.0f);
+  for (float& v : noise.pixels) v = g(rng);
+  const Texture2D grain = Texture2D::fromImage(noise, GL_R32F);
+  ink::DiffusionOptions o;
+  o.iterations = 3;
+  o.ring_steps = 2;
+  for (const bool with_grain : {false, true}) {
+    SCOPED_TRACE(with_grain ? "with a grain" : "without a grain");
+    const PaperTexture texture{&absorbency, {1.0f, 0.0f}, with_grain ? &grain : nullptr, 0.2f};
+    const Texture2D colour = Texture2D::fromImage(img, GL_RGBA8), separate(47, 37, GL_RGBA8);
+    pass.run(colour, texture, o, paper, separate);
+    const Texture2D in_place = Texture2D::fromImage(img, GL_RGBA8);
+    pass.run(in_place, texture, o, paper, in_place);
+    const image::Image a = separate.download(4), b = in_place.download(4);
+    ASSERT_EQ(a.pixels, b.pixels);
+    EXPECT_NE(a.pixels, colour.download(4).pixels) << "the ink moved";
+  }
+}
+
 TEST_F(InkGpu, OneByOneEmptyAndFullPicturesStayFinite) {
   InkDiffusionPass pass;
   const glm::vec3 paper(kPaper[0], kPaper[1], kPaper[2]);

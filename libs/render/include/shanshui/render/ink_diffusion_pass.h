@@ -37,7 +37,7 @@ class InkDiffusionPass {
   //! (RGBA8, same size). With a timer, the pass is timed as "diffusion".
   const Texture2D& run(const Texture2D& colour, const Texture2D& absorbency, const ink::DiffusionOptions& options,
                        const glm::vec3& paper, GpuTimer* timer = nullptr);
-  //! The same, writing into `output` (RGBA8, the size of `colour`).
+  //! The same, writing into `output` (RGBA8, the size of `colour`; may be `colour` itself).
   void run(const Texture2D& colour, const Texture2D& absorbency, const ink::DiffusionOptions& options,
            const glm::vec3& paper, const Texture2D& output, GpuTimer* timer = nullptr);
   //! The same with a textured paper (PaperTexture::absorbency must be set).
@@ -61,8 +61,8 @@ class InkDiffusionPass {
   Program extract_, rows_, columns_, reach_, boundary_, output_;
   Program output_canvas_;  //!< built on first use with a canvas grain
   Texture2D capacity_, main_, next_, nearest_, out_;
-  Texture2D seeds_, strokes_, near_;  //!< one texel per block: ink above the residual, strokes, near a stroke
-  Texture2D active_tex_;              //!< one texel per work-group area of the boundary iterations
+  Texture2D seeds_, strokes_, near_;  //!< one texel per block: ink above the residual or a stroke, strokes, near a stroke
+  Texture2D active_tex_;  //!< one texel per work-group area: where anything can change (iterations, output)
   const Texture2D* after_ = nullptr;
   int last_iterations_ = 0;  //!< n of the last run
 };
