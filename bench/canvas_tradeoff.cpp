@@ -35,16 +35,13 @@
 #include "shanshui/scene/scene_assets.h"
 #include "test_meshes.h"
 #include "bench_args.h"
+#include "order_stats.h"
 #include "tradeoff_points.h"
 
 namespace {
 
 using namespace shanshui;
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v[v.size() / 2];
-}
+using bench::median;
 
 // One channel of an image.
 image::Image channel(const image::Image& img, int c) {

@@ -23,19 +23,17 @@
 #include "shanshui/scene/scene.h"
 #include "shanshui/scene/scene_assets.h"
 #include "bench_args.h"
+#include "order_stats.h"
 #include "tradeoff_points.h"
 
 namespace {
 
 using namespace shanshui;
+using bench::median;
+using bench::quartiles;
 using Clock = std::chrono::steady_clock;
 
 double ms(Clock::time_point start) { return std::chrono::duration<double, std::milli>(Clock::now() - start).count(); }
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v[v.size() / 2];
-}
 
 struct Diff {
   double max = 0, mean = 0;
@@ -215,11 +213,11 @@ int main(int argc, char** argv) {
       for (const auto& p : st.passes)
         if (p.name == "diffusion") diffusion_ms.push_back(p.gpu_ms);
     }
-    std::sort(ratio.begin(), ratio.end());
-    const double x = median(ta), y = median(tb), r = ratio[ratio.size() / 2];
+    const auto q = quartiles(ratio);
+    const double x = median(ta), y = median(tb), r = q[1];
     char line[512];
-    std::snprintf(line, sizeof line, "| %s | %.1f | %.1f | %.2f | %.2f-%.2f | %.1f |\n", name, x, y, r,
-                  ratio[ratio.size() / 4], ratio[(3 * ratio.size()) / 4], median(diffusion_ms));
+    std::snprintf(line, sizeof line, "| %s | %.1f | %.1f | %.2f | %.2f-%.2f | %.1f |\n", name, x, y, r, q[0], q[2],
+                  median(diffusion_ms));
     md << line;
     std::fputs(line, stderr);
     csv << "frame," << name << "," << x << "," << y << "," << r << "," << median(diffusion_ms) << "\n";

@@ -11,7 +11,6 @@
 // plots). --quick: one mesh resolution, 256² frames.
 //   bench_ink_tradeoff [--out DIR] [--size N] [--quick]
 #include <algorithm>
-#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -38,11 +37,14 @@
 #include "shanshui/scene/scene_assets.h"
 #include "test_meshes.h"  // tests/support: the analytic surfaces the tests use
 #include "bench_args.h"
+#include "order_stats.h"
 #include "tradeoff_points.h"
 
 namespace {
 
 using namespace shanshui;
+using bench::median;
+using bench::quartiles;
 using Clock = std::chrono::steady_clock;
 
 struct Surface {
@@ -290,16 +292,8 @@ int main(int argc, char** argv) {
     ink.render(c, size, size, &st, true);
     for (const auto& p : st.passes) pass_ms[p.name].push_back(p.gpu_ms);
   }
-  auto median = [](std::vector<double> v) {
-    std::sort(v.begin(), v.end());
-    return v[v.size() / 2];
-  };
   const double l = median(t_lambert), ls = median(t_sorted), k = median(t_ink), p = median(t_plain);
   // Quartiles of the per-round ratios.
-  auto quartiles = [](std::vector<double> v) {
-    std::sort(v.begin(), v.end());
-    return std::array<double, 3>{v[v.size() / 4], v[v.size() / 2], v[(3 * v.size()) / 4]};
-  };
   const auto qk = quartiles(r_ink), qp = quartiles(r_plain), sk = quartiles(s_ink), sp = quartiles(s_plain),
              sl = quartiles(s_lambert);
   md << "\n## Frame cost at " << size << "x" << size << ", sample scene (" << ink.triangleCount()
