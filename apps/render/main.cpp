@@ -11,20 +11,51 @@
 #include "shanshui/render/gl_context.h"
 #include "shanshui/render/ink_renderer.h"
 #include "shanshui/scene/scene.h"
+#include "json_text.h"
 #include "tool_main.h"
 
 namespace {
 
 using namespace shanshui;
 
-// out.png, frame 3 of 10 -> out_0003.png; a printf pattern (%04d) is used as given.
+// out.png, frame 3 of 10 -> out_0003.png. A pattern with one %d or %0Nd (N <= 9) takes the
+// frame number there; "%%" is a literal percent sign; any other % is refused (the name is
+// never handed to printf).
 std::filesystem::path framePath(const std::string& pattern, int index, int count) {
-  if (count <= 1) return pattern;
   if (pattern.find('%') != std::string::npos) {
-    char buf[4096];
-    std::snprintf(buf, sizeof buf, pattern.c_str(), index);
-    return buf;
+    std::string name;
+    int fields = 0;
+    for (std::size_t i = 0; i < pattern.size(); ++i) {
+      if (pattern[i] != '%') {
+        name += pattern[i];
+        continue;
+      }
+      if (i + 1 < pattern.size() && pattern[i + 1] == '%') {
+        name += '%';
+        ++i;
+        continue;
+      }
+      std::size_t j = i + 1;
+      const bool zero = j < pattern.size() && pattern[j] == '0';
+      if (zero) ++j;
+      int width = 0;
+      if (j < pattern.size() && pattern[j] >= '1' && pattern[j] <= '9') width = pattern[j++] - '0';
+      if (j >= pattern.size() || pattern[j] != 'd' || ++fields > 1) {
+        throw makeError("-o ", pattern, ": a frame pattern takes one %d or %0Nd (e.g. frame_%04d.png); '%' must be "
+                        "written %%");
+      }
+      std::string number = std::to_string(index);
+      if (static_cast<int>(number.size()) < width) number.insert(0, width - number.size(), zero ? '0' : ' ');
+      name += number;
+      i = j;
+    }
+    if (count > 1 && fields == 0) {
+      const std::filesystem::path p(name);
+      return p.parent_path() / (p.stem().string() + "_" + std::to_string(index) + p.extension().string());
+    }
+    return name;
   }
+  if (count <= 1) return pattern;
   const std::filesystem::path p(pattern);
   char suffix[32];
   std::snprintf(suffix, sizeof suffix, "_%04d", index);
@@ -49,7 +80,7 @@ int main(int argc, char** argv) {
   std::vector<std::string> sets;
   int frames = 1;
   double orbit = 360.0, fps = 24.0;
-  bool verbose = false;
+  bool verbose = false, smallest = false;
   app.add_option("scene", input, "scene (.json), or a mesh (.obj .ply .off) or DEM (.dem .asc) to render alone")
       ->required();
   app.add_option("-o,--output", output, "image to write (.png .jpg .tif .exr); numbered with --frames")->required();
@@ -60,6 +91,7 @@ int main(int argc, char** argv) {
       ->default_val(24.0);
   app.add_option("--set", sets, "override a scene key, dotted path = JSON value (repeatable)");
   app.add_option("--stats", stats_path, "write JSON statistics: passes built, per frame time and pass GPU times");
+  app.add_flag("--smallest", smallest, "compress PNG/TIFF/EXR output hardest (slower); default: fast compression");
   app.add_flag("-v,--verbose", verbose, "print the GL platform and load times");
   return tools::runBatchableTool(app, argc, argv, [&] {
     if (frames < 1 || frames > 100000) throw makeError("--frames: ", frames, " is out of range; expected [1, 100000]");
@@ -71,8 +103,9 @@ int main(int argc, char** argv) {
       sets.push_back("output.height=" + std::to_string(s.height));
     }
     const scene::Scene sc = scene::loadSceneInput(input, sets);
-    for (int i = 0; i < frames; ++i) checkOutputPath(framePath(output, i, frames));
-    if (!stats_path.empty()) checkOutputPath(stats_path);
+    OutputSet outputs({input});
+    for (int i = 0; i < frames; ++i) outputs.declare(framePath(output, i, frames), "-o", image::writableImageExtensions());
+    if (!stats_path.empty()) outputs.declare(stats_path, "--stats", {".json"});
 
     scene::AssetCache cache;
     const auto objects = cache.getAll(sc);
@@ -95,7 +128,7 @@ int main(int argc, char** argv) {
       const double time = i / fps;
       const image::Image img = renderer.renderImage(render::frameKey(sc, i, frames, orbit), &fs, time);
       const std::filesystem::path path = framePath(output, i, frames);
-      image::saveImage(img, path);
+      outputs.stage(path, image::encodeImage(img, path, image::PixelDepth::UInt8, {.smallest = smallest}));
       nlohmann::json f = {{"index", i}, {"time", time}, {"file", path.string()}, {"frame_ms", fs.frame_ms},
                           {"cached", fs.cached}};
       f["passes"] = nlohmann::json::object();
@@ -105,12 +138,7 @@ int main(int argc, char** argv) {
       std::printf("%s\n", path.string().c_str());
     }
     if (frames > 1) std::fprintf(stderr, "\n");
-    if (!stats_path.empty()) {
-      writeAtomically(stats_path, [&](const std::filesystem::path& tmp) {
-        std::ofstream out(tmp);
-        out << stats.dump(2) << "\n";
-        if (!out.flush()) throw makeError(tmp.string(), ": write failed");
-      });
-    }
+    if (!stats_path.empty()) outputs.stage(stats_path, tools::jsonText(stats));
+    outputs.commit();
   });
 }

@@ -201,7 +201,7 @@ TEST(Cli, TextureToolsRefuseBadInputAndWriteNothing) {
       {quilt + keep + " --block 2", "block 2; expected at least 3"},
       {quilt + keep + " --block 129", "smaller than block 129"},
       {quilt + keep + " --block 24 --overlap 24", "overlap 24; expected 1 <= overlap < block"},
-      {quilt + keep + " --block 24 --overlap 0", "overlap 0"},
+      {quilt + keep + " --block 24 --overlap 0", "--overlap: 0 is out of range"},
       {bin("shanshui-quilt") + " " + quote(scan) + keep + " --size 20x300", "output size 20x300 is smaller than block 48"},
       {quilt + keep + " --tolerance -1", "tolerance -1"},
       {bin("shanshui-quilt") + " " + quote(dir / "mask.exr") + keep + " --size 64x64 --block 8", "only an alpha channel"},

@@ -132,7 +132,7 @@ TEST(RenderCli, EveryKindOfSceneErrorHasItsOwnMessageAndWritesNothing) {
   };
   const Case cases[] = {
       {scene("bad.json", "{ \"objects\": [ }"), {"bad.json", "not valid JSON"}},
-      {quote(dir / "absent.json"), {"absent.json", "cannot open"}},
+      {quote(dir / "absent.json"), {"absent.json", "no such file"}},
       {scene("unknown.json", obj + ", \"lines\": {\"curve_factr\": 1}}]}"), {"objects.0.lines.curve_factr", "unknown key", "curve_factor"}},
       {scene("range.json", obj + ", \"lines\": {\"curve_factor\": 500}}]}"), {"objects.0.lines.curve_factor", "500", "[0, 100]"}},
       {scene("type.json", obj + ", \"shading\": {\"sigma\": \"wide\"}}]}"), {"objects.0.shading.sigma", "expected a number"}},

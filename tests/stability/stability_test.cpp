@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdlib>
 #include <map>
@@ -24,6 +25,7 @@
 #include "shanshui/noise/canvas.h"
 #include "shanshui/noise/gabor.h"
 #include "shanshui/noise/perlin.h"
+#include "stability_table.h"
 #include "test_meshes.h"
 #include "test_support.h"
 
@@ -32,15 +34,6 @@ namespace {
 
 using test::quote;
 using test::run;
-
-struct Row {
-  std::string stage, name, outcome;
-};
-
-std::vector<Row>& table() {
-  static std::vector<Row> rows;
-  return rows;
-}
 
 // When a test process ends, its rows go to stability/<stage>.tsv in the build directory (or
 // $SHANSHUI_STABILITY_DIR) and
@@ -68,22 +61,34 @@ class TableWriter : public ::testing::Environment {
     const std::string tag = std::to_string(::getpid());
     {
       std::ofstream md(dir / ("stability.md." + tag)), csv(dir / ("stability.csv." + tag));
-      md << "# Stability suite\n\nEvery case ends with a clear error (non-zero exit, one line naming the file or "
-            "parameter, nothing written) or a finite result that keeps the stage's invariants.\n\n"
-            "| stage | case | outcome |\n|---|---|---|\n";
-      csv << "stage,case,outcome\n";
+      // Rows first, so the summary line can count them.
+      std::vector<std::array<std::string, 3>> rows;
       for (const fs::path& f : files) {
         std::ifstream in(f);
         std::string line;
         while (std::getline(in, line)) {
           const auto a = line.find('\t'), b = line.find('\t', a + 1);
           if (a == std::string::npos || b == std::string::npos) continue;
-          const std::string stage = line.substr(0, a), name = line.substr(a + 1, b - a - 1), outcome = line.substr(b + 1);
-          md << "| " << stage << " | " << name << " | " << outcome << " |\n";
-          std::string quoted = outcome;
-          for (std::size_t i = 0; (i = quoted.find('"', i)) != std::string::npos; i += 2) quoted.insert(i, "\"");
-          csv << stage << "," << name << ",\"" << quoted << "\"\n";
+          rows.push_back({line.substr(0, a), line.substr(a + 1, b - a - 1), line.substr(b + 1)});
         }
+      }
+      std::map<std::string, int> kinds;
+      for (const auto& r : rows) ++kinds[outcomeKind(r[2])];
+      const int handled = kinds["clear error"] + kinds["finite result"];
+      md << "# Stability suite\n\nEvery case ends with a clear error (non-zero exit, one line naming the file or "
+            "parameter, nothing written, an existing output kept byte for byte) or a finite result that keeps the "
+            "stage's invariants.\n\n"
+         << "**Inputs tried: " << rows.size() << "; handled: " << handled << "; crashes: " << kinds["CRASH"]
+         << "; hangs: " << kinds["HANG"] << "; partial outputs: " << kinds["PARTIAL OUTPUT"]
+         << "; other failures: " << static_cast<int>(rows.size()) - handled - kinds["CRASH"] - kinds["HANG"] - kinds["PARTIAL OUTPUT"]
+         << ".**\n\n| stage | case | outcome |\n|---|---|---|\n";
+      csv << "stage,case,outcome\n";
+      for (const auto& r : rows) {
+        const std::string &stage = r[0], &name = r[1], &outcome = r[2];
+        md << "| " << stage << " | " << name << " | " << outcome << " |\n";
+        std::string quoted = outcome;
+        for (std::size_t i = 0; (i = quoted.find('"', i)) != std::string::npos; i += 2) quoted.insert(i, "\"");
+        csv << stage << "," << name << ",\"" << quoted << "\"\n";
       }
     }
     fs::rename(dir / ("stability.md." + tag), dir / "stability.md");
@@ -143,7 +148,10 @@ void runCase(const std::string& stage, const std::string& name, const std::strin
     const std::string message = errors.empty() ? r.output : errors.front();
     EXPECT_NE(message.find(names), std::string::npos) << "the message should name '" << names << "': " << r.output;
     EXPECT_FALSE(std::filesystem::exists(output)) << "an error left an output behind";
-    outcome = "clear error: " + message;
+    EXPECT_TRUE(r.exit_code > 0 && r.exit_code < 128) << "killed or crashed: " << r.output;
+    outcome = (r.exit_code < 0 || r.exit_code >= 128) ? "CRASH: " + message
+              : std::filesystem::exists(output)     ? "PARTIAL OUTPUT: " + message
+                                                    : "clear error: " + message;
     // Paths of this machine stay out of the table.
     const auto slash = outcome.find('/');
     if (slash != std::string::npos) {
@@ -193,6 +201,9 @@ TEST(Stability, TerrainOnStiffHeightfields) {
   runCase("terrain", "infinite sample", t + quote(dir / "inf.asc"), out, "inf.asc", meshIsFinite);
   runCase("terrain", "NODATA holes and a NODATA row", t + quote(dir / "holes.asc"), out, "holes.asc", meshIsFinite);
   runCase("terrain", "heights of ±1e300", t + quote(dir / "huge.asc"), out, "huge.asc", meshIsFinite);
+  writeText(dir / "high.asc", grid(2, 2, 10, "1e14 0\n0 0\n"));
+  runCase("terrain", "height of 1e14 times z-scale 100", t + quote(dir / "high.asc") + " --z-scale 100", out, "high.asc",
+          meshIsFinite);
   runCase("terrain", "cells of 1e-9 m", t + quote(dir / "tiny_cells.asc"), out, "tiny_cells.asc", meshIsFinite);
   runCase("terrain", "z-scale 0", t + quote(dir / "two.png") + " --z-scale 0", out, "--z-scale", meshIsFinite);
   runCase("terrain", "z-scale NaN", t + quote(dir / "two.png") + " --z-scale nan", out, "--z-scale", meshIsFinite);

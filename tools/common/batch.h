@@ -135,6 +135,13 @@ inline std::optional<int> runManifest(const CLI::App& app, int argc, char** argv
     const std::filesystem::path self = std::filesystem::canonical("/proc/self/exe");
     const std::filesystem::path log = std::filesystem::temp_directory_path() /
                                       (name + "-batch-" + std::to_string(::getpid()) + ".log");
+    struct RemoveLog {
+      std::filesystem::path path;
+      ~RemoveLog() {
+        std::error_code ec;
+        std::filesystem::remove(path, ec);
+      }
+    } removeLog{log};
     std::vector<std::string> failures;
     const int n = static_cast<int>(items.size());
     for (int k = 0; k < n; ++k) {
@@ -144,14 +151,22 @@ inline std::optional<int> runManifest(const CLI::App& app, int argc, char** argv
       if (error.empty()) {
         std::vector<std::string> args = shared;
         args.insert(args.end(), item.args.begin(), item.args.end());
-        const ProgramRun run = runProgram(self, args, log, prefix);
-        if (!run.ok) error = run.last_line.empty() ? "failed with no message" : run.last_line;
+        try {
+          const ProgramRun run = runProgram(self, args, log, prefix);
+          if (!run.ok) {
+            error = run.last_line.empty() ? "failed with no message" : run.last_line;
+            if (WIFSIGNALED(run.status)) error += " (killed by signal " + std::to_string(WTERMSIG(run.status)) + ")";
+          }
+        } catch (const Error& e) {
+          error = e.what();
+          std::fprintf(stderr, "%s%s: error: manifest line %d: %s\n", prefix.c_str(), name.c_str(), item.line,
+                       error.c_str());
+        }
       } else {
         std::fprintf(stderr, "%s%s: error: manifest line %d: %s\n", prefix.c_str(), name.c_str(), item.line, error.c_str());
       }
       if (!error.empty()) failures.push_back("line " + std::to_string(item.line) + ": " + error);
     }
-    std::filesystem::remove(log);
     std::fprintf(stderr, "%s: batch of %d: %d done, %zu failed\n", name.c_str(), n, n - static_cast<int>(failures.size()),
                  failures.size());
     for (const std::string& f : failures) std::fprintf(stderr, "  %s\n", f.c_str());

@@ -2,7 +2,13 @@
 // stdout and stderr go to a log file, optionally echoed line by line with a prefix.
 #pragma once
 
+#include <fcntl.h>
+#include <spawn.h>
 #include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
 
 #include <cstdio>
 #include <filesystem>
@@ -27,19 +33,51 @@ struct ProgramRun {
   std::string last_line; //!< the last non-empty line it printed
 };
 
-//! Runs `program args...` through the shell with both streams captured into `log`
+//! Longest single argument and all arguments together that runProgram() passes (Linux
+//! refuses one argument over 128 KiB and lets the whole command line use a quarter of the stack limit).
+constexpr std::size_t kMaxArgumentBytes = 128 * 1024 - 1;
+constexpr std::size_t kMaxArgumentsBytes = 1024 * 1024;
+
+//! Runs `program args...` (no shell) with both streams captured into `log`
 //! (overwritten). With `echo_prefix` non-empty, each line is also printed to stderr as it
-//! arrives, after the prefix. Throws an Error only when the log cannot be written or the
-//! program cannot be started; a failing program is reported in the result.
+//! arrives, after the prefix. Throws an Error when the log cannot be written, the arguments
+//! are too long, or the program cannot be started; a failing program is reported in the result.
 inline ProgramRun runProgram(const std::filesystem::path& program, const std::vector<std::string>& args,
                              const std::filesystem::path& log, const std::string& echo_prefix = {}) {
+  std::size_t total = program.string().size() + 1;
+  for (const std::string& a : args) {
+    if (a.size() > kMaxArgumentBytes) {
+      throw makeError("an argument of ", a.size(), " bytes is longer than the limit of ", kMaxArgumentBytes,
+                      " (it begins '", a.substr(0, 40), "')");
+    }
+    total += a.size() + 1;
+  }
+  if (total > kMaxArgumentsBytes) {
+    throw makeError("the arguments take ", total, " bytes, more than the limit of ", kMaxArgumentsBytes);
+  }
   std::ofstream out(log);
   if (!out) throw makeError(log.string(), ": cannot write the log");
-  std::string command = shellQuote(program.string());
-  for (const std::string& a : args) command += " " + shellQuote(a);
-  command += " 2>&1 </dev/null";
-  FILE* pipe = ::popen(command.c_str(), "r");
-  if (pipe == nullptr) throw makeError(program.string(), ": cannot start");
+  int fds[2];
+  if (::pipe2(fds, O_CLOEXEC) != 0) throw makeError(program.string(), ": cannot start: ", std::strerror(errno));
+  std::vector<std::string> words{program.string()};
+  words.insert(words.end(), args.begin(), args.end());
+  std::vector<char*> argv;
+  for (std::string& w : words) argv.push_back(w.data());
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
+  posix_spawn_file_actions_adddup2(&actions, fds[1], 1);
+  posix_spawn_file_actions_adddup2(&actions, fds[1], 2);
+  pid_t pid = 0;
+  const int spawned = ::posix_spawn(&pid, program.c_str(), &actions, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  ::close(fds[1]);
+  if (spawned != 0) {
+    ::close(fds[0]);
+    throw makeError(program.string(), ": cannot start: ", std::strerror(spawned));
+  }
+  FILE* pipe = ::fdopen(fds[0], "r");
   ProgramRun r;
   std::string line;
   auto finish = [&] {
@@ -54,8 +92,12 @@ inline ProgramRun runProgram(const std::filesystem::path& program, const std::ve
     else line += static_cast<char>(c);
   }
   if (!line.empty()) finish();
-  r.status = ::pclose(pipe);
-  r.ok = r.status != -1 && WIFEXITED(r.status) && WEXITSTATUS(r.status) == 0;
+  std::fclose(pipe);
+  int status = 0;
+  while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  }
+  r.status = status;
+  r.ok = WIFEXITED(status) && WEXITSTATUS(status) == 0;
   return r;
 }
 

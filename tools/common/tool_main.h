@@ -4,18 +4,49 @@
 
 #include <CLI/CLI.hpp>
 
+#include <charconv>
 #include <cstdio>
+#include <string>
 #include <exception>
 #include <functional>
 
 #include "batch.h"
+#include "shanshui/core/atomic_output.h"
 #include "shanshui/core/error.h"
 
 namespace shanshui::tools {
 
+//! CLI11 check for an integer option: a whole number in [min, max] (defaults: at least `min`,
+//! any that fits 64 bits). Its message names the value and the range, in one line.
+inline CLI::Validator integerIn(long long min, unsigned long long max = ~0ULL) {
+  return CLI::Validator(
+      [min, max](std::string& text) -> std::string {
+        const char* b = text.data();
+        const char* e = b + text.size();
+        if (b != e && *b == '-') {
+          long long v = 0;
+          const auto [p, ec] = std::from_chars(b, e, v);
+          if (ec != std::errc() || p != e) return "'" + text + "' is not a whole number";
+          if (v < min) return text + " is out of range; expected at least " + std::to_string(min);
+          return {};
+        }
+        unsigned long long v = 0;
+        const auto [p, ec] = std::from_chars(b, e, v);
+        if (ec == std::errc::result_out_of_range) return text + " is out of range; expected at most " + std::to_string(max);
+        if (ec != std::errc() || p != e) return "'" + text + "' is not a whole number";
+        if (min > 0 && v < static_cast<unsigned long long>(min)) {
+          return text + " is out of range; expected at least " + std::to_string(min);
+        }
+        if (v > max) return text + " is out of range; expected at most " + std::to_string(max);
+        return {};
+      },
+      max == ~0ULL ? ">=" + std::to_string(min) : "[" + std::to_string(min) + ", " + std::to_string(max) + "]");
+}
+
 //! Runs `body` after parsing; returns the process exit code (0 ok, 1 error, CLI11's code
 //! for usage errors, 0 for --help). Every error is one line on stderr.
 inline int runTool(CLI::App& app, int argc, char** argv, const std::function<void()>& body) {
+  installTempFileCleanup();
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -27,6 +58,10 @@ inline int runTool(CLI::App& app, int argc, char** argv, const std::function<voi
   try {
     body();
     return 0;
+  } catch (const std::bad_alloc&) {
+    std::fprintf(stderr, "%s: error: out of memory: the input or the requested size is too large for this machine\n",
+                 app.get_name().c_str());
+    return 1;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "%s: error: %s\n", app.get_name().c_str(), e.what());
     return 1;

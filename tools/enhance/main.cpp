@@ -1,6 +1,7 @@
 // shanshui-enhance: stretch the contrast of a scanned wrinkle (cun) sample (seed 001, Eq. 4).
 #include <cstdio>
 
+#include "shanshui/core/atomic_output.h"
 #include "shanshui/core/parse.h"
 #include "shanshui/image/image_io.h"
 #include "shanshui/texsynth/enhance.h"
@@ -22,7 +23,9 @@ int main(int argc, char** argv) {
       ->default_val("1:99")->excludes(rangeOpt);
   app.add_option("--to", to, "output range C:D in [0,1]")->default_val("0:1");
   app.add_flag("--color,--colour", colour, "map every colour channel instead of converting to grey");
-  app.add_option("--depth", depth, "output sample depth: 8, 16 or float (default: the input's)");
+  app.add_option("--depth", depth, "output sample depth: 8, 16 or float (default: the input's, or the nearest the format stores)");
+  bool smallest = false;
+  app.add_flag("--smallest", smallest, "compress PNG/TIFF/EXR output hardest (slower); default: fast compression");
   return tools::runBatchableTool(app, argc, argv, [&] {
     texsynth::EnhanceOptions options;
     if (!range.empty()) {
@@ -36,6 +39,12 @@ int main(int argc, char** argv) {
     options.colour = colour;
     std::optional<image::PixelDepth> outDepth;
     if (!depth.empty()) outDepth = image::parseDepth(depth);
+    OutputSet outputs({input});
+    outputs.declare(output, "-o", image::writableImageExtensions());
+    if (outDepth && image::closestDepth(output, *outDepth) != *outDepth) {
+      throw makeError(output, ": --depth ", depth, ": the format of '", std::filesystem::path(output).extension().string(),
+                      "' cannot store it; use .png or .tif for 16, .tif or .exr for float");
+    }
 
     image::ImageInfo info;
     const image::Image img = image::loadImage(input, &info);
@@ -43,11 +52,12 @@ int main(int argc, char** argv) {
     texsynth::EnhanceReport report;
     const image::Image result = texsynth::enhanceContrast(img, options, &report, input);
     if (!outDepth) {
-      outDepth = info.depth == image::PixelDepth::UInt8    ? image::PixelDepth::UInt8
-                 : info.depth == image::PixelDepth::UInt16 ? image::PixelDepth::UInt16
-                                                           : image::PixelDepth::Float;
+      outDepth = image::closestDepth(output, info.depth == image::PixelDepth::UInt8    ? image::PixelDepth::UInt8
+                                             : info.depth == image::PixelDepth::UInt16 ? image::PixelDepth::UInt16
+                                                                                       : image::PixelDepth::Float);
     }
-    image::saveImage(result, output, *outDepth);
+    outputs.stage(output, image::encodeImage(result, output, *outDepth, {.smallest = smallest}));
+    outputs.commit();
     std::fprintf(stderr, "%s: mapped %g:%g to %g:%g%s; %.2f%% of values at or below A, %.2f%% above B\n",
                  input.c_str(), report.input_range.low, report.input_range.high, c, d,
                  options.input_range ? "" : " (percentiles)", 100.0 * report.clipped_low,

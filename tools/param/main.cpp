@@ -11,6 +11,7 @@
 #include "shanshui/param/uv_adjust.h"
 #include "shanshui/render/gl_context.h"
 #include "shanshui/render/mesh_preview.h"
+#include "json_text.h"
 #include "tool_main.h"
 
 namespace {
@@ -53,10 +54,11 @@ int main(int argc, char** argv) {
     param::ParamOptions options;
     options.method = param::parseMethod(methodName);
     options.border = param::parseBorder(borderName);
+    OutputSet outputs({input});
     if (!output.ends_with(".obj")) throw makeError(output, ": UVs are only written to .obj files");
-    checkOutputPath(output);
-    if (!reportPath.empty()) checkOutputPath(reportPath);
-    if (!checkerPath.empty()) checkOutputPath(checkerPath);
+    outputs.declare(output, "-o", {".obj"});
+    if (!reportPath.empty()) outputs.declare(reportPath, "--report", {".json"});
+    if (!checkerPath.empty()) outputs.declare(checkerPath, "--checker", image::writableImageExtensions());
     if (texel->count() > 0 && !(texelSize > 0)) {
       throw makeError("--texel-size: ", texelSize, "; expected a positive length in mesh units");
     }
@@ -80,7 +82,7 @@ int main(int argc, char** argv) {
     } else {
       param::normalizeUvs(m);
     }
-    mesh::writeMesh(m, output);
+    outputs.stage(output, mesh::encodeMesh(m, output));
     std::fprintf(stderr, "%s: %s in %.2f s: %s\n", output.c_str(), param::methodName(report.method), report.seconds,
                  report.distortion.summary().c_str());
 
@@ -106,7 +108,7 @@ int main(int argc, char** argv) {
       j["uv_scale"] = texel->count() > 0 ? nlohmann::json{{"texel_size", texelSize}} : nlohmann::json("normalized");
       for (const auto& [name, value] : repair.counters()) j["repair"][name] = value;
       j["repair_warnings"] = repair.warnings;
-      writeAtomically(reportPath, [&](const std::filesystem::path& tmp) { std::ofstream(tmp) << j.dump(2) << "\n"; });
+      outputs.stage(reportPath, tools::jsonText(j));
     }
     if (!checkerPath.empty()) {
       const auto context = render::GlContext::create({});
@@ -116,7 +118,8 @@ int main(int argc, char** argv) {
       view.elevation_deg = 35.0;
       view.zoom = 1.6;
       view.checker_squares = texel->count() > 0 ? 2.0f : 16.0f;
-      image::saveImage(render::renderPreview(m, view), checkerPath);
+      outputs.stage(checkerPath, image::encodeImage(render::renderPreview(m, view), checkerPath));
     }
+    outputs.commit();
   });
 }

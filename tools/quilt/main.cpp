@@ -9,6 +9,7 @@
 #include "shanshui/image/image_io.h"
 #include "shanshui/texsynth/quilt_metrics.h"
 #include "shanshui/texsynth/quilting.h"
+#include "json_text.h"
 #include "tool_main.h"
 
 namespace {
@@ -64,18 +65,22 @@ int main(int argc, char** argv) {
   app.add_option("-o,--output", output, "synthesised texture; the extension picks the format")->required();
   app.add_option("--size", size, "output size WxH")->required();
   app.add_option("--block", options.block, "block size B in pixels (>= 3, at most the sample size)")->default_val(48);
-  app.add_option("--overlap", options.overlap, "overlap O in pixels, 1 <= O < B (default: B/6)");
+  app.add_option("--overlap", options.overlap, "overlap O in pixels, 1 <= O < B (default: B/6)")
+      ->check(tools::integerIn(1, 100000));
   app.add_option("--tolerance", options.tolerance, "accept blocks within (1 + T) of the best overlap error")
       ->default_val(0.1);
-  app.add_option("--seed", options.seed, "random seed; the same seed gives the same output")->default_val(1);
+  app.add_option("--seed", options.seed, "random seed; the same seed gives the same output")
+      ->check(tools::integerIn(0))->default_val(1);
   app.add_option("--seam", seam, "how blocks are joined")
       ->check(CLI::IsMember({"cut", "graphcut", "none"}))->default_val("cut");
   app.add_flag("--tileable", options.tileable, "make the output tile seamlessly");
   app.add_option("--search", search, "overlap search: fft (fast, exact), exhaustive (reference), random (baseline)")
       ->check(CLI::IsMember({"fft", "exhaustive", "random"}))->default_val("fft");
   app.add_option("--threads", options.threads, "worker threads (0 = all cores); the output does not depend on it")
-      ->default_val(0);
+      ->check(tools::integerIn(0, 1024))->default_val(0);
   app.add_option("--report", reportPath, "write timings and quality metrics as JSON");
+  bool smallest = false;
+  app.add_flag("--smallest", smallest, "compress PNG/TIFF/EXR output hardest (slower); default: fast compression");
   return tools::runBatchableTool(app, argc, argv, [&] {
     const Size2 outSize = parseSize(size, "--size");
     options.width = outSize.width;
@@ -86,8 +91,9 @@ int main(int argc, char** argv) {
     options.search = search == "exhaustive" ? texsynth::SearchMode::Exhaustive
                      : search == "random"   ? texsynth::SearchMode::Random
                                             : texsynth::SearchMode::Fft;
-    if (!reportPath.empty()) checkOutputPath(reportPath);
-    checkOutputPath(output);
+    OutputSet outputs({input});
+    outputs.declare(output, "-o", image::writableImageExtensions());
+    if (!reportPath.empty()) outputs.declare(reportPath, "--report", {".json"});
 
     image::ImageInfo info;
     const image::Image sample = image::loadImage(input, &info);
@@ -106,18 +112,20 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "quilt: %d/%d blocks (%d%%)\n", done, total, 100 * done / total);
     };
     const texsynth::QuiltResult result = texsynth::quilt(sample, options, input);
-    const image::PixelDepth depth = info.depth == image::PixelDepth::UInt8    ? image::PixelDepth::UInt8
+    const image::PixelDepth depth =
+        image::closestDepth(output, info.depth == image::PixelDepth::UInt8    ? image::PixelDepth::UInt8
                                     : info.depth == image::PixelDepth::UInt16 ? image::PixelDepth::UInt16
-                                                                              : image::PixelDepth::Float;
-    image::saveImage(result.image, output, depth);
+                                                                              : image::PixelDepth::Float);
+    outputs.stage(output, image::encodeImage(result.image, output, depth, {.smallest = smallest}));
+    if (!reportPath.empty()) {
+      const texsynth::QuiltMetrics m = texsynth::measureQuilt(sample, result, options.block);
+      const nlohmann::json j = reportJson(input, output, options, result.stats, m);
+      outputs.stage(reportPath, tools::jsonText(j));
+    }
+    outputs.commit();
     const texsynth::QuiltStats& s = result.stats;
     std::fprintf(stderr, "%s: %dx%d from %d blocks in %.2f s (%d threads); overlap error %.3g per pixel\n",
                  output.c_str(), options.width, options.height, s.blocks, s.seconds, s.threads,
                  s.overlap_error_per_pixel);
-    if (!reportPath.empty()) {
-      const texsynth::QuiltMetrics m = texsynth::measureQuilt(sample, result, options.block);
-      const nlohmann::json j = reportJson(input, output, options, s, m);
-      writeAtomically(reportPath, [&](const std::filesystem::path& tmp) { std::ofstream(tmp) << j.dump(2) << "\n"; });
-    }
   });
 }

@@ -6,6 +6,7 @@
 #include "shanshui/core/atomic_output.h"
 #include "shanshui/mesh/mesh_io.h"
 #include "shanshui/mesh/repair.h"
+#include "json_text.h"
 #include "tool_main.h"
 
 int main(int argc, char** argv) {
@@ -23,19 +24,21 @@ int main(int argc, char** argv) {
   app.add_option("--components", components, "extra connected components")
       ->check(CLI::IsMember({"keep-largest", "fail", "keep-all"}))->default_val("keep-largest");
   app.add_flag("--no-fill-holes", noFill, "leave holes open");
-  app.add_option("--max-hole-edges", options.max_hole_edges, "larger holes stay open")->default_val(1000);
+  app.add_option("--max-hole-edges", options.max_hole_edges, "larger holes stay open")
+      ->check(tools::integerIn(0, 2000000000))->default_val(1000);
   app.add_option("--report", reportPath, "write what was changed as JSON");
   return tools::runBatchableTool(app, argc, argv, [&] {
     options.fill_holes = !noFill;
     options.components = components == "fail"       ? mesh::ComponentPolicy::Fail
                          : components == "keep-all" ? mesh::ComponentPolicy::KeepAll
                                                     : mesh::ComponentPolicy::KeepLargest;
+    OutputSet outputs({input});
+    outputs.declare(output, "-o", {".obj", ".ply", ".off"});
+    if (!reportPath.empty()) outputs.declare(reportPath, "--report", {".json"});
     const mesh::PolygonSoup soup = mesh::readPolygonSoup(input);
     mesh::RepairReport report;
     const mesh::Mesh m = mesh::repairMesh(soup, options, &report, input);
-    mesh::writeMesh(m, output);
-    for (const auto& w : report.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
-    std::fprintf(stderr, "%s: %s\n", input.c_str(), report.summary().c_str());
+    outputs.stage(output, mesh::encodeMesh(m, output));
     if (!reportPath.empty()) {
       nlohmann::json j;
       j["input"] = input;
@@ -47,9 +50,10 @@ int main(int argc, char** argv) {
       for (const auto& [name, value] : report.counters()) j["changes"][name] = value;
       j["attributes_dropped"] = report.attributes_dropped;
       j["warnings"] = report.warnings;
-      writeAtomically(reportPath, [&](const std::filesystem::path& tmp) {
-        std::ofstream(tmp) << j.dump(2) << "\n";
-      });
+      outputs.stage(reportPath, tools::jsonText(j));
     }
+    outputs.commit();
+    for (const auto& w : report.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+    std::fprintf(stderr, "%s: %s\n", input.c_str(), report.summary().c_str());
   });
 }

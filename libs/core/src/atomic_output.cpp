@@ -1,8 +1,17 @@
 #include "shanshui/core/atomic_output.h"
 
+#include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <array>
 #include <atomic>
+#include <cctype>
+#include <csignal>
+#include <cstring>
+#include <map>
+#include <mutex>
 #include <system_error>
 
 #include "shanshui/core/error.h"
@@ -10,34 +19,370 @@
 namespace shanshui {
 namespace fs = std::filesystem;
 
+namespace {
+
+// Live temporaries, kept where a signal handler can read them without locks or allocation.
+constexpr std::size_t kSlots = 4096;
+constexpr std::size_t kPathMax = 1024;
+struct TempSlot {
+  std::atomic<bool> used{false};
+  std::atomic<bool> live{false};
+  char path[kPathMax] = {};
+};
+std::array<TempSlot, kSlots> g_slots;
+
+// Registers a temporary for cleanup on signals; returns its slot (or kSlots when full or
+// too long: then only the next run's sweep can remove it after a kill).
+std::size_t registerTemp(const fs::path& tmp) {
+  const std::string s = fs::absolute(tmp).string();
+  if (s.size() + 1 > kPathMax) return kSlots;
+  for (std::size_t i = 0; i < kSlots; ++i) {
+    bool expected = false;
+    if (g_slots[i].used.compare_exchange_strong(expected, true)) {
+      std::memcpy(g_slots[i].path, s.c_str(), s.size() + 1);
+      g_slots[i].live.store(true);
+      return i;
+    }
+  }
+  return kSlots;
+}
+
+void unregisterTemp(std::size_t slot) {
+  if (slot >= kSlots) return;
+  g_slots[slot].live.store(false);
+  g_slots[slot].used.store(false);
+}
+
+extern "C" void removeTempsAndReraise(int sig) {
+  for (TempSlot& s : g_slots) {
+    if (s.live.load()) ::unlink(s.path);
+  }
+  std::signal(sig, SIG_DFL);
+  std::raise(sig);
+}
+
+std::string lower(std::string s) {
+  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
+  return s;
+}
+
+std::string reason(int err) { return std::strerror(err); }
+
+fs::path directoryOf(const fs::path& target) {
+  return target.has_parent_path() ? target.parent_path() : fs::path(".");
+}
+
+fs::path comparable(const fs::path& p) {
+  std::error_code ec;
+  fs::path c = fs::weakly_canonical(fs::absolute(p, ec), ec);
+  return ec ? fs::absolute(p).lexically_normal() : c;
+}
+
+// A temporary and its signal-cleanup slot; removes the file unless released.
+class TempFile {
+ public:
+  explicit TempFile(const fs::path& target) {
+    sweepStaleTemporaries(target);
+    static std::atomic<unsigned> counter{0};
+    path_ = temporaryPath(target, ::getpid(), counter++);
+    slot_ = registerTemp(path_);
+  }
+  ~TempFile() {
+    if (!released_) {
+      std::error_code ec;
+      fs::remove(path_, ec);
+    }
+    unregisterTemp(slot_);
+  }
+  TempFile(const TempFile&) = delete;
+  TempFile& operator=(const TempFile&) = delete;
+  const fs::path& path() const { return path_; }
+  void release() { released_ = true; }
+
+ private:
+  fs::path path_;
+  std::size_t slot_ = kSlots;
+  bool released_ = false;
+};
+
+void writeBytes(const fs::path& tmp, const fs::path& target, std::string_view bytes) {
+  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+  if (fd < 0) throw makeError(target.string(), ": cannot write: ", reason(errno));
+  std::size_t done = 0;
+  while (done < bytes.size()) {
+    const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) {
+      const int err = n < 0 ? errno : ENOSPC;
+      ::close(fd);
+      throw makeError(target.string(), ": cannot write: ", reason(err));
+    }
+    done += static_cast<std::size_t>(n);
+  }
+  if (::fsync(fd) != 0 && errno != EINVAL && errno != EROFS) {
+    const int err = errno;
+    ::close(fd);
+    throw makeError(target.string(), ": cannot write: ", reason(err));
+  }
+  if (::close(fd) != 0) throw makeError(target.string(), ": cannot write: ", reason(errno));
+}
+
+void renameOver(const fs::path& tmp, const fs::path& target) {
+  if (::rename(tmp.c_str(), target.c_str()) != 0) {
+    throw makeError(target.string(), ": cannot write: ", reason(errno));
+  }
+}
+
+}  // namespace
+
+fs::path temporaryPath(const fs::path& target, long pid, unsigned n) {
+  return directoryOf(target) / ("." + target.stem().string() + ".tmp" + std::to_string(pid) + "_" +
+                                std::to_string(n) + target.extension().string());
+}
+
+void sweepStaleTemporaries(const fs::path& target) {
+  // One listing per directory and process: a sequence of a thousand frames in one
+  // directory must not list it a thousand times.
+  static std::mutex mutex;
+  static std::map<fs::path, std::vector<fs::path>> stale;  // directory -> dead processes' temporaries
+  const std::lock_guard lock(mutex);
+  const fs::path dir = comparable(directoryOf(target));
+  auto it = stale.find(dir);
+  if (it == stale.end()) {
+    std::vector<fs::path> found;
+    std::error_code ec;
+    for (fs::directory_iterator d(dir, ec), end; !ec && d != end; d.increment(ec)) {
+      const std::string name = d->path().filename().string();
+      if (name.size() < 2 || name[0] != '.') continue;
+      const std::size_t at = name.rfind(".tmp");
+      if (at == std::string::npos || at == 0) continue;
+      std::size_t p = at + 4;
+      long pid = 0;
+      std::size_t digits = 0;
+      while (p < name.size() && std::isdigit(static_cast<unsigned char>(name[p])) && digits < 10) {
+        pid = pid * 10 + (name[p++] - '0');
+        ++digits;
+      }
+      if (digits == 0 || p >= name.size() || name[p] != '_') continue;
+      if (pid == ::getpid() || pid <= 0) continue;
+      if (::kill(static_cast<pid_t>(pid), 0) == 0 || errno != ESRCH) continue;  // still running
+      found.push_back(d->path());
+    }
+    it = stale.emplace(dir, std::move(found)).first;
+  }
+  // Only the temporaries of this target: ".STEM.tmpPID_N.EXT".
+  const std::string prefix = "." + target.stem().string() + ".tmp", ext = target.extension().string();
+  auto& list = it->second;
+  for (auto f = list.begin(); f != list.end();) {
+    const std::string name = f->filename().string();
+    const std::size_t tail = name.rfind(".tmp");
+    if (name.compare(0, prefix.size(), prefix) == 0 && tail + 4 == prefix.size() &&
+        name.size() >= ext.size() && name.compare(name.size() - ext.size(), ext.size(), ext) == 0) {
+      std::error_code ec;
+      fs::remove(*f, ec);
+      f = list.erase(f);
+    } else {
+      ++f;
+    }
+  }
+}
+
+void installTempFileCleanup() {
+  static std::once_flag once;
+  std::call_once(once, [] {
+    for (int sig : {SIGINT, SIGTERM, SIGHUP}) {
+      struct sigaction old {};
+      ::sigaction(sig, nullptr, &old);
+      if (old.sa_handler == SIG_IGN) continue;  // a shell's `nohup` or background job keeps it
+      struct sigaction sa {};
+      sa.sa_handler = removeTempsAndReraise;
+      sigemptyset(&sa.sa_mask);
+      ::sigaction(sig, &sa, nullptr);
+    }
+    // A file size limit makes write() fail with EFBIG, which is reported and cleaned up,
+    // instead of killing the process with SIGXFSZ and leaving the temporary behind.
+    std::signal(SIGXFSZ, SIG_IGN);
+  });
+}
+
 void checkOutputPath(const fs::path& target) {
-  const fs::path dir = target.has_parent_path() ? target.parent_path() : fs::path(".");
+  if (target.empty()) throw makeError("output: empty file name");
+  const fs::path dir = directoryOf(target);
   std::error_code ec;
   if (!fs::is_directory(dir, ec)) {
     throw makeError(target.string(), ": output directory does not exist: ", dir.string());
   }
+  struct stat st {};
+  if (::access(dir.c_str(), W_OK) != 0) {
+    throw makeError(target.string(), ": output directory is not writable: ", dir.string(), " (", reason(errno), ")");
+  }
+  if (::stat(dir.c_str(), &st) == 0 && (st.st_mode & 0222) == 0) {
+    throw makeError(target.string(), ": output directory is read-only: ", dir.string());
+  }
   if (fs::is_directory(target, ec)) {
     throw makeError(target.string(), ": is a directory, expected a file name");
   }
+  if (::lstat(target.c_str(), &st) == 0) {
+    if (S_ISLNK(st.st_mode) || !S_ISREG(st.st_mode)) {
+      throw makeError(target.string(), ": exists and is not a regular file; refusing to replace it");
+    }
+    if ((st.st_mode & 0222) == 0) {
+      throw makeError(target.string(), ": exists and is read-only; remove it or make it writable");
+    }
+  }
+  if (target.filename().string().size() > 200) {
+    throw makeError(target.string().substr(0, 60), "...: file name longer than 200 bytes");
+  }
+}
+
+void checkInputFile(const fs::path& path, std::string_view what) {
+  std::error_code ec;
+  const fs::file_status s = fs::status(path, ec);
+  if (!fs::exists(s)) throw makeError(path.string(), ": no such file");
+  if (fs::is_directory(s)) throw makeError(path.string(), ": is a directory, expected ", what);
+  if (!fs::is_regular_file(s)) {
+    throw makeError(path.string(), ": not a regular file (a device, FIFO or socket); expected ", what);
+  }
+  if (fs::file_size(path, ec) == 0) throw makeError(path.string(), ": empty file");
+  if (::access(path.c_str(), R_OK) != 0) throw makeError(path.string(), ": cannot read: ", reason(errno));
+}
+
+std::string readFileBounded(const fs::path& path, std::uintmax_t max_bytes) {
+  checkInputFile(path, "a file");
+  std::error_code ec;
+  const std::uintmax_t size = fs::file_size(path, ec);
+  if (size > max_bytes) {
+    throw makeError(path.string(), ": ", size, " bytes; larger than the limit of ", max_bytes, " bytes");
+  }
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) throw makeError(path.string(), ": cannot read: ", reason(errno));
+  std::string data(size, '\0');
+  std::size_t done = 0;
+  while (done < size) {
+    const ssize_t n = ::read(fd, data.data() + done, size - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) {
+      const int err = errno;
+      ::close(fd);
+      throw makeError(path.string(), ": cannot read: ", reason(err));
+    }
+    if (n == 0) break;
+    done += static_cast<std::size_t>(n);
+  }
+  ::close(fd);
+  data.resize(done);
+  return data;
+}
+
+void writeFileAtomically(const fs::path& target, std::string_view bytes) {
+  checkOutputPath(target);
+  TempFile tmp(target);
+  writeBytes(tmp.path(), target, bytes);
+  renameOver(tmp.path(), target);
+  tmp.release();
 }
 
 void writeAtomically(const fs::path& target, const std::function<void(const fs::path&)>& write) {
   checkOutputPath(target);
-  const fs::path dir = target.has_parent_path() ? target.parent_path() : fs::path(".");
+  TempFile tmp(target);
+  write(tmp.path());
   std::error_code ec;
-  static std::atomic<unsigned> counter{0};
-  const fs::path tmp = dir / ("." + target.stem().string() + ".tmp" + std::to_string(getpid()) +
-                              "_" + std::to_string(counter++) + target.extension().string());
-  try {
-    write(tmp);
-  } catch (...) {
-    fs::remove(tmp, ec);
-    throw;
+  if (!fs::is_regular_file(tmp.path(), ec)) throw makeError(target.string(), ": cannot write: the writer made no file");
+  renameOver(tmp.path(), target);
+  tmp.release();
+}
+
+// ---- OutputSet ----
+
+OutputSet::OutputSet(std::vector<fs::path> inputs) {
+  for (const fs::path& p : inputs) addInput(p);
+}
+
+OutputSet::~OutputSet() {
+  for (Entry& e : entries_) {
+    if (!e.staged.empty()) {
+      std::error_code ec;
+      fs::remove(e.staged, ec);
+    }
+    unregisterTemp(e.slot);
   }
-  fs::rename(tmp, target, ec);
-  if (ec) {
-    fs::remove(tmp, ec);
-    throw makeError(target.string(), ": cannot write: ", ec.message());
+}
+
+void OutputSet::addInput(const fs::path& input) {
+  if (!input.empty() && input != "-") inputs_.push_back(comparable(input));
+}
+
+void OutputSet::declare(const fs::path& target, std::string_view what, const std::vector<std::string>& extensions) {
+  if (target.empty()) throw makeError(what, ": empty file name");
+  if (!extensions.empty()) {
+    const std::string ext = lower(target.extension().string());
+    if (std::find(extensions.begin(), extensions.end(), ext) == extensions.end()) {
+      std::string list;
+      for (const std::string& e : extensions) list += (list.empty() ? "" : ", ") + e;
+      throw makeError(target.string(), ": ", what, ": unknown extension '", target.extension().string(),
+                      "'; expected ", list);
+    }
+  }
+  const fs::path key = comparable(target);
+  std::error_code ec;
+  for (const Entry& e : entries_) {
+    if (e.key == key || fs::equivalent(e.key, key, ec)) {
+      throw makeError(target.string(), ": ", what, " and ", e.what, " name the same file; give each its own");
+    }
+  }
+  for (const fs::path& in : inputs_) {
+    if (in == key || fs::equivalent(in, key, ec)) {
+      throw makeError(target.string(), ": ", what, " names an input file; refusing to overwrite it");
+    }
+  }
+  checkOutputPath(target);
+  entries_.push_back({target, key, std::string(what), {}, static_cast<std::size_t>(-1)});
+}
+
+OutputSet::Entry& OutputSet::find(const fs::path& target) {
+  for (Entry& e : entries_) {
+    if (e.target == target) return e;
+  }
+  throw makeError(target.string(), ": internal error: output was not declared");
+}
+
+void OutputSet::stage(const fs::path& target, std::string_view bytes) {
+  Entry& e = find(target);
+  checkOutputPath(target);
+  TempFile tmp(target);
+  writeBytes(tmp.path(), target, bytes);
+  if (!e.staged.empty()) {
+    std::error_code ec;
+    fs::remove(e.staged, ec);
+  }
+  e.staged = tmp.path();
+  tmp.release();
+  unregisterTemp(e.slot);
+  e.slot = registerTemp(e.staged);  // still removed on a signal until committed
+}
+
+void OutputSet::stage(const fs::path& target, const std::function<void(const fs::path&)>& write) {
+  Entry& e = find(target);
+  checkOutputPath(target);
+  TempFile tmp(target);
+  write(tmp.path());
+  std::error_code ec;
+  if (!fs::is_regular_file(tmp.path(), ec)) throw makeError(target.string(), ": cannot write: the writer made no file");
+  if (!e.staged.empty()) fs::remove(e.staged, ec);
+  e.staged = tmp.path();
+  tmp.release();
+  unregisterTemp(e.slot);
+  e.slot = registerTemp(e.staged);
+}
+
+void OutputSet::commit() {
+  for (const Entry& e : entries_) {
+    if (e.staged.empty()) throw makeError(e.target.string(), ": internal error: output was not written");
+  }
+  for (Entry& e : entries_) {
+    renameOver(e.staged, e.target);
+    e.staged.clear();
+    unregisterTemp(e.slot);
   }
 }
 

@@ -1,3 +1,8 @@
+#include <sys/resource.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <atomic>
 #include <fstream>
 #include <set>
@@ -49,6 +54,109 @@ TEST(AtomicOutput, MissingDirectoryIsNamed) {
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("no/such/dir"), std::string::npos) << e.what();
   }
+}
+
+TEST(OutputSet, NothingIsWrittenUntilCommitAndAllTogetherThen) {
+  test::TempDir dir;
+  std::ofstream(dir / "a.png") << "old a";
+  {
+    OutputSet out;
+    out.declare(dir / "a.png", "-o", {".png"});
+    out.declare(dir / "r.json", "--report", {".json"});
+    out.stage(dir / "a.png", "new a");
+    EXPECT_EQ(slurp(dir / "a.png"), "old a");  // staged, not yet visible
+    out.stage(dir / "r.json", "{}");
+    EXPECT_FALSE(std::filesystem::exists(dir / "r.json"));
+    out.commit();
+  }
+  EXPECT_EQ(slurp(dir / "a.png"), "new a");
+  EXPECT_EQ(slurp(dir / "r.json"), "{}");
+  EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir.path()), {}), 2);
+}
+
+TEST(OutputSet, AFailureBeforeCommitLeavesEveryTargetAndNoTemporary) {
+  test::TempDir dir;
+  std::ofstream(dir / "a.png") << "old a";
+  try {
+    OutputSet out;
+    out.declare(dir / "a.png", "-o");
+    out.declare(dir / "b.json", "--report");
+    out.stage(dir / "a.png", "new a");
+    throw Error("the report failed");
+  } catch (const Error&) {
+  }
+  EXPECT_EQ(slurp(dir / "a.png"), "old a");
+  EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir.path()), {}), 1);
+}
+
+TEST(OutputSet, RefusesSamePathsInputsUnknownExtensionsAndReadOnlyTargets) {
+  test::TempDir dir;
+  std::ofstream(dir / "in.png") << "input";
+  std::filesystem::create_directories(dir / "sub");
+  OutputSet out({dir / "in.png"});
+  out.declare(dir / "x.obj", "-o");
+  test::expectErrorNaming([&] { out.declare(dir / "sub/../x.obj", "--report"); }, "x.obj", "name the same file");
+  test::expectErrorNaming([&] { out.declare(dir / "in.png", "-o"); }, "in.png", "names an input file");
+  std::filesystem::create_symlink(dir / "in.png", dir / "link.png");
+  test::expectErrorNaming([&] { out.declare(dir / "link.png", "-o"); }, "link.png", "input");
+  test::expectErrorNaming([&] { out.declare(dir / "c.xyz", "--checker", {".png", ".jpg"}); }, "c.xyz",
+                          "unknown extension '.xyz'; expected .png, .jpg");
+  std::ofstream(dir / "ro.json") << "keep";
+  std::filesystem::permissions(dir / "ro.json", std::filesystem::perms::owner_read);
+  test::expectErrorNaming([&] { out.declare(dir / "ro.json", "--report"); }, "ro.json", "read-only");
+  test::expectErrorNaming([&] { out.declare(dir / "none/r.json", "--report"); }, "r.json", "does not exist");
+}
+
+TEST(AtomicOutput, AFileSizeLimitIsAnErrorNamingTheTargetAndItsCause) {
+  test::TempDir dir;
+  const auto target = dir / "big.bin";
+  std::ofstream(target) << "good";
+  installTempFileCleanup();  // SIGXFSZ ignored: the write fails with EFBIG instead of killing us
+  struct rlimit old {};
+  ::getrlimit(RLIMIT_FSIZE, &old);
+  struct rlimit lim = old;
+  lim.rlim_cur = 1000;
+  ASSERT_EQ(::setrlimit(RLIMIT_FSIZE, &lim), 0);
+  std::string message;
+  try {
+    writeFileAtomically(target, std::string(5000, 'x'));
+  } catch (const Error& e) {
+    message = e.what();
+  }
+  ::setrlimit(RLIMIT_FSIZE, &old);
+  EXPECT_NE(message.find("big.bin: cannot write: File too large"), std::string::npos) << message;
+  EXPECT_EQ(message.find(".tmp"), std::string::npos) << "names the temporary: " << message;
+  EXPECT_EQ(slurp(target), "good");
+  EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir.path()), {}), 1);
+}
+
+TEST(AtomicOutput, TemporariesOfDeadProcessesAreSweptOthersKept) {
+  test::TempDir dir;
+  const auto target = dir / "frame.png";
+  // A process id that is not running: a child that has exited and been reaped.
+  const pid_t dead = ::fork();
+  if (dead == 0) ::_exit(0);
+  ::waitpid(dead, nullptr, 0);
+  const auto stale = temporaryPath(target, dead, 3);
+  const auto live = temporaryPath(target, ::getppid(), 4);   // our parent is running
+  const auto other = temporaryPath(dir / "other.png", dead, 5);  // another output's
+  for (const auto& p : {stale, live, other}) std::ofstream(p) << "x";
+  writeFileAtomically(target, "new");
+  EXPECT_FALSE(std::filesystem::exists(stale));
+  EXPECT_TRUE(std::filesystem::exists(live));
+  EXPECT_TRUE(std::filesystem::exists(other));
+  EXPECT_EQ(slurp(target), "new");
+}
+
+TEST(AtomicOutput, NonRegularInputsAreRefusedWithoutReading) {
+  test::TempDir dir;
+  std::filesystem::create_symlink("/dev/zero", dir / "zero.png");
+  ASSERT_EQ(::mkfifo((dir / "fifo.obj").c_str(), 0600), 0);
+  test::expectErrorNaming([&] { checkInputFile(dir / "zero.png", "an image"); }, "zero.png", "not a regular file");
+  test::expectErrorNaming([&] { checkInputFile(dir / "fifo.obj", "a mesh"); }, "fifo.obj", "not a regular file");
+  test::expectErrorNaming([&] { readFileBounded(dir / "fifo.obj", 10); }, "fifo.obj", "not a regular file");
+  std::ofstream(dir / "big.json") << std::string(100, ' ');
+  test::expectErrorNaming([&] { readFileBounded(dir / "big.json", 10); }, "big.json", "larger than the limit");
 }
 
 TEST(Parse, SizeAcceptsWxHAndRejectsEverythingElse) {

@@ -146,6 +146,64 @@ TEST(ImageIo, FailedSaveKeepsTheExistingFile) {
   EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir.path()), {}), 1);
 }
 
+// 16-bit PGM: the codes on disk are the ones asked for (parsed here independently of
+// OpenImageIO), and the file loads to the same values as the same data in a 16-bit PNG.
+TEST(ImageIo, SixteenBitPgmKeepsEveryCode) {
+  test::TempDir dir;
+  Image img = randomImage(61, 17, 1, PixelDepth::UInt16, 5);
+  img.pixels[0] = 1.0f;  // the top code, which OpenImageIO 2.4 reads one lower
+  img.pixels[1] = 0.0f;
+  saveImage(img, dir / "a.pgm", PixelDepth::UInt16);
+  saveImage(img, dir / "a.png", PixelDepth::UInt16);
+  std::ifstream in(dir / "a.pgm", std::ios::binary);
+  std::string magic;
+  int w = 0, h = 0, maxval = 0;
+  in >> magic >> w >> h >> maxval;
+  in.get();
+  ASSERT_EQ(magic, "P5");
+  ASSERT_EQ(maxval, 65535);
+  ASSERT_EQ(w * h, static_cast<int>(img.pixels.size()));
+  for (std::size_t i = 0; i < img.pixels.size(); ++i) {
+    const int hi = in.get(), lo = in.get();
+    ASSERT_EQ(hi << 8 | lo, std::lround(img.pixels[i] * 65535.0)) << i;
+  }
+  ImageInfo info;
+  const Image pgm = loadImage(dir / "a.pgm", &info), png = loadImage(dir / "a.png");
+  EXPECT_EQ(info.depth, PixelDepth::UInt16);
+  for (std::size_t i = 0; i < img.pixels.size(); ++i) {
+    ASSERT_EQ(std::lround(pgm.pixels[i] * 65535.0), std::lround(png.pixels[i] * 65535.0)) << i;
+  }
+}
+
+TEST(ImageIo, DepthTheFormatCannotStoreIsRefusedNotNarrowed) {
+  test::TempDir dir;
+  const Image img = randomImage(8, 8, 1, PixelDepth::UInt16, 2);
+  test::expectErrorNaming([&] { saveImage(img, dir / "a.jpg", PixelDepth::UInt16); }, "a.jpg", "cannot store 16-bit");
+  test::expectErrorNaming([&] { saveImage(img, dir / "a.png", PixelDepth::Float); }, "a.png", "cannot store float");
+  EXPECT_EQ(closestDepth(dir / "a.jpg", PixelDepth::UInt16), PixelDepth::UInt8);
+  EXPECT_EQ(closestDepth(dir / "a.png", PixelDepth::Float), PixelDepth::UInt16);
+  EXPECT_EQ(closestDepth(dir / "a.tif", PixelDepth::Float), PixelDepth::Float);
+  EXPECT_TRUE(std::filesystem::is_empty(dir.path()));
+}
+
+TEST(ImageIo, HugeHeaderAndCutJpegAreRefusedByName) {
+  test::TempDir dir;
+  // A PNG header that claims 100000 x 100000 pixels, with almost no data behind it.
+  const unsigned char png[] = {
+      0x89, 0x50, 0x4e, 0x47, 0x0d, 0x0a, 0x1a, 0x0a, 0x00, 0x00, 0x00, 0x0d, 0x49, 0x48, 0x44, 0x52, 0x00, 0x01,
+      0x86, 0xa0, 0x00, 0x01, 0x86, 0xa0, 0x08, 0x00, 0x00, 0x00, 0x00, 0x8d, 0x39, 0x54, 0x14, 0x00, 0x00, 0x00,
+      0x0c, 0x49, 0x44, 0x41, 0x54, 0x78, 0x9c, 0x63, 0x60, 0xa0, 0x3d, 0x00, 0x00, 0x00, 0x64, 0x00, 0x01, 0x86,
+      0x64, 0x3c, 0x35, 0x00, 0x00, 0x00, 0x00, 0x49, 0x45, 0x4e, 0x44, 0xae, 0x42, 0x60, 0x82};
+  std::ofstream(dir / "huge.png", std::ios::binary).write(reinterpret_cast<const char*>(png), sizeof png);
+  test::expectErrorNaming([&] { loadImage(dir / "huge.png"); }, "huge.png", "more than the limit");
+  saveImage(randomImage(96, 64, 3, PixelDepth::UInt8, 4), dir / "full.jpg");
+  std::ifstream in(dir / "full.jpg", std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::ofstream(dir / "half.jpg", std::ios::binary).write(bytes.data(), static_cast<std::streamsize>(bytes.size() / 2));
+  EXPECT_NO_THROW(loadImage(dir / "full.jpg"));
+  test::expectErrorNaming([&] { loadImage(dir / "half.jpg"); }, "half.jpg", "truncated JPEG");
+}
+
 TEST(Convert, GreyUsesStatedLumaWeightsAfterCompositingOverWhite) {
   Image rgb(3, 1, 3, 0.0f);
   rgb.at(0, 0, 0) = 1;

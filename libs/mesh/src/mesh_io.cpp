@@ -24,12 +24,7 @@ std::string lowerExtension(const fs::path& p) {
   return ext;
 }
 
-void checkReadable(const fs::path& path) {
-  std::error_code ec;
-  if (!fs::exists(path, ec)) throw makeError(path.string(), ": no such file");
-  if (fs::is_directory(path, ec)) throw makeError(path.string(), ": is a directory, expected a mesh");
-  if (fs::file_size(path, ec) == 0) throw makeError(path.string(), ": empty file");
-}
+void checkReadable(const fs::path& path) { checkInputFile(path, "a mesh"); }
 
 std::string firstLine(const std::string& s) {
   const auto end = s.find('\n');
@@ -43,7 +38,7 @@ void appendNumber(std::string& out, double v) {
   out.append(buf, res.ptr);
 }
 
-void writeObj(const Mesh& m, const fs::path& tmp) {
+std::string objText(const Mesh& m) {
   std::string text = "# written by shanshui\n";
   text.reserve(m.positions.size() * 64 + m.triangles.size() * 32);
   for (const auto& p : m.positions) {
@@ -76,12 +71,10 @@ void writeObj(const Mesh& m, const fs::path& tmp) {
     }
     text += '\n';
   }
-  std::ofstream out(tmp, std::ios::binary);
-  out.write(text.data(), static_cast<std::streamsize>(text.size()));
-  if (!out.flush()) throw makeError(tmp.string(), ": write failed");
+  return text;
 }
 
-void writeOff(const Mesh& m, const fs::path& tmp) {
+std::string offText(const Mesh& m) {
   std::string text = "OFF\n" + std::to_string(m.positions.size()) + " " +
                      std::to_string(m.triangles.size()) + " 0\n";
   for (const auto& p : m.positions) {
@@ -92,41 +85,76 @@ void writeOff(const Mesh& m, const fs::path& tmp) {
   for (const auto& t : m.triangles) {
     text += "3 " + std::to_string(t.x) + " " + std::to_string(t.y) + " " + std::to_string(t.z) + "\n";
   }
-  std::ofstream out(tmp, std::ios::binary);
-  out.write(text.data(), static_cast<std::streamsize>(text.size()));
-  if (!out.flush()) throw makeError(tmp.string(), ": write failed");
+  return text;
 }
 
 }  // namespace
 
-void writePly(const Mesh& m, const fs::path& tmp);  // ply_io.cpp
+std::string plyBytes(const Mesh& m);  // ply_io.cpp
 
-// tinyobjloader turns an unparsable coordinate ("nan", "inf", "1.2.3") into 0 without a
-// word; vertex lines are checked here first so such a file is refused, not silently changed.
-void checkObjVertexLines(const fs::path& path) {
+// tinyobjloader turns an unparsable coordinate ("nan", "inf", "1.2.3") into 0, wraps an
+// index too large for an int, and drops a face line with fewer than three corners (a file
+// cut short), all without a word; vertex and face lines are checked here first so such a
+// file is refused, not silently changed.
+// Returns the corner count of every face line, in file order: tinyobjloader keeps the count
+// in an unsigned char, so a face of 1000 corners would otherwise arrive as one of 232.
+std::vector<std::size_t> checkObjLines(const fs::path& path) {
+  std::vector<std::size_t> faceCorners;
   std::ifstream in(path);
   std::string line;
   for (long long number = 1; std::getline(in, line); ++number) {
-    if (line.size() < 2 || line[0] != 'v' || (line[1] != ' ' && line[1] != '\t')) continue;
+    if (line.size() < 2 || (line[1] != ' ' && line[1] != '\t')) continue;
     const char* p = line.data() + 2;
     const char* end = line.data() + line.size();
-    for (int k = 0; k < 3; ++k) {
-      while (p < end && (*p == ' ' || *p == '\t')) ++p;
-      const char* start = p;
-      while (p < end && *p != ' ' && *p != '\t' && *p != '\r') ++p;
-      double value = 0.0;
-      const auto [stop, ec] = std::from_chars(start, p, value);
-      if (start == p || ec != std::errc() || stop != p || !std::isfinite(value)) {
-        throw makeError(path.string(), ": line ", number, ": vertex coordinate '", std::string(start, p),
-                        "' is not a finite number");
+    if (line[0] == 'v') {
+      for (int k = 0; k < 3; ++k) {
+        while (p < end && (*p == ' ' || *p == '\t')) ++p;
+        const char* start = p;
+        while (p < end && *p != ' ' && *p != '\t' && *p != '\r') ++p;
+        double value = 0.0;
+        const auto [stop, ec] = std::from_chars(start, p, value);
+        if (start == p || ec != std::errc() || stop != p || !std::isfinite(value)) {
+          throw makeError(path.string(), ": line ", number, ": vertex coordinate '", std::string(start, p),
+                          "' is not a finite number");
+        }
       }
+    } else if (line[0] == 'f') {
+      int corners = 0;
+      while (true) {
+        while (p < end && (*p == ' ' || *p == '\t' || *p == '\r')) ++p;
+        if (p >= end || *p == '#') break;
+        const char* start = p;
+        while (p < end && *p != ' ' && *p != '\t' && *p != '\r') ++p;
+        // Each of v, v/vt, v//vn, v/vt/vn must be an integer that fits an int.
+        for (const char* q = start; q < p;) {
+          const char* r = q;
+          while (r < p && *r != '/') ++r;
+          if (r > q || q == start) {
+            long long index = 0;
+            const auto [stop, ec] = std::from_chars(q, r, index);
+            if (q == r || ec != std::errc() || stop != r || index == 0 || index > 2147483647LL ||
+                index < -2147483647LL) {
+              throw makeError(path.string(), ": line ", number, ": face index '", std::string(q, r),
+                              "' is not an index in [1, 2147483647] (or a negative relative one)");
+            }
+          }
+          q = r < p ? r + 1 : r;
+        }
+        ++corners;
+      }
+      if (corners < 3) {
+        throw makeError(path.string(), ": line ", number, ": face with ", corners,
+                        " corner(s); expected at least 3 (file cut short?)");
+      }
+      faceCorners.push_back(static_cast<std::size_t>(corners));
     }
   }
+  return faceCorners;
 }
 
 PolygonSoup readObj(const fs::path& path) {
   checkReadable(path);
-  checkObjVertexLines(path);
+  const std::vector<std::size_t> corners = checkObjLines(path);
   tinyobj::ObjReaderConfig config;
   config.triangulate = false;
   config.vertex_color = false;
@@ -153,9 +181,21 @@ PolygonSoup readObj(const fs::path& path) {
   if (anyNormal) soup.normals.assign(nv, glm::vec3(0.0f));
   std::vector<std::pair<int, int>> firstUse(nv, {-2, -2});
   std::map<std::tuple<int, int, int>, std::uint32_t> copies;
+  std::size_t faces = 0, indices = 0, nextFace = 0;
+  for (const auto& shape : reader.GetShapes()) {
+    faces += shape.mesh.num_face_vertices.size();
+    indices += shape.mesh.indices.size();
+  }
+  std::size_t cornerSum = 0;
+  for (std::size_t c : corners) cornerSum += c;
+  if (faces != corners.size() || indices != cornerSum) {
+    throw makeError(path.string(), ": cannot read OBJ: ", corners.size(), " face lines with ", cornerSum,
+                    " corners, but the reader found ", faces, " faces with ", indices, " corners (line continuations?)");
+  }
   for (const auto& shape : reader.GetShapes()) {
     std::size_t offset = 0;
-    for (const unsigned char count : shape.mesh.num_face_vertices) {
+    for (std::size_t f = 0; f < shape.mesh.num_face_vertices.size(); ++f) {
+      const std::size_t count = corners[nextFace++];
       std::vector<std::uint32_t> face;
       for (std::size_t k = 0; k < count; ++k) {
         const tinyobj::index_t idx = shape.mesh.indices[offset + k];
@@ -302,13 +342,26 @@ PolygonSoup readOff(const fs::path& path) {
 
 PolygonSoup readPolygonSoup(const fs::path& path) {
   const std::string ext = lowerExtension(path);
-  if (ext == ".obj") return readObj(path);
-  if (ext == ".off") return readOff(path);
-  if (ext == ".ply") return readPly(path);
-  throw makeError(path.string(), ": unknown mesh format '", ext, "' (expected .obj, .ply or .off)");
+  PolygonSoup soup;
+  if (ext == ".obj") soup = readObj(path);
+  else if (ext == ".off") soup = readOff(path);
+  else if (ext == ".ply") soup = readPly(path);
+  else throw makeError(path.string(), ": unknown mesh format '", ext, "' (expected .obj, .ply or .off)");
+  // Finite but huge coordinates overflow the geometry (a cross product of 1e308 is inf):
+  // refused here with the value, rather than later as "NaN or infinite".
+  for (std::size_t v = 0; v < soup.positions.size(); ++v) {
+    for (int k = 0; k < 3; ++k) {
+      const double c = soup.positions[v][k];
+      if (std::isfinite(c) && std::abs(c) > kMaxCoordinate) {
+        throw makeError(path.string(), ": vertex ", v + 1, " has coordinate ", c, ", outside +-", kMaxCoordinate,
+                        "; scale the mesh down");
+      }
+    }
+  }
+  return soup;
 }
 
-void writeMesh(const Mesh& mesh, const fs::path& path) {
+std::string encodeMesh(const Mesh& mesh, const fs::path& path) {
   const std::string ext = lowerExtension(path);
   if (ext != ".obj" && ext != ".off" && ext != ".ply") {
     throw makeError(path.string(), ": unknown mesh format '", ext, "' (expected .obj, .ply or .off)");
@@ -321,11 +374,14 @@ void writeMesh(const Mesh& mesh, const fs::path& path) {
     throw makeError(path.string(), ": mesh has ", mesh.normals.size(), " normals for ",
                     mesh.positions.size(), " vertices");
   }
-  writeAtomically(path, [&](const fs::path& tmp) {
-    if (ext == ".obj") writeObj(mesh, tmp);
-    else if (ext == ".off") writeOff(mesh, tmp);
-    else writePly(mesh, tmp);
-  });
+  if (ext == ".obj") return objText(mesh);
+  if (ext == ".off") return offText(mesh);
+  return plyBytes(mesh);
+}
+
+void writeMesh(const Mesh& mesh, const fs::path& path) {
+  checkOutputPath(path);
+  writeFileAtomically(path, encodeMesh(mesh, path));
 }
 
 }  // namespace shanshui::mesh

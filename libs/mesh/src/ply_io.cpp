@@ -7,6 +7,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "shanshui/core/atomic_output.h"
 #include "shanshui/core/error.h"
 #include "shanshui/mesh/mesh_io.h"
 
@@ -108,8 +109,7 @@ class BodyReader {
 }  // namespace
 
 PolygonSoup readPly(const fs::path& path) {
-  std::error_code ec;
-  if (!fs::exists(path, ec)) throw makeError(path.string(), ": no such file");
+  checkInputFile(path, "a mesh");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw makeError(path.string(), ": cannot open");
   auto bad = [&](const std::string& what) { return makeError(path.string(), ": malformed PLY: ", what); };
@@ -223,8 +223,8 @@ PolygonSoup readPly(const fs::path& path) {
   return soup;
 }
 
-void writePly(const Mesh& m, const fs::path& tmp) {
-  std::ofstream out(tmp, std::ios::binary);
+std::string plyBytes(const Mesh& m) {
+  std::ostringstream out(std::ios::binary);
   out << "ply\nformat binary_little_endian 1.0\ncomment written by shanshui\n"
       << "element vertex " << m.positions.size() << "\n"
       << "property double x\nproperty double y\nproperty double z\n";
@@ -252,7 +252,7 @@ void writePly(const Mesh& m, const fs::path& tmp) {
     put(static_cast<std::uint8_t>(3));
     for (int k = 0; k < 3; ++k) put(static_cast<std::uint32_t>(t[k]));
   }
-  if (!out.flush()) throw makeError(tmp.string(), ": write failed");
+  return std::move(out).str();
 }
 
 }  // namespace shanshui::mesh

@@ -154,7 +154,7 @@ mesh::Mesh parameterize(const mesh::Mesh& input, const ParamOptions& opts, Param
   }
   if (input.triangles.empty()) throw makeError(what, ": no triangles to parameterize");
   for (const glm::dvec3& p : input.positions) {
-    if (!std::isfinite(p.x + p.y + p.z)) throw makeError(what, ": NaN or infinite vertex coordinates; repair the mesh first");
+    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) throw makeError(what, ": NaN or infinite vertex coordinates; repair the mesh first");
   }
   // A closed sphere-like mesh is cut open along one seam first.
   mesh::Mesh disc;

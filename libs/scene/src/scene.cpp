@@ -395,6 +395,45 @@ std::vector<std::string> splitPath(const std::string& path) {
 
 json toArray(const glm::dvec3& v) { return json::array({v.x, v.y, v.z}); }
 
+// Deepest nesting of arrays and objects in JSON text (strings skipped), so a value nested
+// 100 000 deep is refused before the parser recurses into it.
+int jsonDepth(std::string_view text) {
+  int depth = 0, deepest = 0;
+  bool inString = false;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (inString) {
+      if (c == '\\') ++i;
+      else if (c == '"') inString = false;
+    } else if (c == '"') {
+      inString = true;
+    } else if (c == '[' || c == '{') {
+      deepest = std::max(deepest, ++depth);
+    } else if (c == ']' || c == '}') {
+      --depth;
+    }
+  }
+  return deepest;
+}
+
+constexpr int kMaxJsonDepth = 64;
+constexpr std::uintmax_t kMaxSceneBytes = 64u << 20;
+
+// Parses JSON text, naming `what` (the file, or --set KEY) in every error.
+json parseJsonText(std::string_view text, const std::string& what) {
+  if (const int depth = jsonDepth(text); depth > kMaxJsonDepth) {
+    throw makeError(what, ": JSON nested ", depth, " levels deep; at most ", kMaxJsonDepth, " are allowed");
+  }
+  try {
+    return json::parse(text);
+  } catch (const json::exception& e) {
+    std::string msg = e.what();
+    // "[json.exception.parse_error.101] parse error at line 1, column 2: ..." -> the part after "] ".
+    if (const auto cut = msg.find("] "); cut != std::string::npos) msg = msg.substr(cut + 2);
+    throw makeError(what, ": not valid JSON: ", msg);
+  }
+}
+
 }  // namespace
 
 Scene parseScene(const json& j, const std::string& origin, const std::filesystem::path& base_dir) {
@@ -407,6 +446,9 @@ void applyOverride(json& j, const std::string& assignment) {
     throw makeError("--set: '", assignment, "' is not KEY=VALUE (e.g. objects.0.lines.curve_factor=2)");
   }
   const std::string key = assignment.substr(0, eq), text = assignment.substr(eq + 1);
+  if (jsonDepth(text) > kMaxJsonDepth) {
+    throw makeError("--set ", key, ": value nested more than ", kMaxJsonDepth, " levels deep");
+  }
   json value = json::parse(text, nullptr, false);
   if (value.is_discarded()) value = text;  // a plain string, e.g. canvas.type=none
   json* node = &j;
@@ -416,8 +458,10 @@ void applyOverride(json& j, const std::string& assignment) {
     walked += (walked.empty() ? "" : ".") + part;
     if (node->is_array()) {
       const bool digits = part.find_first_not_of("0123456789") == std::string::npos;
-      const std::size_t index = digits ? std::stoul(part) : 0;
-      if (!digits || index >= node->size()) {
+      std::size_t index = 0;
+      const bool fits = digits && part.size() <= 9;  // a list never has a billion objects
+      if (fits) index = static_cast<std::size_t>(std::stoul(part));
+      if (!fits || index >= node->size()) {
         throw makeError("--set ", key, ": ", walked, ": no such element (the list has ", node->size(), ")");
       }
       node = &(*node)[index];
@@ -431,13 +475,9 @@ void applyOverride(json& j, const std::string& assignment) {
 }
 
 Scene loadScene(const std::filesystem::path& path, const std::vector<std::string>& overrides) {
-  std::ifstream in(path);
-  if (!in) throw makeError(path.string(), ": cannot open the scene file");
-  json j;
-  try {
-    j = json::parse(in);
-  } catch (const json::parse_error& e) {
-    throw makeError(path.string(), ": not valid JSON: ", e.what());
+  json j = parseJsonText(readFileBounded(path, kMaxSceneBytes), path.string());
+  if (!j.is_object()) {
+    throw makeError(path.string(), ": a scene is a JSON object ({...}), found ", j.type_name());
   }
   for (const std::string& o : overrides) applyOverride(j, o);
   return parseScene(j, path.filename().string(), path.parent_path().empty() ? "." : path.parent_path());
@@ -554,12 +594,9 @@ void saveScene(const Scene& s, const std::filesystem::path& path) {
     rebase(o.dem);
     rebase(o.wrinkle.texture);
   }
-  const std::string text = toJson(saved).dump(2) + "\n";
-  writeAtomically(path, [&](const std::filesystem::path& tmp) {
-    std::ofstream out(tmp);
-    out << text;
-    if (!out.flush()) throw makeError(tmp.string(), ": write failed");
-  });
+  // A file name that is not UTF-8 is written with U+FFFD in its place rather than failing.
+  const std::string text = toJson(saved).dump(2, ' ', false, json::error_handler_t::replace) + "\n";
+  writeFileAtomically(path, text);
 }
 
 const std::vector<SchemaEntry>& sceneSchema() {

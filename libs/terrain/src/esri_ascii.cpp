@@ -9,6 +9,7 @@
 #include <map>
 #include <sstream>
 
+#include "shanshui/core/atomic_output.h"
 #include "shanshui/core/error.h"
 #include "shanshui/terrain/heightfield.h"
 
@@ -50,8 +51,10 @@ bool looksGeographic(const fs::path& path, double xll, double yll, double cell, 
 }  // namespace
 
 Heightfield loadEsriAscii(const fs::path& path, const HeightfieldOptions& options) {
-  std::error_code ec;
-  if (!fs::exists(path, ec)) throw makeError(path.string(), ": no such file");
+  checkInputFile(path, "an ESRI ASCII grid");
+  if (fs::file_size(path) > kMaxDemBytes) {
+    throw makeError(path.string(), ": ", fs::file_size(path), " bytes; larger than the limit of ", kMaxDemBytes);
+  }
   std::ifstream in(path);
   if (!in) throw makeError(path.string(), ": cannot open");
 
@@ -100,7 +103,8 @@ Heightfield loadEsriAscii(const fs::path& path, const HeightfieldOptions& option
   Heightfield h;
   h.columns = cols;
   h.rows = rows;
-  h.elevation.reserve(static_cast<std::size_t>(cols) * rows);
+  // A header may promise more values than the file can hold (each takes two bytes at least).
+  h.elevation.reserve(std::min<std::size_t>(static_cast<std::size_t>(cols) * rows, fs::file_size(path) / 2 + 1));
   auto take = [&](const std::string& t) {
     double v = 0;
     if (!parseNumber(t, v)) {

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "shanshui/core/error.h"
+#include "shanshui/mesh/mesh_io.h"
 
 namespace shanshui::terrain {
 
@@ -42,6 +43,10 @@ mesh::Mesh heightfieldToMesh(const Heightfield& field, const TerrainMeshOptions&
     for (int c = 0; c < cols; ++c) {
       const double e = z(c, r);
       if (std::isnan(e)) continue;
+      if (std::abs(e * options.z_scale) > mesh::kMaxCoordinate) {
+        throw makeError(name, ": elevation ", e, " (times --z-scale ", options.z_scale, ") is outside +-",
+                        mesh::kMaxCoordinate, "; the mesh readers refuse such coordinates");
+      }
       id[static_cast<std::size_t>(r) * cols + c] = static_cast<std::uint32_t>(m.positions.size());
       m.positions.emplace_back(field.origin_x + c * step * field.cell_x,
                                field.origin_y - r * step * field.cell_y, e * options.z_scale);

@@ -7,6 +7,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "shanshui/core/atomic_output.h"
 #include "shanshui/core/error.h"
 #include "shanshui/terrain/heightfield.h"
 
@@ -83,11 +84,7 @@ std::string normaliseRecords(const std::string& raw) {
 }  // namespace
 
 Heightfield loadUsgsDem(const fs::path& path, const HeightfieldOptions& options) {
-  std::error_code ec;
-  if (!fs::exists(path, ec)) throw makeError(path.string(), ": no such file");
-  std::ifstream in(path, std::ios::binary);
-  std::string raw((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (raw.empty()) throw makeError(path.string(), ": empty file");
+  const std::string raw = readFileBounded(path, kMaxDemBytes);
   const Records rec(normaliseRecords(raw), path);
   if (rec.size() < kBlock) {
     throw makeError(path.string(), ": ", rec.size(), " bytes is shorter than a DEM header record (1024)");

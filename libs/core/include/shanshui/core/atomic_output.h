@@ -1,20 +1,97 @@
 // Writing outputs so that a failure never leaves a half-finished file over a good one.
+//
+// Every output goes first into a hidden temporary next to its target
+// (".NAME.tmpPID_N.ext"), written with checked system calls and synced, then renamed over
+// the target. The temporaries of a process are removed when it fails, when it is stopped
+// by SIGINT, SIGTERM or SIGHUP, and (for one that was killed outright) by the next run
+// that writes the same target. A tool with several outputs declares them all in an
+// OutputSet before doing any work and commits them together at the end.
 #pragma once
 
 #include <filesystem>
 #include <functional>
+#include <string>
+#include <string_view>
+#include <vector>
 
 namespace shanshui {
 
+//! Writes `bytes` to `target` atomically. Every write is checked (a full disk, a file size
+//! limit or an I/O error throws an Error naming `target` and the system's reason), the data
+//! are synced before the rename, and on failure `target` is untouched and no temporary is left.
+void writeFileAtomically(const std::filesystem::path& target, std::string_view bytes);
+
 //! Calls write(tmp) with a temporary path next to `target` (same directory, same
 //! extension so format-sniffing writers still work), then renames it over `target`.
-//! If write throws, the temporary file is removed and `target` is left untouched.
-//! The directory of `target` must exist; an Error names it otherwise.
+//! If write throws, the temporary file is removed and `target` is left untouched. The
+//! writer must check its own writes: prefer writeFileAtomically() with bytes in memory.
 void writeAtomically(const std::filesystem::path& target,
                      const std::function<void(const std::filesystem::path& tmp)>& write);
 
-//! Throws the Error writeAtomically() would throw for `target` (missing directory, target is
-//! a directory), so a tool can refuse before a long computation rather than after it.
+//! Throws the Error a write to `target` would meet (missing or read-only directory, target
+//! is a directory or read-only), so a tool can refuse before a long computation.
 void checkOutputPath(const std::filesystem::path& target);
+
+//! Throws unless `path` names an existing regular file (or a link to one): directories,
+//! devices, FIFOs and sockets are refused, so an input can never be endless. `what` says
+//! what was expected ("an image", "a mesh").
+void checkInputFile(const std::filesystem::path& path, std::string_view what);
+
+//! Reads a whole regular file, refusing anything larger than `max_bytes`.
+std::string readFileBounded(const std::filesystem::path& path, std::uintmax_t max_bytes);
+
+//! Installs SIGINT/SIGTERM/SIGHUP handlers that remove this process's live temporaries and
+//! then end the process as the signal would have. Idempotent; every tool calls it.
+void installTempFileCleanup();
+
+//! Removes temporaries of `target` left by processes that no longer run (killed outright).
+//! Called by every write; public for tests.
+void sweepStaleTemporaries(const std::filesystem::path& target);
+
+//! The hidden temporary name for `target` of process `pid`, attempt `n`.
+std::filesystem::path temporaryPath(const std::filesystem::path& target, long pid, unsigned n);
+
+//! The outputs of one run, declared before any work and committed together at the end:
+//!   OutputSet out({input});
+//!   out.declare(output, "-o", {".png", ".jpg"});
+//!   out.declare(report, "--report", {".json"});
+//!   ... compute ...
+//!   out.stage(output, bytes); out.stage(report, json);   // into temporaries
+//!   out.commit();                                         // renames, all or none written
+//! declare() checks the directory is writable, the extension known, and the path distinct
+//! from every other output and every input. Staged temporaries that are not committed are
+//! removed by the destructor (and by the signal handlers).
+class OutputSet {
+ public:
+  explicit OutputSet(std::vector<std::filesystem::path> inputs = {});
+  ~OutputSet();
+  OutputSet(const OutputSet&) = delete;
+  OutputSet& operator=(const OutputSet&) = delete;
+
+  //! `what` names the option in errors ("--report"); `extensions` lists the accepted ones in
+  //! lower case with the dot (empty: any).
+  void declare(const std::filesystem::path& target, std::string_view what,
+               const std::vector<std::string>& extensions = {});
+  //! Adds an input that no output may overwrite.
+  void addInput(const std::filesystem::path& input);
+
+  void stage(const std::filesystem::path& target, std::string_view bytes);
+  void stage(const std::filesystem::path& target,
+             const std::function<void(const std::filesystem::path& tmp)>& write);
+  //! Renames every staged temporary over its target, in declaration order.
+  void commit();
+
+ private:
+  struct Entry {
+    std::filesystem::path target;
+    std::filesystem::path key;  //!< weakly canonical, to compare paths
+    std::string what;
+    std::filesystem::path staged;
+    std::size_t slot;  //!< signal-cleanup slot of the staged temporary
+  };
+  Entry& find(const std::filesystem::path& target);
+  std::vector<std::filesystem::path> inputs_;
+  std::vector<Entry> entries_;
+};
 
 }  // namespace shanshui

@@ -2,12 +2,16 @@
 #pragma once
 
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <limits>
 #include <string>
 #include <vector>
 
 namespace shanshui::terrain {
+
+//! Largest DEM or ASCII grid file read (1 GiB): a bigger one, or an endless device, is refused.
+constexpr std::uintmax_t kMaxDemBytes = std::uintmax_t{1} << 30;
 
 inline constexpr double kNoData = std::numeric_limits<double>::quiet_NaN();
 
