@@ -7,7 +7,7 @@ BUILD_TYPE ?= Release
 JOBS ?= $(shell nproc)
 CMAKE_FLAGS ?=
 
-.PHONY: all setup configure build test test-asan demo bench format clean
+.PHONY: all setup configure build test test-asan fuzz demo bench format clean
 
 all: build
 
@@ -29,6 +29,12 @@ test: build
 test-asan:
 	$(MAKE) test BUILD=build-asan BUILD_TYPE=RelWithDebInfo CMAKE_FLAGS="-DSHANSHUI_SANITIZE=ON -DSHANSHUI_BUILD_BENCH=OFF"
 
+# Each parser's libFuzzer target for FUZZ_SECONDS (default 30) with clang, ASan and UBSan, in
+# build-fuzz/; the test suite replays fuzz/corpus and fuzz/regressions on every run.
+fuzz:
+	@./scripts/setup.sh fuzz
+	./scripts/fuzz.sh
+
 demo: build
 	$(BUILD)/bin/shanshui-demo --samples samples --out out
 	@echo
@@ -48,4 +54,4 @@ format:
 	find apps libs tools tests bench -name '*.cpp' -o -name '*.h' | xargs clang-format -i
 
 clean:
-	rm -rf $(BUILD) build-asan out
+	rm -rf $(BUILD) build-asan build-fuzz out

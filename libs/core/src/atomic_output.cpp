@@ -361,20 +361,6 @@ void OutputSet::stage(const fs::path& target, std::string_view bytes) {
   e.slot = registerTemp(e.staged);  // still removed on a signal until committed
 }
 
-void OutputSet::stage(const fs::path& target, const std::function<void(const fs::path&)>& write) {
-  Entry& e = find(target);
-  checkOutputPath(target);
-  TempFile tmp(target);
-  write(tmp.path());
-  std::error_code ec;
-  if (!fs::is_regular_file(tmp.path(), ec)) throw makeError(target.string(), ": cannot write: the writer made no file");
-  if (!e.staged.empty()) fs::remove(e.staged, ec);
-  e.staged = tmp.path();
-  tmp.release();
-  unregisterTemp(e.slot);
-  e.slot = registerTemp(e.staged);
-}
-
 void OutputSet::commit() {
   for (const Entry& e : entries_) {
     if (e.staged.empty()) throw makeError(e.target.string(), ": internal error: output was not written");

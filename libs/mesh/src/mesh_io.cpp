@@ -300,7 +300,9 @@ PolygonSoup readOff(const fs::path& path) {
   }
   const auto nv = static_cast<std::size_t>(nvD), nf = static_cast<std::size_t>(nfD);
   PolygonSoup soup;
-  soup.positions.reserve(nv);
+  // Each vertex takes three tokens: a header that promises more than the file holds gets
+  // no allocation for them (the read then stops at the first missing number).
+  soup.positions.reserve(std::min(nv, tokens.size() / 3));
   for (std::size_t i = 0; i < nv; ++i) {
     const int line = pos < tokens.size() ? tokens[pos].line : 0;
     glm::dvec3 p;
@@ -324,6 +326,9 @@ PolygonSoup readOff(const fs::path& path) {
     const int line = pos < tokens.size() ? tokens[pos].line : 0;
     const double k = number("face size");
     if (k < 0 || k != std::floor(k) || k > 1e6) throw fail("bad size of face " + std::to_string(f));
+    if (k < 3) {
+      throw makeError(path.string(), ": line ", line, ": face ", f, " has ", k, " corner(s); expected at least 3");
+    }
     std::vector<std::uint32_t> face(static_cast<std::size_t>(k));
     for (auto& i : face) {
       const double v = number("vertex index");

@@ -207,6 +207,10 @@ PolygonSoup readPly(const fs::path& path) {
         if (normals) soup.normals.emplace_back(values[inx], values[iny], values[inz]);
         if (uvs) soup.uvs.emplace_back(values[iu], values[iv]);
       } else if (isFace) {
+        if (face.size() < 3) {
+          throw bad("face " + std::to_string(soup.faces.size()) + " has " + std::to_string(face.size()) +
+                    " corner(s); expected at least 3");
+        }
         soup.faces.push_back(std::move(face));
       }
     }

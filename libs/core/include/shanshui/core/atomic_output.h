@@ -75,9 +75,9 @@ class OutputSet {
   //! Adds an input that no output may overwrite.
   void addInput(const std::filesystem::path& input);
 
+  //! Writes the bytes into a hidden temporary beside `target` (checked, synced); the
+  //! target is untouched until commit().
   void stage(const std::filesystem::path& target, std::string_view bytes);
-  void stage(const std::filesystem::path& target,
-             const std::function<void(const std::filesystem::path& tmp)>& write);
   //! Renames every staged temporary over its target, in declaration order.
   void commit();
 
