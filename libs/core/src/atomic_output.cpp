@@ -324,18 +324,29 @@ void OutputSet::declare(const fs::path& target, std::string_view what, const std
     }
   }
   const fs::path key = comparable(target);
-  std::error_code ec;
-  for (const Entry& e : entries_) {
-    if (e.key == key || fs::equivalent(e.key, key, ec)) {
-      throw makeError(target.string(), ": ", what, " and ", e.what, " name the same file; give each its own");
-    }
-  }
+  // Paths compared canonically, and existing files also by device and inode (hard links);
+  // indexed, so a sequence of 100 000 frames declares in linear time.
+  struct stat st {};
+  const bool exists = ::stat(key.c_str(), &st) == 0;
+  const std::pair<unsigned long long, unsigned long long> inode{st.st_dev, st.st_ino};
   for (const fs::path& in : inputs_) {
-    if (in == key || fs::equivalent(in, key, ec)) {
+    struct stat is {};
+    if (in == key || (exists && ::stat(in.c_str(), &is) == 0 && is.st_dev == st.st_dev && is.st_ino == st.st_ino)) {
       throw makeError(target.string(), ": ", what, " names an input file; refusing to overwrite it");
     }
   }
+  std::size_t clash = entries_.size();
+  if (const auto it = byKey_.find(key); it != byKey_.end()) {
+    clash = it->second;
+  } else if (const auto jt = byInode_.find(inode); exists && jt != byInode_.end()) {
+    clash = jt->second;
+  }
+  if (clash < entries_.size()) {
+    throw makeError(target.string(), ": ", what, " and ", entries_[clash].what, " name the same file; give each its own");
+  }
   checkOutputPath(target);
+  byKey_[key] = entries_.size();
+  if (exists) byInode_[inode] = entries_.size();
   entries_.push_back({target, key, std::string(what), {}, static_cast<std::size_t>(-1)});
 }
 

@@ -10,6 +10,7 @@
 
 #include <filesystem>
 #include <functional>
+#include <map>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -92,6 +93,8 @@ class OutputSet {
   Entry& find(const std::filesystem::path& target);
   std::vector<std::filesystem::path> inputs_;
   std::vector<Entry> entries_;
+  std::map<std::filesystem::path, std::size_t> byKey_;  //!< canonical path -> entry
+  std::map<std::pair<unsigned long long, unsigned long long>, std::size_t> byInode_;  //!< existing file -> entry
 };
 
 }  // namespace shanshui
