@@ -101,15 +101,6 @@ std::map<fs::path, std::string> snapshot(const fs::path& dir) {
   return files;
 }
 
-// The lines that report an error (a tool may print what it read before failing).
-std::vector<std::string> errorLines(const std::string& s) {
-  std::vector<std::string> out;
-  std::istringstream in(s);
-  for (std::string line; std::getline(in, line);)
-    if (line.find("error") != std::string::npos) out.push_back(line);
-  return out;
-}
-
 // Runs a case that must fail cleanly in `dir`: checks the promise and records a row.
 void expectCleanFailure(const std::string& name, const std::vector<std::string>& args, const fs::path& dir,
                         const std::string& names, std::optional<rlim_t> limit = {}) {

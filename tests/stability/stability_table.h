@@ -2,6 +2,7 @@
 // written by the suite's environment (stability_test.cpp) when the process ends.
 #pragma once
 
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -23,6 +24,15 @@ inline std::string outcomeKind(const std::string& outcome) {
     if (outcome.rfind(kind, 0) == 0) return kind;
   }
   return "other";
+}
+
+// The lines of a program's output that report an error (progress lines may come first).
+inline std::vector<std::string> errorLines(const std::string& s) {
+  std::vector<std::string> out;
+  std::istringstream in(s);
+  for (std::string line; std::getline(in, line);)
+    if (line.find("error") != std::string::npos) out.push_back(line);
+  return out;
 }
 
 }  // namespace shanshui

@@ -99,15 +99,6 @@ const auto* const kTableWriter = ::testing::AddGlobalTestEnvironment(new TableWr
 
 std::string bin(const char* name) { return quote(test::binDir() / name); }
 
-// The lines of a program's output that report an error (progress lines may come first).
-std::vector<std::string> errorLines(const std::string& s) {
-  std::vector<std::string> out;
-  std::istringstream in(s);
-  for (std::string line; std::getline(in, line);)
-    if (line.find("error") != std::string::npos) out.push_back(line);
-  return out;
-}
-
 // What a successful run must satisfy; returns a short description of the result.
 using Check = std::function<std::string(const std::filesystem::path& output)>;
 
