@@ -33,7 +33,7 @@ std::vector<std::uint64_t> histogram(const image::Image& img, const std::string&
         hi = std::max(hi, v);
         continue;
       }
-      ++bins[static_cast<std::size_t>(std::lround(v * (kBins - 1)))];
+      ++bins[static_cast<std::size_t>(v * (kBins - 1) + 0.5f)];  // lround for v in [0, 1], without libm
     }
   }
   if (outside > 0) {

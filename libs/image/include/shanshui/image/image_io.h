@@ -1,4 +1,6 @@
-// Loading and saving images through OpenImageIO (PNG, JPEG, TIFF, EXR, GIF read, ...).
+// Loading and saving images: PNG, JPEG and binary PGM/PPM directly (libpng, libjpeg), every
+// other format (TIFF, EXR, GIF read, BMP, ...) through OpenImageIO in a module loaded on
+// first use (src/codecs.h says why).
 #pragma once
 
 #include <filesystem>

@@ -1,0 +1,66 @@
+// The image codecs behind image_io.cpp (internal to libs/image).
+//
+// PNG, JPEG and binary PNM are read and written here with libpng, libjpeg and a few lines
+// of code, so a tool that touches only those formats loads a handful of shared libraries.
+// Every other format goes through OpenImageIO, whose dependency closure is ~260 shared
+// libraries (FFmpeg, DCMTK, OpenVDB, GStreamer, ...) and ~0.25 s of start-up: it lives in a
+// module (libshanshui_image_oiio.so) loaded the first time such a file is met.
+#pragma once
+
+#include <filesystem>
+#include <string>
+
+#include "shanshui/core/error.h"
+#include "shanshui/image/image_io.h"
+
+namespace shanshui::image::detail {
+
+//! A decoded file: pixels normalised as loadImage() documents, and what the file held.
+struct Decoded {
+  Image image;
+  ImageInfo info;
+};
+
+//! Refuses width x height above kMaxImagePixels before anything is allocated, so a
+//! 100000 x 100000 header with a tiny body is an error naming the file, not bad_alloc.
+inline void checkPixelBudget(const std::string& name, long long width, long long height) {
+  if (width * height > kMaxImagePixels) {
+    throw makeError(name, ": ", width, "x", height, " pixels is more than the limit of ", kMaxImagePixels,
+                    " (16384 x 16384)");
+  }
+}
+
+// Each reader throws Error naming `path` for a truncated, corrupt or unsupported file.
+Decoded readPng(const std::filesystem::path& path);
+Decoded readJpeg(const std::filesystem::path& path);
+//! Binary PNM (P5 grey, P6 RGB), 8 or 16 bits; false (nothing read) for other PNM kinds.
+bool readBinaryPnm(const std::filesystem::path& path, Decoded& out);
+
+// Each encoder gets pixels already checked (non-empty, finite) and a depth the format stores.
+std::string encodePng(const Image& img, const std::string& name, PixelDepth depth, bool smallest);
+std::string encodeJpeg(const Image& img, const std::string& name);
+std::string encodePnm(const Image& img, const std::string& name, PixelDepth depth);
+
+//! Clamps to [0,1] and rounds to the integer code of an 8- or 16-bit sample.
+inline unsigned sampleCode(float v, unsigned max_code) {
+  const double c = v < 0.0f ? 0.0 : (v > 1.0f ? 1.0 : static_cast<double>(v));
+  return static_cast<unsigned>(c * max_code + 0.5);
+}
+
+// ---- the OpenImageIO module -------------------------------------------------------------
+
+//! What libshanshui_image_oiio.so exports (by `shanshui_oiio_codec`). Errors come back as
+//! a message (empty on success), so no exception crosses the module boundary.
+struct OiioCodec {
+  int abi_version;
+  std::string (*load)(const std::string& path, Decoded* out);
+  std::string (*encode)(const Image& img, const std::string& path, PixelDepth depth, bool smallest,
+                        std::string* bytes);
+};
+constexpr int kOiioCodecAbi = 1;
+
+//! The module, loaded on first use; throws Error naming `name` and what it was for when
+//! the module cannot be found or loaded.
+const OiioCodec& oiioCodec(const std::string& name, const std::string& purpose);
+
+}  // namespace shanshui::image::detail
