@@ -83,6 +83,9 @@ int main(int argc, char** argv) {
   app.add_flag("--smallest", smallest, "compress PNG/TIFF/EXR output hardest (slower); default: fast compression");
   return tools::runBatchableTool(app, argc, argv, [&] {
     const Size2 outSize = parseSize(size, "--size");
+    if (static_cast<long long>(outSize.width) * outSize.height > image::kMaxImagePixels) {
+      throw makeError("--size: ", size, " is more than the largest image written (16384 x 16384 pixels)");
+    }
     options.width = outSize.width;
     options.height = outSize.height;
     options.seam = seam == "graphcut" ? texsynth::SeamMode::GraphCut

@@ -100,6 +100,8 @@ std::vector<std::pair<std::string, double>> RepairReport::counters() const {
           {"non_manifold_vertices_split", d(non_manifold_vertices_split)},
           {"orientation_fixed", d(orientation_fixed)},
           {"faces_triangulated", d(faces_triangulated)},
+          {"non_manifold_edges_left", d(left.edges_over_two_faces + left.edges_same_direction)},
+          {"pinched_vertices_left", d(left.pinched_vertices)},
           {"degenerate_faces_removed", d(degenerate_faces_removed)},
           {"components_removed", d(components_removed)},
           {"holes_filled", d(holes_filled)},
@@ -283,6 +285,15 @@ Mesh repairMesh(const PolygonSoup& soup, const RepairOptions& options, RepairRep
     out.triangles.push_back(t);
   }
   r.boundary_loops = borderLoops(sm).size();
+  // The final check, on the triangles handed back: a surface mesh cannot hold a
+  // non-manifold edge, but hole filling and degenerate-face removal can pinch a vertex.
+  r.left = manifoldProblems(out);
+  if (r.left.any()) {
+    r.warnings.push_back("could not make the mesh manifold: " + std::to_string(r.left.edges_over_two_faces) +
+                         " edge(s) in more than two faces, " + std::to_string(r.left.edges_same_direction) +
+                         " edge(s) with disagreeing orientation, " + std::to_string(r.left.pinched_vertices) +
+                         " pinched vertex(es)");
+  }
   r.output_vertices = out.positions.size();
   r.output_faces = out.triangles.size();
   const bool sameVertices = attributesFollow && out.positions.size() == soup.positions.size() &&

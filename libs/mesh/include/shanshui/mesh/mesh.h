@@ -44,6 +44,18 @@ inline Bounds bounds(const Mesh& m) { return bounds(m.positions); }
 //! that was subtracted (add it back to get the original coordinates). Done in double.
 glm::dvec3 recentre(Mesh& m);
 
+//! What keeps a triangle mesh from being an oriented 2-manifold (with border), counted on
+//! its indices: edges shared by more than two triangles, edges two triangles traverse in
+//! the same direction (orientations disagree), and vertices whose triangles form more than
+//! one fan (two surfaces touching at a point).
+struct ManifoldProblems {
+  std::size_t edges_over_two_faces = 0;
+  std::size_t edges_same_direction = 0;
+  std::size_t pinched_vertices = 0;
+  bool any() const { return edges_over_two_faces + edges_same_direction + pinched_vertices > 0; }
+};
+ManifoldProblems manifoldProblems(const Mesh& m);
+
 //! Area-weighted per-vertex normals (unit length; +Z for a vertex whose faces have no area).
 std::vector<glm::vec3> vertexNormals(const Mesh& m);
 

@@ -37,6 +37,7 @@ struct RepairReport {
   std::size_t holes_left_open = 0;          //!< larger than max_hole_edges, or filling failed
   std::size_t boundary_loops = 0;           //!< in the result; 0 means closed
   bool attributes_dropped = false;          //!< UVs/normals could not follow the changes
+  ManifoldProblems left;                    //!< what the final check still finds (warned)
   std::size_t output_vertices = 0;
   std::size_t output_faces = 0;
   std::vector<std::string> warnings;
