@@ -25,6 +25,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "shanshui/mesh/shapes.h"
 #include "shanshui/image/image_io.h"
 #include "shanshui/noise/canvas.h"
 #include "shanshui/noise/gabor.h"
@@ -33,7 +34,6 @@
 #include "shanshui/render/ink_renderer.h"
 #include "shanshui/scene/scene.h"
 #include "shanshui/scene/scene_assets.h"
-#include "test_meshes.h"
 #include "bench_args.h"
 #include "order_stats.h"
 #include "tradeoff_points.h"
@@ -338,7 +338,7 @@ int main(int argc, char** argv) {
          {"canvas", {{"type", "silk"}, {"grain", 32}, {"frequency", 0.1}, {"mix", 0.0}}},
          {"output", {{"width", n}, {"height", n}, {"fade", 0.0}}}},
         "plane", ".");
-    const mesh::Mesh plane = test::heightGrid(9, 9, 1.0 / 8, [](double, double) { return 0.0; });
+    const mesh::Mesh plane = mesh::heightGrid(9, 9, 1.0 / 8, [](double, double) { return 0.0; });
     const std::vector<scene::LoadedObject> plane_objects{
         {std::make_shared<const scene::ObjectAsset>(scene::prepareAsset(plane, ps.objects[0])), nullptr}};
 

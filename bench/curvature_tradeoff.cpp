@@ -14,10 +14,10 @@
 #include <string>
 #include <vector>
 
+#include "shanshui/mesh/shapes.h"
 #include "shanshui/mesh/curvature.h"
-#include "test_meshes.h"
 #include "bench_args.h"
-#include "tradeoff_points.h"  // tests/support: the analytic surfaces the tests use
+#include "tradeoff_points.h"
 
 namespace {
 
@@ -30,7 +30,7 @@ struct Surface {
 };
 
 Surface sphere(int stacks) {
-  Surface s{test::uvSphere(1.0, stacks, 2 * stacks), {}};
+  Surface s{mesh::uvSphere(1.0, stacks, 2 * stacks), {}};
   s.mean.assign(s.mesh.positions.size(), 1.0);
   return s;
 }
@@ -38,7 +38,7 @@ Surface sphere(int stacks) {
 Surface torus(int nv) {
   const double big = 3, small = 1;
   std::vector<double> cosV;
-  Surface s{test::torus(big, small, 2 * nv, nv, &cosV), {}};
+  Surface s{mesh::torus(big, small, 2 * nv, nv, &cosV), {}};
   for (double c : cosV) s.mean.push_back((big + 2 * small * c) / (2 * small * (big + small * c)));
   return s;
 }

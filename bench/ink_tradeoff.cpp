@@ -28,6 +28,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <nlohmann/json.hpp>
 
+#include "shanshui/mesh/shapes.h"
 #include "shanshui/core/random.h"
 #include "shanshui/mesh/curvature.h"
 #include "shanshui/render/gl_context.h"
@@ -35,7 +36,6 @@
 #include "shanshui/render/shader_program.h"
 #include "shanshui/scene/scene.h"
 #include "shanshui/scene/scene_assets.h"
-#include "test_meshes.h"  // tests/support: the analytic surfaces the tests use
 #include "bench_args.h"
 #include "order_stats.h"
 #include "tradeoff_points.h"
@@ -54,7 +54,7 @@ struct Surface {
 };
 
 Surface sphere(int stacks, bool jitter) {
-  mesh::Mesh m = test::uvSphere(1.0, stacks, 2 * stacks);
+  mesh::Mesh m = mesh::uvSphere(1.0, stacks, 2 * stacks);
   if (jitter) {  // move vertices along the surface by up to 30 % of an edge, then back onto it
     const double edge = std::numbers::pi / stacks;
     for (std::size_t i = 0; i < m.positions.size(); ++i) {
@@ -69,7 +69,7 @@ Surface sphere(int stacks, bool jitter) {
 
 Surface torus(int nv) {
   // R = 3, r = 1: max |k| = 1/r everywhere (|cos v / (R + r cos v)| < 1/r).
-  mesh::Mesh m = test::torus(3.0, 1.0, 2 * nv, nv);
+  mesh::Mesh m = mesh::torus(3.0, 1.0, 2 * nv, nv);
   m.normals = mesh::vertexNormals(m);
   return {"torus", std::move(m), [](const glm::dvec3&) { return 1.0; }};
 }
@@ -77,7 +77,7 @@ Surface torus(int nv) {
 Surface paraboloid(int n) {
   // z = a (x² + y²) over [-1, 1]²: k_circ = 2a / sqrt(1 + 4a²ρ²) ≥ k_merid = 2a / (1 + 4a²ρ²)^1.5.
   const double a = 0.5, cell = 2.0 / (n - 1);
-  mesh::Mesh m = test::heightGrid(n, n, cell, [&](double x, double y) {
+  mesh::Mesh m = mesh::heightGrid(n, n, cell, [&](double x, double y) {
     const double u = x - 1, v = y - 1;
     return a * (u * u + v * v);
   });

@@ -9,6 +9,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "shanshui/core/error.h"
+#include "shanshui/mesh/shapes.h"
 #include "shanshui/noise/gabor.h"
 #include "shanshui/render/gl_check.h"
 
@@ -33,34 +34,6 @@ int maxQuadsPerInvocation() {
 
 }  // namespace
 
-mesh::Mesh icosphere(int levels) {
-  mesh::Mesh m;
-  const double t = (1 + std::sqrt(5.0)) / 2;
-  m.positions = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0}, {0, -1, t}, {0, 1, t},
-                 {0, -1, -t}, {0, 1, -t}, {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
-  m.triangles = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
-                 {11, 10, 2}, {10, 7, 6}, {7, 1, 8},   {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
-                 {3, 8, 9},  {4, 9, 5},  {2, 4, 11},  {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
-  for (auto& p : m.positions) p = glm::normalize(p);
-  for (int level = 0; level < levels; ++level) {
-    std::map<std::pair<unsigned, unsigned>, unsigned> midpoints;
-    auto midpoint = [&](unsigned a, unsigned b) {
-      const auto key = std::minmax(a, b);
-      const auto [it, fresh] = midpoints.try_emplace(key, static_cast<unsigned>(m.positions.size()));
-      if (fresh) m.positions.push_back(glm::normalize(m.positions[a] + m.positions[b]));
-      return it->second;
-    };
-    std::vector<glm::uvec3> next;
-    next.reserve(m.triangles.size() * 4);
-    for (const glm::uvec3& f : m.triangles) {
-      const unsigned ab = midpoint(f.x, f.y), bc = midpoint(f.y, f.z), ca = midpoint(f.z, f.x);
-      next.insert(next.end(), {{f.x, ab, ca}, {ab, f.y, bc}, {ca, bc, f.z}, {ab, bc, ca}});
-    }
-    m.triangles = std::move(next);
-  }
-  return m;
-}
-
 std::uint32_t canvasSeed(std::uint64_t scene_seed) { return noise::noiseSeed32(scene_seed ^ 0xCA57A5ull); }
 
 double maxTriangleArea(const mesh::Mesh& m) {
@@ -81,7 +54,7 @@ CanvasPass::CanvasPass(const scene::Canvas& canvas, std::uint64_t seed, const me
   if (dynamic_) {
     dome_centre_ = world_bounds.centre();
     dome_radius_ = kDomeScale * std::max(0.5 * glm::length(world_bounds.size()), 1e-6);
-    mesh::Mesh dome = icosphere(kDomeLevels);
+    mesh::Mesh dome = mesh::icosphere(kDomeLevels);
     for (auto& p : dome.positions) {
       p *= dome_radius_;
       dome_positions_.emplace_back(p);

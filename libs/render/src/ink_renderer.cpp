@@ -12,6 +12,7 @@
 
 #include "shanshui/core/error.h"
 #include "shanshui/core/random.h"
+#include "shanshui/noise/value_noise.h"
 #include "shanshui/render/gl_check.h"
 
 namespace shanshui::render {
@@ -26,9 +27,6 @@ static_assert(sizeof(ObjectParamsGpu) == 7 * 16);
 
 constexpr int kLinesOn = 1, kNormalOnly = 2;
 constexpr int kShadingOn = 1, kHalfLambert = 2, kLineValue = 4, kWrinkled = 8;
-
-// Coarsest erosion-noise cells per texture tile; shading.noise_scale is the size of one.
-constexpr int kErosionCells = 4;
 
 bool wrinkled(const scene::Object& o) { return !o.wrinkle.texture.empty() && o.shading.enabled; }
 
@@ -96,42 +94,6 @@ scene::CameraKey frameKey(const scene::Scene& s, int index, int count, double or
   }
   key.azimuth_deg += orbit_deg * index / count;
   return key;
-}
-
-image::Image erosionNoise(int size, std::uint64_t seed) {
-  SHANSHUI_CHECK(size >= 8);
-  image::Image img(size, size, 2);
-  const int octaves = 3;
-  for (int ch = 0; ch < 2; ++ch) {
-    std::vector<float> sum(static_cast<std::size_t>(size) * size, 0.0f);
-    for (int o = 0; o < octaves; ++o) {
-      const int cells = (ch == 0 ? kErosionCells : 32) << o;  // the added noise is finer than the erosion
-      const float weight = 1.0f / static_cast<float>(1 << o);
-      std::vector<float> lattice(static_cast<std::size_t>(cells) * cells);
-      for (std::size_t i = 0; i < lattice.size(); ++i) {
-        lattice[i] = static_cast<float>(streamValue(seed ^ (0x9E37u * (ch + 1)) ^ (static_cast<std::uint64_t>(o) << 40), i) >> 11) *
-                     (1.0f / 9007199254740992.0f);
-      }
-      for (int y = 0; y < size; ++y) {
-        for (int x = 0; x < size; ++x) {
-          const float fx = static_cast<float>(x) * cells / size, fy = static_cast<float>(y) * cells / size;
-          const int x0 = static_cast<int>(fx), y0 = static_cast<int>(fy);
-          float tx = fx - x0, ty = fy - y0;
-          tx = tx * tx * (3 - 2 * tx);
-          ty = ty * ty * (3 - 2 * ty);
-          auto at = [&](int i, int j) { return lattice[static_cast<std::size_t>(j % cells) * cells + (i % cells)]; };
-          const float v = (at(x0, y0) * (1 - tx) + at(x0 + 1, y0) * tx) * (1 - ty) +
-                          (at(x0, y0 + 1) * (1 - tx) + at(x0 + 1, y0 + 1) * tx) * ty;
-          sum[static_cast<std::size_t>(y) * size + x] += weight * v;
-        }
-      }
-    }
-    // Stretch to [0, 1] so the erosion strength means the same for any seed.
-    const auto [lo, hi] = std::minmax_element(sum.begin(), sum.end());
-    const float range = std::max(*hi - *lo, 1e-6f);
-    for (std::size_t i = 0; i < sum.size(); ++i) img.pixels[i * 2 + ch] = (sum[i] - *lo) / range;
-  }
-  return img;
 }
 
 std::string InkRenderer::structureKey(const scene::Scene& s) {
@@ -285,10 +247,10 @@ void InkRenderer::setScene(const scene::Scene& s) {
 void InkRenderer::seedNoise(const scene::Scene& s) {
   // Value noise is smooth at texel scale: one texel of the right mip level is enough when
   // minified (a quarter of the bilinear fetches); magnified it is still filtered.
-  if (shading_) noise_ = Texture2D::tiledFromImage(erosionNoise(256, s.seed), GL_RG8, GL_NEAREST_MIPMAP_NEAREST);
+  if (shading_) noise_ = Texture2D::tiledFromImage(noise::erosionNoise(256, s.seed), GL_RG8, GL_NEAREST_MIPMAP_NEAREST);
   if (s.diffusion.enabled() && s.canvas.type == scene::CanvasType::None) {
     // Without a canvas the paper's absorbency is value noise in [0.5, 1].
-    image::Image noise = erosionNoise(256, s.seed ^ 0xAB50Bull);
+    image::Image noise = noise::erosionNoise(256, s.seed ^ 0xAB50Bull);
     image::Image a(noise.width, noise.height, 1);
     for (std::size_t i = 0; i < a.pixels.size(); ++i) a.pixels[i] = 0.5f + 0.5f * noise.pixels[2 * i];
     absorbency_ = Texture2D::fromImage(a, GL_R8);
@@ -388,7 +350,7 @@ void InkRenderer::drawObjects(const Framebuffer& target, bool clear, int which, 
       glBindTextureUnit(0, noise_->id());
       p.set("u_noise", 0);
       const double model_radius = 0.5 * glm::length(g.model_bounds.size());
-      const double tile = kErosionCells * o.shading.noise_scale * model_radius;
+      const double tile = noise::kErosionCells * o.shading.noise_scale * model_radius;
       p.set("u_noise_frequency", static_cast<float>(1.0 / std::max(tile, 1e-30)));
     }
     if (g.wrinkle) {

@@ -414,26 +414,6 @@ TEST_F(Ink, ExtremeInputsGiveFinitePicturesOrClearErrors) {
   EXPECT_THROW(InkRenderer(s, prepare(s, empty)), Error);
 }
 
-TEST(ErosionNoise, SeededTileableAndSpanningTheUnitRange) {
-  const image::Image a = erosionNoise(64, 7), b = erosionNoise(64, 7), c = erosionNoise(64, 8);
-  EXPECT_EQ(a.pixels, b.pixels);
-  EXPECT_NE(a.pixels, c.pixels);
-  for (int ch = 0; ch < 2; ++ch) {
-    float lo = 1, hi = 0, step = 0, wrap = 0;
-    for (int y = 0; y < 64; ++y) {
-      for (int x = 0; x < 64; ++x) {
-        lo = std::min(lo, a.at(x, y, ch));
-        hi = std::max(hi, a.at(x, y, ch));
-        if (x > 0) step = std::max(step, std::abs(a.at(x, y, ch) - a.at(x - 1, y, ch)));
-      }
-      wrap = std::max(wrap, std::abs(a.at(0, y, ch) - a.at(63, y, ch)));
-    }
-    EXPECT_EQ(lo, 0.0f);
-    EXPECT_EQ(hi, 1.0f);
-    EXPECT_LE(wrap, step * 1.01f) << "the seam across the tile edge is no larger than any step inside";
-  }
-}
-
 TEST_F(Ink, SampleSceneMatchesItsGoldenImage) {
   // Update with SHANSHUI_UPDATE_GOLDEN=1 after an intended change, and look at the picture.
   const std::filesystem::path golden = test::sourceDir() / "tests/golden/default_scene_200x150.png";

@@ -92,10 +92,6 @@ class CanvasPass {
   CanvasPass& operator=(const CanvasPass&) = delete;
 };
 
-//! A sphere of radius 1 around the origin: an icosahedron with each face split into 4,
-//! `levels` times (20 · 4^levels triangles).
-mesh::Mesh icosphere(int levels);
-
 //! The largest triangle area of a mesh.
 double maxTriangleArea(const mesh::Mesh& m);
 

@@ -163,8 +163,4 @@ class InkRenderer {
   ~InkRenderer();
 };
 
-//! The erosion and added noise of the shading (two channels, tileable, values in [0, 1]):
-//! value noise with three octaves on a periodic lattice, the same for the same seed.
-image::Image erosionNoise(int size, std::uint64_t seed);
-
 }  // namespace shanshui::render
