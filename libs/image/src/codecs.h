@@ -33,8 +33,8 @@ inline void checkPixelBudget(const std::string& name, long long width, long long
 // Each reader throws Error naming `path` for a truncated, corrupt or unsupported file.
 Decoded readPng(const std::filesystem::path& path);
 Decoded readJpeg(const std::filesystem::path& path);
-//! Binary PNM (P5 grey, P6 RGB), 8 or 16 bits; false (nothing read) for other PNM kinds.
-bool readBinaryPnm(const std::filesystem::path& path, Decoded& out);
+//! Binary PNM (P5 grey, P6 RGB), 8 or 16 bits.
+Decoded readBinaryPnm(const std::filesystem::path& path);
 
 // Each encoder gets pixels already checked (non-empty, finite) and a depth the format stores.
 std::string encodePng(const Image& img, const std::string& name, PixelDepth depth, bool smallest);

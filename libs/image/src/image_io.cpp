@@ -158,15 +158,16 @@ Image loadImage(const fs::path& path, ImageInfo* info) {
   switch (sniff(path)) {
     case Codec::Png: decoded = detail::readPng(path); break;
     case Codec::Jpeg: decoded = detail::readJpeg(path); break;
-    case Codec::Pnm: detail::readBinaryPnm(path, decoded); break;
+    case Codec::Pnm: decoded = detail::readBinaryPnm(path); break;
     case Codec::Module: {
       const std::string error = detail::oiioCodec(name, "reading this format").load(name, &decoded);
       if (!error.empty()) throw Error(error);
+      // Integer codes decode to finite values; float formats (EXR, TIFF, HDR) may not.
+      for (float v : decoded.image.pixels) {
+        if (!std::isfinite(v)) throw makeError(name, ": contains NaN or infinite pixel values");
+      }
       break;
     }
-  }
-  for (float v : decoded.image.pixels) {
-    if (!std::isfinite(v)) throw makeError(name, ": contains NaN or infinite pixel values");
   }
   if (info) *info = decoded.info;
   return std::move(decoded.image);

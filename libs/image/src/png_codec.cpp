@@ -13,7 +13,6 @@
 #include <cstdio>
 #include <cstring>
 #include <exception>
-#include <memory>
 #include <thread>
 #include <vector>
 
@@ -37,6 +36,23 @@ void onPngError(png_structp png, png_const_charp msg) {
 // Warnings (an sRGB profile libpng dislikes, a bad CRC in an ancillary chunk) do not stop
 // the read and would be a second line on stderr: dropped.
 void onPngWarning(png_structp, png_const_charp) {}
+
+// PNG colour type by channel count (1 grey ... 4 RGBA).
+constexpr std::array<int, 5> kColourType = {0, PNG_COLOR_TYPE_GRAY, PNG_COLOR_TYPE_GRAY_ALPHA, PNG_COLOR_TYPE_RGB,
+                                            PNG_COLOR_TYPE_RGB_ALPHA};
+
+// One row of samples as PNG stores them: 8-bit codes, or 16-bit codes big-endian.
+void encodeRow(const float* src, std::size_t samples, int bits, png_byte* out) {
+  if (bits == 16) {
+    for (std::size_t i = 0; i < samples; ++i) {
+      const unsigned code = sampleCode(src[i], 65535);
+      out[2 * i] = static_cast<png_byte>(code >> 8);
+      out[2 * i + 1] = static_cast<png_byte>(code & 0xff);
+    }
+  } else {
+    for (std::size_t i = 0; i < samples; ++i) out[i] = static_cast<png_byte>(sampleCode(src[i], 255));
+  }
+}
 
 // ---- reading ----------------------------------------------------------------------------
 
@@ -133,8 +149,6 @@ void onPngFlush(png_structp) {}
 
 bool startWrite(png_structp png, png_infop info, WriteSink* sink, const Image& img, int bits) {
   if (setjmp(png_jmpbuf(png))) return false;
-  static constexpr std::array<int, 5> kColourType = {0, PNG_COLOR_TYPE_GRAY, PNG_COLOR_TYPE_GRAY_ALPHA,
-                                                     PNG_COLOR_TYPE_RGB, PNG_COLOR_TYPE_RGB_ALPHA};
   png_set_write_fn(png, sink, onPngWrite, onPngFlush);
   png_set_IHDR(png, info, static_cast<png_uint_32>(img.width), static_cast<png_uint_32>(img.height), bits,
                kColourType[img.channels], PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
@@ -208,18 +222,8 @@ void deflateBand(const Image& img, int bits, int level, int strategy, bool last,
   const std::size_t bpp = img.channels * bytes_per_sample;  // Sub looks this many bytes back
   std::vector<Bytef> filtered((row_bytes + 1) * band.rows);
   std::vector<Bytef> raw(row_bytes);
-  const unsigned max_code = bits == 16 ? 65535u : 255u;
   for (int r = 0; r < band.rows; ++r) {
-    const float* src = &img.pixels[static_cast<std::size_t>(band.first_row + r) * samples];
-    if (bits == 16) {
-      for (std::size_t i = 0; i < samples; ++i) {
-        const unsigned code = sampleCode(src[i], max_code);
-        raw[2 * i] = static_cast<Bytef>(code >> 8);
-        raw[2 * i + 1] = static_cast<Bytef>(code & 0xff);
-      }
-    } else {
-      for (std::size_t i = 0; i < samples; ++i) raw[i] = static_cast<Bytef>(sampleCode(src[i], max_code));
-    }
+    encodeRow(&img.pixels[static_cast<std::size_t>(band.first_row + r) * samples], samples, bits, raw.data());
     Bytef* out = &filtered[r * (row_bytes + 1)];
     out[0] = PNG_FILTER_VALUE_SUB;
     for (std::size_t i = 0; i < row_bytes; ++i) {
@@ -289,8 +293,6 @@ std::string encodePngParallel(const Image& img, const std::string& name, int bit
   }
   putBigEndian32(stream, static_cast<std::uint32_t>(adler));
 
-  static constexpr std::array<int, 5> kColourType = {0, PNG_COLOR_TYPE_GRAY, PNG_COLOR_TYPE_GRAY_ALPHA,
-                                                     PNG_COLOR_TYPE_RGB, PNG_COLOR_TYPE_RGB_ALPHA};
   std::string header;
   putBigEndian32(header, static_cast<std::uint32_t>(img.width));
   putBigEndian32(header, static_cast<std::uint32_t>(img.height));
@@ -387,18 +389,8 @@ std::string encodePng(const Image& img, const std::string& name, PixelDepth dept
   auto fail = [&] { return makeError(name, ": cannot encode PNG: ", ctx.message.data()); };
   if (!startWrite(h.png, h.info, &sink, img, bits)) throw fail();
   std::vector<png_byte> row(samples * (bits / 8));
-  const unsigned max_code = bits == 16 ? 65535u : 255u;
   for (int y = 0; y < img.height; ++y) {
-    const float* src = &img.pixels[static_cast<std::size_t>(y) * samples];
-    if (bits == 16) {
-      for (std::size_t i = 0; i < samples; ++i) {
-        const unsigned code = sampleCode(src[i], max_code);
-        row[2 * i] = static_cast<png_byte>(code >> 8);
-        row[2 * i + 1] = static_cast<png_byte>(code & 0xff);
-      }
-    } else {
-      for (std::size_t i = 0; i < samples; ++i) row[i] = static_cast<png_byte>(sampleCode(src[i], max_code));
-    }
+    encodeRow(&img.pixels[static_cast<std::size_t>(y) * samples], samples, bits, row.data());
     if (!writeRow(h.png, row.data())) throw fail();
   }
   if (!finishWrite(h.png, h.info)) throw fail();

@@ -12,11 +12,14 @@
 
 namespace shanshui::image::detail {
 
-bool readBinaryPnm(const std::filesystem::path& path, Decoded& out) {
+Decoded readBinaryPnm(const std::filesystem::path& path) {
   const std::string name = path.string();
   std::ifstream in(path, std::ios::binary);
   std::string magic(2, '\0');
-  if (!in.read(magic.data(), 2) || (magic != "P5" && magic != "P6")) return false;
+  if (!in.read(magic.data(), 2) || (magic != "P5" && magic != "P6")) {
+    throw makeError(name, ": not a binary PGM/PPM (P5 or P6)");
+  }
+  Decoded out;
   // Width, height and maxval, separated by blanks and # comments.
   long long fields[3] = {};
   for (long long& f : fields) {
@@ -47,7 +50,7 @@ bool readBinaryPnm(const std::filesystem::path& path, Decoded& out) {
   out.info.depth = bytes_per_sample == 2 ? PixelDepth::UInt16 : PixelDepth::UInt8;
   out.info.channels = channels;
   out.info.format = "pnm";
-  return true;
+  return out;
 }
 
 std::string encodePnm(const Image& img, const std::string& name, PixelDepth depth) {

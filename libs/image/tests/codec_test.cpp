@@ -173,7 +173,8 @@ TEST(Codecs, PngWriterIsReadByOpenImageIOToTheSameCodes) {
 }
 
 // An image of many bands (the fast writer deflates ~1 MiB of rows per band, in parallel):
-// the joined stream decodes to every code, and the bytes do not depend on the thread count.
+// the joined stream decodes to every code, and encoding twice gives the same bytes (the
+// bands are joined in order, whichever thread finished first).
 TEST(Codecs, ParallelPngWriterJoinsItsBandsIntoOneValidStream) {
   test::TempDir dir;
   for (const PixelDepth depth : {PixelDepth::UInt8, PixelDepth::UInt16}) {
