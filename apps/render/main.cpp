@@ -75,15 +75,20 @@ int main(int argc, char** argv) {
       "  shanshui-render samples/scenes/default.json -o out/a.png --set objects.0.lines.curve_factor=2 "
       "--set canvas.type=none\n"
       "  shanshui-render out/mountain.obj -o out/mountain.png --size 1280x800\n"
+      "  shanshui-render --describe            # every scene key: default, range, meaning (Markdown)\n"
       "Scene keys: docs/scene.md.");
   std::string input, output, size, stats_path;
   std::vector<std::string> sets;
   int frames = 1;
   double orbit = 360.0, fps = 24.0;
-  bool verbose = false, smallest = false;
-  app.add_option("scene", input, "scene (.json), or a mesh (.obj .ply .off) or DEM (.dem .asc) to render alone")
-      ->required();
-  app.add_option("-o,--output", output, "image to write (.png .jpg .tif .exr); numbered with --frames")->required();
+  std::string describe_into;
+  bool verbose = false, smallest = false, describe = false;
+  app.add_option("scene", input, "scene (.json), or a mesh (.obj .ply .off) or DEM (.dem .asc) to render alone");
+  app.add_option("-o,--output", output, "image to write (.png .jpg .tif .exr); numbered with --frames");
+  app.add_flag("--describe", describe, "print every scene key with its default, range and meaning (Markdown) and exit");
+  app.add_option("--describe-into", describe_into,
+                 "rewrite the key tables of a Markdown file (between '<!-- keys: GROUP -->' and '<!-- /keys -->') "
+                 "from the description, e.g. docs/scene.md, and exit");
   app.add_option("--size", size, "output size WxH (default: the scene's output.width x output.height)");
   app.add_option("--frames", frames, "render N frames along camera.path, or an orbit without one")->default_val(1);
   app.add_option("--orbit", orbit, "degrees turned around +Z over the frames (no camera.path)")->default_val(360.0);
@@ -94,6 +99,19 @@ int main(int argc, char** argv) {
   app.add_flag("--smallest", smallest, "compress PNG/TIFF/EXR output hardest (slower); default: fast compression");
   app.add_flag("-v,--verbose", verbose, "print the GL platform and load times");
   return tools::runBatchableTool(app, argc, argv, [&] {
+    if (describe) {
+      std::fputs(scene::describeMarkdown().c_str(), stdout);
+      return;
+    }
+    if (!describe_into.empty()) {
+      const std::string doc = readFileBounded(describe_into, 16u << 20);
+      const std::string updated = scene::spliceDescription(doc, describe_into);
+      if (updated != doc) writeFileAtomically(describe_into, updated);
+      std::fprintf(stderr, "%s: %s\n", describe_into.c_str(), updated == doc ? "up to date" : "tables rewritten");
+      return;
+    }
+    if (input.empty()) throw makeError("scene: required (a scene, mesh or DEM file; see --help)");
+    if (output.empty()) throw makeError("-o: required (the image to write; see --help)");
     if (frames < 1 || frames > 100000) throw makeError("--frames: ", frames, " is out of range; expected [1, 100000]");
     if (!std::isfinite(orbit)) throw makeError("--orbit: must be finite");
     if (!(fps > 0 && fps <= 1e4)) throw makeError("--fps: ", fps, " is out of range; expected (0, 10000]");

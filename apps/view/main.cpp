@@ -70,8 +70,9 @@ const scene::SchemaEntry* findSchema(const std::string& path) {
   return nullptr;
 }
 
-// A widget per scene key, built from the scene's JSON and the parser's schema, so every
-// parameter the file accepts can be edited live. Returns true when something changed.
+// A widget per scene key, built from the scene's JSON and the parameter description's
+// schema (kind, range, meaning as a tooltip), so every parameter the file accepts can be
+// edited live. Returns true when something changed.
 bool editJson(json& node, const std::string& path, const std::string& label) {
   const scene::SchemaEntry* e = findSchema(path);
   const char* id = label.c_str();
@@ -137,6 +138,10 @@ bool editJson(json& node, const std::string& path, const std::string& label) {
     }
   } else if (node.is_null() && e) {
     ImGui::TextDisabled("%s: auto", id);
+  }
+  if (e && ImGui::IsItemHovered()) {
+    ImGui::SetTooltip("%s%s%s\nrange %s%s", e->doc.c_str(), e->unit.empty() ? "" : ", ", e->unit.c_str(),
+                      e->range_text.c_str(), e->effect == scene::Effect::Rebuild ? "; a change rebuilds the renderer" : "");
   }
   return changed;
 }

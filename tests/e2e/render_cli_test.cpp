@@ -139,7 +139,7 @@ TEST(RenderCli, EveryKindOfSceneErrorHasItsOwnMessageAndWritesNothing) {
       {scene("order.json", obj + ", \"shading\": {\"thresholds\": [0.5, 0.2, 0.6, 0.7]}}]}"), {"objects.0.shading.thresholds", "ascending"}},
       {scene("count.json", obj + ", \"shading\": {\"tones\": [0.1, 0.2]}}]}"), {"objects.0.shading.tones", "list of 5"}},
       {scene("choice.json", obj + ", \"lines\": {\"curvature\": \"jet\"}}]}"), {"objects.0.lines.curvature", "quadric, cotangent, screen"}},
-      {scene("none.json", "{\"objects\": []}"), {"objects", "at least one object"}},
+      {scene("none.json", "{\"objects\": []}"), {"objects", "needs at least 1 entry"}},
       {scene("both.json", obj + ", \"mesh\": \"a.obj\"}]}"), {"objects.0", "both 'mesh' and 'dem'"}},
       {scene("missing.json", "{\"objects\": [{\"mesh\": \"nowhere.obj\"}]}"), {"objects.0.mesh", "nowhere.obj"}},
       {scene("tex.json", obj + ", \"wrinkle\": {\"texture\": \"nowhere.png\", \"uv\": \"planar\"}}]}"), {"objects.0.wrinkle.texture", "nowhere.png"}},

@@ -11,9 +11,9 @@ namespace shanshui::ink {
 namespace {
 
 template <typename T>
-void checkRange(const char* name, T value, T lo, T hi) {
-  if (!(value >= lo && value <= hi)) {
-    throw makeError("diffusion.", name, ": ", value, " is out of range; expected [", lo, ", ", hi, "]");
+void checkRange(const char* name, T value, Range<T> range) {
+  if (!range.contains(value)) {
+    throw makeError("diffusion.", name, ": ", value, " is out of range; expected ", range.text());
   }
 }
 
@@ -28,12 +28,12 @@ std::vector<bool> strokeMask(const InkField& in, double threshold) {
 }  // namespace
 
 void validate(const DiffusionOptions& o) {
-  checkRange("ring_steps", o.ring_steps, 0, 256);
-  checkRange("attenuation", o.attenuation, 0.0, 1.0);
-  checkRange("absorb", o.absorb, 0.0, 1e3);
-  checkRange("residual", o.residual, 0.0, 1.0);
-  checkRange("iterations", o.iterations, 0, 1000);
-  checkRange("threshold", o.threshold, 0.0, 1.0);
+  checkRange("ring_steps", o.ring_steps, kRingStepsRange);
+  checkRange("attenuation", o.attenuation, kAttenuationRange);
+  checkRange("absorb", o.absorb, kAbsorbRange);
+  checkRange("residual", o.residual, kResidualRange);
+  checkRange("iterations", o.iterations, kIterationsRange);
+  checkRange("threshold", o.threshold, kThresholdRange);
 }
 
 double InkField::total() const {

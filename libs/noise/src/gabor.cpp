@@ -28,7 +28,7 @@ void validate(const GaborOptions& o) {
   checkRange("a", o.a, 0.0, 1e3, true);
   checkRange("F0", o.F0, 0.0, 1e3, false);
   if (!std::isfinite(o.omega0)) throw makeError("gabor.omega0: must be finite");
-  checkRange("impulses", o.impulses, 1.0, 1024.0, false);
+  checkRange("impulses", o.impulses, kImpulsesRange.lo, kImpulsesRange.hi, kImpulsesRange.lo_open);
 }
 
 GaborNoise::GaborNoise(const GaborOptions& options) : o_(options) {

@@ -315,7 +315,7 @@ std::string InkRenderer::requestKey(const OrbitCamera& c, int width, int height)
   k.precision(17);
   k << width << "x" << height << "|" << c.target.x << "," << c.target.y << "," << c.target.z << "," << c.distance << ","
     << c.azimuth_deg << "," << c.elevation_deg << "," << c.fov_y_deg << "," << c.near_plane << "," << c.far_plane << "|"
-    << scene::toJson(scene_).dump();
+    << scene::parameterHash(scene_);
   return k.str();
 }
 

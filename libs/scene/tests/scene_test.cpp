@@ -1,5 +1,6 @@
 // Scene files: defaults, round trips, overrides, the schema against docs/scene.md, errors.
 #include <fstream>
+#include <set>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
@@ -165,42 +166,136 @@ TEST(Scene, AtMost255Objects) {
   EXPECT_EQ(errorOf(j), "");
 }
 
-TEST(Scene, EveryKeyTheParserAcceptsIsDocumented) {
+TEST(Scene, DocsTablesAreTheDescriptions) {
   std::ifstream in(test::sourceDir() / "docs/scene.md");
   ASSERT_TRUE(in) << "docs/scene.md";
   std::stringstream text;
   text << in.rdbuf();
   const std::string doc = text.str();
   ASSERT_GT(sceneSchema().size(), 50u);
+  EXPECT_EQ(spliceDescription(doc, "docs/scene.md"), doc)
+      << "docs/scene.md's key tables differ from the description: run "
+         "shanshui-render --describe-into docs/scene.md";
+  // Every key appears in a table, with every choice.
   for (const SchemaEntry& e : sceneSchema()) {
-    // Documented in its section's table as `key`, or `parent.key` (transform.scale,
-    // light.direction), or by its whole path.
-    const std::size_t last = e.path.rfind('.');
-    const std::size_t parent = last == std::string::npos || last == 0 ? std::string::npos : e.path.rfind('.', last - 1);
-    const std::string key = e.path.substr(last + 1);
-    const std::string two = parent == std::string::npos ? e.path : e.path.substr(parent + 1);
-    const bool found = doc.find("`" + key + "`") != std::string::npos || doc.find("`" + two + "`") != std::string::npos ||
-                       doc.find("`" + e.path + "`") != std::string::npos;
-    EXPECT_TRUE(found) << e.path;
-    if (e.kind == "choice") {
-      for (const auto& c : e.choices) EXPECT_NE(doc.find("`" + c + "`"), std::string::npos) << e.path << " = " << c;
+    const std::string key = e.path.substr(e.table.empty() ? 0 : e.table.size() + 1);
+    std::string shown = key;
+    for (std::size_t at; (at = shown.find('*')) != std::string::npos;) shown.replace(at, 1, "N");
+    EXPECT_NE(doc.find("| `" + shown + "` |"), std::string::npos) << e.path;
+    for (const auto& c : e.choices) EXPECT_NE(doc.find("`" + c + "`"), std::string::npos) << e.path << " = " << c;
+  }
+}
+
+TEST(Scene, SpliceNamesAMissingTable) {
+  EXPECT_THROW(spliceDescription("# nothing here\n", "x.md"), Error);
+  try {
+    spliceDescription("<!-- keys: (top level) -->\n", "x.md");
+    ADD_FAILURE() << "a table without its end marker was accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("x.md"), std::string::npos) << e.what();
+  }
+}
+
+TEST(Scene, EveryKeyHasMeaningAndDefault) {
+  for (const SchemaEntry& e : sceneSchema()) {
+    SCOPED_TRACE(e.path);
+    EXPECT_FALSE(e.doc.empty());
+    EXPECT_FALSE(e.default_text.empty());
+    EXPECT_FALSE(e.range_text.empty());
+  }
+}
+
+TEST(Scene, ParameterHashFollowsTheValues) {
+  const Scene a = parseScene(kMinimal, "s", ".");
+  Scene b = a;
+  EXPECT_EQ(parameterHash(a), parameterHash(b));
+  b.objects[0].lines.curve_factor += 1e-9;
+  EXPECT_NE(parameterHash(a), parameterHash(b));
+  // A uniform changes the full hash but not the rebuild hash; a rebuild key changes both.
+  EXPECT_EQ(parameterHash(a, Effect::Rebuild), parameterHash(b, Effect::Rebuild));
+  b = a;
+  b.canvas.type = CanvasType::Silk;
+  EXPECT_NE(parameterHash(a, Effect::Rebuild), parameterHash(b, Effect::Rebuild));
+  EXPECT_EQ(parameterHash(a, Effect::Uniform), parameterHash(b, Effect::Uniform));
+  b = a;
+  b.objects.push_back(b.objects[0]);
+  EXPECT_NE(parameterHash(a, Effect::Rebuild), parameterHash(b, Effect::Rebuild));
+}
+
+TEST(Scene, RebuildKeysAreTheOnesThatChangeVariantsOrFiles) {
+  // The renderer's structure depends on exactly these; a key marked live that changes a
+  // shader variant would leave a stale renderer in the viewer.
+  std::set<std::string> rebuild;
+  for (const SchemaEntry& e : sceneSchema()) {
+    if (e.effect == Effect::Rebuild) rebuild.insert(e.path);
+  }
+  const std::set<std::string> expected = {
+      "objects", "objects.*.mesh", "objects.*.dem", "objects.*.z_scale", "objects.*.max_vertices", "objects.*.recentre",
+      "objects.*.lines.enabled", "objects.*.lines.curvature", "objects.*.shading.enabled", "objects.*.wrinkle.texture",
+      "objects.*.wrinkle.uv", "canvas.type", "canvas.static_pattern"};
+  EXPECT_EQ(rebuild, expected);
+}
+
+TEST(Scene, DiffusionRangesAreTheCpuReferences) {
+  // The scene parser and ink::validate accept and refuse the same values.
+  for (const SchemaEntry& e : sceneSchema()) {
+    if (e.path.rfind("diffusion.", 0) != 0) continue;
+    SCOPED_TRACE(e.path);
+    const std::string key = e.path.substr(10);
+    for (double v : {e.min, e.max, e.min - 1, e.max + 1}) {
+      json j = kMinimal;
+      j["diffusion"][key] = e.kind == "integer" ? json(static_cast<long long>(v)) : json(v);
+      bool scene_ok = true;
+      try {
+        const Scene s = parseScene(j, "s", ".");
+        ink::validate(s.diffusion);
+      } catch (const Error&) {
+        scene_ok = false;
+      }
+      ink::DiffusionOptions o;
+      if (key == "ring_steps") o.ring_steps = static_cast<int>(v);
+      if (key == "attenuation") o.attenuation = v;
+      if (key == "absorb") o.absorb = v;
+      if (key == "residual") o.residual = v;
+      if (key == "iterations") o.iterations = static_cast<int>(v);
+      if (key == "threshold") o.threshold = v;
+      bool ink_ok = true;
+      try {
+        ink::validate(o);
+      } catch (const Error&) {
+        ink_ok = false;
+      }
+      EXPECT_EQ(scene_ok, ink_ok) << v;
+      EXPECT_EQ(ink_ok, v >= e.min && v <= e.max) << v;
     }
   }
 }
 
 TEST(Scene, SchemaRangesMatchTheParser) {
-  // For every bounded number: the bounds parse, just outside them does not.
+  // For every bounded number and integer outside lists: both ends parse (an open lower end
+  // does not), just outside them does not.
+  int checked = 0;
   for (const SchemaEntry& e : sceneSchema()) {
-    if (e.kind != "number" || e.path.find('*') != std::string::npos || e.path == "seed") continue;
+    if ((e.kind != "number" && e.kind != "integer") || e.path.find('*') != std::string::npos) continue;
     SCOPED_TRACE(e.path);
-    json j = kMinimal;
-    const std::string assignment = e.path + "=";
-    json ok = j, bad = j;
-    applyOverride(ok, assignment + std::to_string(e.max));
-    EXPECT_NO_THROW(parseScene(ok, "s", ".")) << e.max;
-    applyOverride(bad, assignment + std::to_string(e.max + std::max(1.0, std::abs(e.max))));
-    EXPECT_THROW(parseScene(bad, "s", "."), Error);
+    auto parses = [&](double v) {
+      json j = kMinimal;
+      applyOverride(j, e.path + "=" + (e.kind == "integer" ? std::to_string(static_cast<long long>(v)) : std::to_string(v)));
+      try {
+        parseScene(j, "s", ".");
+        return true;
+      } catch (const Error&) {
+        return false;
+      }
+    };
+    const double step = std::max(1.0, std::abs(e.max));
+    EXPECT_TRUE(parses(e.max)) << e.max;
+    EXPECT_FALSE(parses(e.max + step)) << e.max + step;
+    EXPECT_EQ(parses(e.min), !e.lo_open) << e.min;
+    EXPECT_FALSE(parses(e.min - std::max(1.0, std::abs(e.min)))) << e.min;
+    ++checked;
   }
+  EXPECT_GT(checked, 20);
 }
 
 TEST(Scene, AMeshOrDemBecomesAOneObjectScene) {

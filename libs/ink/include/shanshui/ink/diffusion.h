@@ -16,18 +16,28 @@
 
 #include <cstdint>
 
+#include "shanshui/core/range.h"
 #include "shanshui/image/image.h"
 
 namespace shanshui::ink {
 
+// Ranges of the options below; the scene's parameter description (libs/scene) and
+// validate() both read these, so the CPU reference and the scene agree.
+inline constexpr Range<int> kRingStepsRange{0, 256};
+inline constexpr Range<double> kAttenuationRange{0.0, 1.0};
+inline constexpr Range<double> kAbsorbRange{0.0, 1e3};
+inline constexpr Range<double> kResidualRange{0.0, 1.0};
+inline constexpr Range<int> kIterationsRange{0, 1000};
+inline constexpr Range<double> kThresholdRange{0.0, 1.0};
+
 //! Defaults chosen on the sample scene: a soft bleed around lines and dark strokes.
 struct DiffusionOptions {
-  int ring_steps = 3;          //!< d, main diffusion distance in pixels, [0, 256]
-  double attenuation = 0.6;    //!< f, ink kept per ring, [0, 1]
-  double absorb = 0.3;         //!< I_p, ink a pixel can absorb over the n iterations, [0, 1e3]
-  double residual = 0.1;       //!< I_r, ink a donor keeps, [0, 1]
-  int iterations = 5;          //!< n, boundary diffusion iterations, [0, 1000]
-  double threshold = 0.8;      //!< ink above which a pixel is a stroke, [0, 1]
+  int ring_steps = 3;          //!< d, main diffusion distance in pixels, kRingStepsRange
+  double attenuation = 0.6;    //!< f, ink kept per ring, kAttenuationRange
+  double absorb = 0.3;         //!< I_p, ink a pixel can absorb over the n iterations, kAbsorbRange
+  double residual = 0.1;       //!< I_r, ink a donor keeps, kResidualRange
+  int iterations = 5;          //!< n, boundary diffusion iterations, kIterationsRange
+  double threshold = 0.8;      //!< ink above which a pixel is a stroke, kThresholdRange
 };
 
 //! Checks the ranges; throws Error naming the parameter, the value and the range.

@@ -1,6 +1,7 @@
 // A landscape scene: objects with their line, shading and wrinkle parameters, light,
 // camera (with an optional path), canvas, diffusion and output (SPEC.md section 10).
-// Every key, default and range is documented in docs/scene.md; parseScene() checks them.
+// Every key's default is its initialiser here; its range, unit and meaning are described
+// once in src/scene_params.h, from which parsing, saving and docs/scene.md's tables come.
 #pragma once
 
 #include <array>
@@ -13,6 +14,7 @@
 #include <nlohmann/json_fwd.hpp>
 
 #include "shanshui/ink/diffusion.h"
+#include <cstdint>
 
 namespace shanshui::scene {
 
@@ -20,7 +22,7 @@ namespace shanshui::scene {
 struct Transform {
   glm::dvec3 translate{0.0};
   glm::dvec3 rotate_deg{0.0};
-  glm::dvec3 scale{1.0};  //!< each in [1e-6, 1e6]
+  glm::dvec3 scale{1.0};
   glm::dmat4 matrix() const;
 };
 
@@ -36,16 +38,16 @@ struct LineParams {
   bool enabled = true;
   CurvatureSource curvature = CurvatureSource::Quadric;
   //! R_CurveFactor on dimensionless curvature k·feature_size (k = 1 at the mesh's 90th
-  //! percentile of |k|), so the same value gives the same line density on any mesh; [0, 100].
+  //! percentile of |k|), so the same value gives the same line density on any mesh.
   double curve_factor = 0.8;
-  double threshold = 0.4;        //!< Curv0: line where 1 − k·curve_factor < threshold; [-10, 1]
-  double soft_width = 0.1;       //!< smoothstep width around Curv0 (0 = hard binarisation); [0, 1]
-  glm::dvec3 line_color{0.06, 0.06, 0.07};  //!< _LineColor, RGB in [0, 1]
+  double threshold = 0.4;        //!< Curv0: line where 1 − k·curve_factor < threshold
+  double soft_width = 0.1;       //!< smoothstep width around Curv0 (0 = hard binarisation)
+  glm::dvec3 line_color{0.06, 0.06, 0.07};  //!< _LineColor
   glm::dvec3 bg_color{1.0, 1.0, 1.0};       //!< _BgColor, RGB in [0, 1]; multiplies the shading
-  double silhouette = 0.18;      //!< N·V below which the surface is drawn as silhouette; [0, 1], 0 = off
-  double depth_edges = 0.03;     //!< relative depth jump between pixels drawn as a line; [0, 10], 0 = off
+  double silhouette = 0.18;      //!< N·V below which the surface is drawn as silhouette
+  double depth_edges = 0.03;     //!< relative depth jump between pixels drawn as a line
   //! Objects whose projected area is below this many pixels get N·V lines only (the
-  //! paper's small-object path); [0, 1e9].
+  //! paper's small-object path).
   double small_object_px = 2000.0;
 };
 
@@ -53,16 +55,16 @@ struct LineParams {
 struct ShadingParams {
   bool enabled = true;
   std::array<double, 5> tones{0.22, 0.42, 0.62, 0.82, 1.0};  //!< C1..C5 grey, [0, 1], dark to light
-  std::array<double, 4> thresholds{0.12, 0.3, 0.5, 0.72};     //!< t1..t4, ascending in [0, 1]
+  std::array<double, 4> thresholds{0.12, 0.3, 0.5, 0.72};     //!< t1..t4, ascending
   //! σ of the Gaussian-smoothed steps (Φ((t − t_k)/σ) instead of a hard step); [0, 1],
   //! 0 gives Eq. 2 exactly.
   double sigma = 0.04;
-  double beta = -1.0;            //!< β of Eq. 3, t_dw = clamp(t_d + t_w + β, 0, 1); [-2, 1]
-  //! Strength of the erosion noise: t_w = 1 − erosion·(1 − noise), noise in [0, 1]; [0, 1].
+  double beta = -1.0;            //!< β of Eq. 3, t_dw = clamp(t_d + t_w + β, 0, 1)
+  //! Strength of the erosion noise: t_w = 1 − erosion·(1 − noise), noise in [0, 1].
   double erosion = 0.35;
-  double noise = 0.06;           //!< amplitude of the noise added before quantisation; [0, 1]
+  double noise = 0.06;           //!< amplitude of the noise added before quantisation
   //! Size of the erosion noise's coarsest cells as a fraction of the object's radius
-  //! (finer octaves at 1/2 and 1/4 of it); [1e-4, 10].
+  //! (finer octaves at 1/2 and 1/4 of it).
   double noise_scale = 0.03;
   bool half_lambert = false;     //!< t_d = (N·L)·0.5 + 0.5 instead of max(N·L, 0)
   bool line_value = true;        //!< multiply t_dw by the line pass's col_i (the paper's Fig. 4f)
@@ -80,8 +82,8 @@ enum class TextureFilter { Nearest, Bilinear, Trilinear };
 //! Wrinkle (cun) texture mapping (seed 001 Eq. 5). No texture: no wrinkle code is built.
 struct WrinkleParams {
   std::string texture;              //!< image path relative to the scene file; empty = none
-  double inner_tex_factor = 1.0;    //!< R_InnerTexFactor, t_w = luma(W) / factor; [0.01, 100]
-  double repeat = 4.0;              //!< texture repetitions per UV unit; (0, 1e4]
+  double inner_tex_factor = 1.0;    //!< R_InnerTexFactor, t_w = luma(W) / factor
+  double repeat = 4.0;              //!< texture repetitions per UV unit
   UvSource uv = UvSource::Mesh;
   TextureFilter filter = TextureFilter::Nearest;
 };
@@ -90,13 +92,13 @@ struct Object {
   std::string name;
   std::string mesh;  //!< .obj/.ply/.off relative to the scene file (exactly one of mesh, dem)
   std::string dem;   //!< heightfield (.dem, .asc, .png, .tif), meshed on load
-  double z_scale = 1.0;              //!< dem only: vertical exaggeration, (0, 1000]
-  std::size_t max_vertices = 250000; //!< dem only: grid decimation limit, [4, 1e8]
+  double z_scale = 1.0;              //!< dem only: vertical exaggeration
+  std::size_t max_vertices = 250000; //!< dem only: grid decimation limit
   //! true: the mesh is moved so its bounding-box centre is the model origin.
   bool recentre = true;
   Transform transform;
   //! Degrees per second the object turns about the vertical axis through its centre; an
-  //! object with a spin is animated and drawn over the cached static layer; [-36000, 36000].
+  //! object with a spin is animated and drawn over the cached static layer.
   double spin_deg_per_s = 0.0;
   bool animated() const { return spin_deg_per_s != 0.0; }
   LineParams lines;
@@ -121,9 +123,9 @@ struct Camera {
   std::optional<glm::dvec3> target;
   double distance = 0.0;         //!< [0, 1e9], 0 = frame the scene
   double azimuth_deg = -60.0;    //!< around +Z, any finite value
-  double elevation_deg = 25.0;   //!< (-90, 90)
-  double fov_y_deg = 35.0;       //!< (1, 170)
-  double zoom = 1.0;             //!< (0.001, 1000]
+  double elevation_deg = 25.0; 
+  double fov_y_deg = 35.0;     
+  double zoom = 1.0;           
   std::vector<CameraKey> path;   //!< optional; used by --frames
 };
 
@@ -138,15 +140,15 @@ enum class CanvasPattern { RicePaper, Silk };
 struct Canvas {
   CanvasType type = CanvasType::None;
   CanvasPattern static_pattern = CanvasPattern::RicePaper;  //!< what `static` shows
-  double contrast = 0.06;         //!< paper brightness × (1 + contrast · unit-variance noise), [0, 1]
-  double absorbency = 1.0;        //!< how much the canvas varies the ink absorbency, [0, 1]
-  double grain = 6.0;             //!< kernel radius r (the quads' half side), [0.5, 256]
-  double frequency = 0.1;         //!< F0, Gabor cycles per pixel, [0, 2]
-  double orientation_deg = 0.0;   //!< ω0, the weave direction, [-360, 360]
+  double contrast = 0.06;         //!< paper brightness × (1 + contrast · unit-variance noise)
+  double absorbency = 1.0;        //!< how much the canvas varies the ink absorbency
+  double grain = 6.0;             //!< kernel radius r (the quads' half side)
+  double frequency = 0.1;         //!< F0, Gabor cycles per pixel
+  double orientation_deg = 0.0;   //!< ω0, the weave direction
   bool isotropic = false;         //!< random orientation per impulse instead of ω0
-  double mix = 0.5;               //!< weight of the swapped-coordinate Gabor (silk), [0, 1]
-  double perlin_frequency = 1.5;  //!< rice paper: Perlin cycles per grain radius, [0, 64]
-  double impulses = 32.0;         //!< N′, expected impulses per kernel disc, [1, 1024]
+  double mix = 0.5;               //!< weight of the swapped-coordinate Gabor (silk)
+  double perlin_frequency = 1.5;  //!< rice paper: Perlin cycles per grain radius
+  double impulses = 32.0;         //!< N′, expected impulses per kernel disc
 
   //! The pattern drawn: rice paper or silk (static: static_pattern); meaningless for None.
   CanvasPattern pattern() const {
@@ -167,10 +169,10 @@ struct Diffusion : ink::DiffusionOptions {
 };
 
 struct Output {
-  int width = 1024;    //!< [1, 16384]
-  int height = 768;    //!< [1, 16384]
-  glm::dvec3 paper{0.95, 0.93, 0.87};  //!< paper colour behind and under the ink, RGB [0, 1]
-  //! Distance fade: far parts move towards the paper by up to this much (0 = off); [0, 1].
+  int width = 1024;  
+  int height = 768;  
+  glm::dvec3 paper{0.95, 0.93, 0.87};  //!< paper colour behind and under the ink, RGB
+  //! Distance fade: far parts move towards the paper by up to this much (0 = off).
   double fade = 0.35;
 };
 
@@ -191,13 +193,26 @@ struct Scene {
   bool hasAnimation() const;
 };
 
-//! One parameter the parser accepts: its dotted path (objects.* for every object), kind
-//! and range, for the viewer's panel and the documentation check.
+//! What a change of a parameter needs: new uniforms only (the next frame shows it), or a
+//! new renderer (shader variants, GPU resources, files read again).
+enum class Effect { Uniform, Rebuild };
+
+//! One parameter of the scene, from its description (libs/scene/src/scene_params.h): its
+//! dotted path (objects.* for every object), kind, range, default and meaning. The
+//! viewer's panel builds its widgets from these; docs/scene.md's tables are made of them.
 struct SchemaEntry {
   std::string path;
-  std::string kind;  //!< number, integer, bool, string, choice, color, vec3, list
-  double min = 0.0, max = 0.0;
+  std::string kind;  //!< number, integer, bool, string, file, choice, color, vec3, list, entries
+  double min = 0.0, max = 0.0;  //!< range of the value (each element's; entries: the count)
+  bool lo_open = false;         //!< (min, max] instead of [min, max]
   std::vector<std::string> choices;
+  std::size_t size = 0;         //!< list: the number of values
+  bool optional = false;        //!< null allowed (automatic)
+  std::string unit, doc;
+  Effect effect = Effect::Uniform;
+  std::string default_text;     //!< as docs/scene.md writes it
+  std::string range_text;
+  std::string table;            //!< the docs table it is listed in ("" = top level)
 };
 
 //! Parses and validates. `origin` names the file in messages. Unknown keys and values out
@@ -225,5 +240,16 @@ void saveScene(const Scene& s, const std::filesystem::path& path);
 
 //! Every parameter parseScene accepts.
 const std::vector<SchemaEntry>& sceneSchema();
+
+//! A hash of every parameter value (and list length), or of those with one effect only:
+//! equal scenes hash equal; a cheap cache key (no JSON is built).
+std::uint64_t parameterHash(const Scene& s, std::optional<Effect> only = std::nullopt);
+
+//! Every key as Markdown tables, one per group (`shanshui-render --describe`).
+std::string describeMarkdown();
+
+//! `doc` with each table between "<!-- keys: GROUP -->" and "<!-- /keys -->" replaced by
+//! the description's; throws naming `origin` when a group's markers are missing.
+std::string spliceDescription(const std::string& doc, const std::string& origin);
 
 }  // namespace shanshui::scene

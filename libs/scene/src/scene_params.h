@@ -1,0 +1,277 @@
+// The scene's parameters, each described once: key, field, default (the struct's
+// initialiser), range, unit, one line of meaning and whether a change rebuilds the
+// renderer. Every use walks these descriptions with a visitor (scene_params.cpp):
+// parsing and validation, saving, the schema behind the viewer's widgets, the cache and
+// structure hashes, and the tables of docs/scene.md (`shanshui-render --describe`).
+//
+// A visitor V provides, for a Key k and a field f:
+//   number(k, double& f, Range<double>)          integer(k, I& f, Range<long long>)
+//   boolean(k, bool& f)                          text(k, std::string& f, Text)
+//   choice(k, E& f, const std::array<Named<E>, N>&)   vec3(k, glm::dvec3& f, Range<double>, Vec)
+//   optionalVec3(k, std::optional<glm::dvec3>&, Range<double>)
+//   numbers(k, std::array<double, N>& f, Range<double>)
+//   group(name, T& g, Table)                     list(k, std::vector<T>&, Range<long long>, make, Table)
+//   check(key, F)   F() returns an error message, empty when the values read so far agree
+// and calls describe(v, g) for groups and list items.
+#pragma once
+
+#include <array>
+
+#include "shanshui/core/range.h"
+#include "shanshui/ink/diffusion.h"
+#include "shanshui/noise/gabor.h"
+#include "shanshui/scene/scene.h"
+
+namespace shanshui::scene {
+
+struct Key {
+  const char* name;
+  const char* doc;
+  Effect effect = Effect::Uniform;
+  const char* unit = "";
+};
+
+template <typename E>
+struct Named {
+  const char* name;
+  E value;
+};
+
+enum class Text { Plain, File };
+enum class Vec { Vector, Color };
+//! Where a group's keys are documented: in its parent's table with the group's name as a
+//! prefix (transform.scale), or in a table of their own.
+enum class Table { Inline, Own };
+
+inline constexpr double kBig = 1e9;
+inline constexpr Range<double> kUnit{0.0, 1.0};
+inline constexpr Range<double> kAnyCoordinate{-kBig, kBig};
+inline constexpr Range<double> kAzimuth{-36000, 36000};
+inline constexpr Range<double> kElevation{-89.9, 89.9};
+inline constexpr Range<double> kZoom{0.001, 1000};
+
+inline constexpr Range<long long> wide(Range<int> r) { return {r.lo, r.hi, r.lo_open}; }
+
+inline constexpr std::array<Named<CurvatureSource>, 3> kCurvatureSources{{
+    {"quadric", CurvatureSource::Quadric}, {"cotangent", CurvatureSource::Cotangent}, {"screen", CurvatureSource::Screen}}};
+inline constexpr std::array<Named<UvSource>, 2> kUvSources{{{"mesh", UvSource::Mesh}, {"planar", UvSource::Planar}}};
+inline constexpr std::array<Named<TextureFilter>, 3> kTextureFilters{{{"nearest", TextureFilter::Nearest},
+                                                                       {"bilinear", TextureFilter::Bilinear},
+                                                                       {"trilinear", TextureFilter::Trilinear}}};
+inline constexpr std::array<Named<CanvasType>, 4> kCanvasTypes{{{"none", CanvasType::None},
+                                                                 {"rice_paper", CanvasType::RicePaper},
+                                                                 {"silk", CanvasType::Silk},
+                                                                 {"static", CanvasType::Static}}};
+inline constexpr std::array<Named<CanvasPattern>, 2> kCanvasPatterns{
+    {{"rice_paper", CanvasPattern::RicePaper}, {"silk", CanvasPattern::Silk}}};
+
+constexpr Effect kRebuild = Effect::Rebuild;
+
+template <typename V>
+void describe(V& v, Transform& t) {
+  v.vec3({"translate", "model to world: scale, then rotate, then translate", Effect::Uniform, "world units"},
+         t.translate, kAnyCoordinate, Vec::Vector);
+  v.vec3({"rotate", "rotations about x, then y, then z", Effect::Uniform, "degrees"}, t.rotate_deg, {-3600, 3600},
+         Vec::Vector);
+  v.vec3({"scale", "per axis", Effect::Uniform}, t.scale, {1e-6, 1e6}, Vec::Vector);
+}
+
+template <typename V>
+void describe(V& v, LineParams& p) {
+  v.boolean({"enabled", "false: no lines for this object (and no curvature is computed)", kRebuild}, p.enabled);
+  v.choice({"curvature",
+            "`quadric`: per vertex, a quadric fitted to the two-ring, precomputed on load (robust); `cotangent`: "
+            "cotangent Laplacian and angle defect (~3x faster to load, outliers on irregular meshes); `screen`: "
+            "the paper's per-pixel \\|fwidth(N)\\| / \\|fwidth(P)\\| (view dependent, noisy)",
+            kRebuild},
+           p.curvature, kCurvatureSources);
+  v.number({"curve_factor", "R_CurveFactor, on dimensionless curvature (k = 1 at the mesh's 90th percentile)"},
+           p.curve_factor, {0, 100});
+  v.number({"threshold", "Curv0: a pixel is line where 1 − k · curve_factor is below it"}, p.threshold, {-10, 1});
+  v.number({"soft_width", "width of the smoothstep around Curv0; 0 = hard binarisation (lines pop under motion)"},
+           p.soft_width, kUnit);
+  v.vec3({"line_color", "_LineColor", Effect::Uniform, "RGB"}, p.line_color, kUnit, Vec::Color);
+  v.vec3({"bg_color", "_BgColor; multiplies paper and tone", Effect::Uniform, "RGB"}, p.bg_color, kUnit, Vec::Color);
+  v.number({"silhouette", "N·V below which the surface is silhouette (full weight below half of it); 0 = off"},
+           p.silhouette, kUnit);
+  v.number({"depth_edges",
+            "a pixel whose neighbour is farther by more than this fraction of its distance (or is background) "
+            "is an outline; 0 = off"},
+           p.depth_edges, {0, 10});
+  v.number({"small_object_px",
+            "objects whose bounding sphere covers fewer pixels get N·V and depth-edge lines only (the paper's "
+            "trees and pavilions)",
+            Effect::Uniform, "pixels"},
+           p.small_object_px, {0, kBig});
+}
+
+template <typename V>
+void describe(V& v, ShadingParams& p) {
+  v.boolean({"enabled", "false: no shading for this object (flat `bg_color`)", kRebuild}, p.enabled);
+  v.numbers({"tones", "C1..C5, grey multiplying paper and `bg_color`, darkest first"}, p.tones, kUnit);
+  v.numbers({"thresholds", "t1..t4, ascending"}, p.thresholds, kUnit);
+  v.check("thresholds", [&]() -> std::string {
+    for (std::size_t k = 1; k < p.thresholds.size(); ++k) {
+      if (p.thresholds[k] < p.thresholds[k - 1]) {
+        std::ostringstream s;
+        s << "t" << k + 1 << " = " << p.thresholds[k] << " is below t" << k << " = " << p.thresholds[k - 1]
+          << "; expected ascending thresholds";
+        return s.str();
+      }
+    }
+    return "";
+  });
+  v.number({"sigma", "σ of the Gaussian-smoothed steps; 0 = Eq. 2's hard ladder"}, p.sigma, kUnit);
+  v.number({"beta", "β of Eq. 3: t_dw = clamp(t_d + t_w + β, 0, 1)"}, p.beta, {-2, 1});
+  v.number({"erosion", "strength of the erosion noise: t_w = 1 − erosion · (1 − noise)"}, p.erosion, kUnit);
+  v.number({"noise", "amplitude of the noise added before quantisation"}, p.noise, kUnit);
+  v.number({"noise_scale",
+            "size of the erosion noise's coarsest cells (octaves at 1, 1/2, 1/4 of it) as a fraction of the "
+            "object's bounding radius; fixed to the model, so it moves with the object"},
+           p.noise_scale, {1e-4, 10});
+  v.boolean({"half_lambert", "t_d = 0.5 · N·L + 0.5 instead of max(N·L, 0)"}, p.half_lambert);
+  v.boolean({"line_value", "multiply by the line pass's col_i (the paper's Fig. 4f); needs lines on"}, p.line_value);
+}
+
+template <typename V>
+void describe(V& v, WrinkleParams& p) {
+  v.text({"texture", "the (quilted) wrinkle texture; empty = no wrinkles, no UVs needed, no wrinkle code compiled",
+          kRebuild},
+         p.texture, Text::File);
+  v.number({"inner_tex_factor", "R_InnerTexFactor: t_w = luma / factor; below 1 lightens the strokes"},
+           p.inner_tex_factor, {0.01, 100});
+  v.number({"repeat", "texture repetitions per UV unit"}, p.repeat, {0, 1e4, true});
+  v.choice({"uv",
+            "`mesh`: the mesh's UVs (from `shanshui-param`; none is an error); `planar`: x, y over the larger "
+            "horizontal extent (terrain)",
+            kRebuild},
+           p.uv, kUvSources);
+  v.choice({"filter",
+            "where the texture is minified: one texel of the nearest mip level, bilinear in it, or trilinear "
+            "(bench/ink_tradeoff.md)"},
+           p.filter, kTextureFilters);
+}
+
+template <typename V>
+void describe(V& v, Object& o) {
+  v.text({"name", "shown in the viewer; empty: `objects.N`"}, o.name, Text::Plain);
+  v.text({"mesh", "`.obj`, `.ply`, `.off`, repaired on load like `shanshui-repair`; give `mesh` or `dem`", kRebuild},
+         o.mesh, Text::File);
+  v.text({"dem", "heightfield (`.dem`, `.asc`, `.png`, `.tif`) meshed on load like `shanshui-terrain`", kRebuild},
+         o.dem, Text::File);
+  v.check("", [&]() -> std::string {
+    if (o.mesh.empty() && o.dem.empty()) return "needs a 'mesh' or a 'dem' file";
+    if (!o.mesh.empty() && !o.dem.empty()) return "has both 'mesh' and 'dem'; give one";
+    return "";
+  });
+  v.number({"z_scale", "dem only: vertical exaggeration", kRebuild}, o.z_scale, {0, 1000, true});
+  v.integer({"max_vertices", "dem only: the grid is decimated to at most this many vertices", kRebuild},
+            o.max_vertices, {4, 100000000});
+  v.boolean({"recentre",
+             "move the mesh so its bounding-box centre is the model origin (keeps UTM-sized coordinates precise)",
+             kRebuild},
+            o.recentre);
+  v.group("transform", o.transform, Table::Inline);
+  v.number({"spin",
+            "turn about the vertical axis through the centre; a spinning object is drawn over a cached layer of "
+            "the static ones",
+            Effect::Uniform, "degrees/s"},
+           o.spin_deg_per_s, {-36000, 36000});
+  v.group("lines", o.lines, Table::Own);
+  v.group("shading", o.shading, Table::Own);
+  v.group("wrinkle", o.wrinkle, Table::Own);
+}
+
+template <typename V>
+void describe(V& v, Light& l) {
+  v.vec3({"direction", "towards the directional light, world space, normalised on use; not zero"}, l.direction,
+         kAnyCoordinate, Vec::Vector);
+  v.check("direction", [&]() -> std::string { return glm::length(l.direction) > 0 ? "" : "must not be zero"; });
+}
+
+template <typename V>
+void describe(V& v, CameraKey& k) {
+  v.number({"azimuth", "one key's azimuth (default: the camera's)", Effect::Uniform, "degrees"}, k.azimuth_deg,
+           kAzimuth);
+  v.number({"elevation", "one key's elevation (default: the camera's)", Effect::Uniform, "degrees"}, k.elevation_deg,
+           kElevation);
+  v.number({"zoom", "one key's zoom (default: the camera's)"}, k.zoom, kZoom);
+}
+
+template <typename V>
+void describe(V& v, Camera& c) {
+  v.optionalVec3({"target", "point looked at; null: the centre of the scene's bounds", Effect::Uniform, "world units"},
+                 c.target, kAnyCoordinate);
+  v.number({"distance", "from the target; 0 frames the scene", Effect::Uniform, "world units"}, c.distance,
+           {0, kBig});
+  v.number({"azimuth", "around +Z; 0 looks from +X", Effect::Uniform, "degrees"}, c.azimuth_deg, kAzimuth);
+  v.number({"elevation", "above the horizon", Effect::Uniform, "degrees"}, c.elevation_deg, kElevation);
+  v.number({"fov", "vertical field of view", Effect::Uniform, "degrees"}, c.fov_y_deg, {1, 170});
+  v.number({"zoom", "> 1 moves closer"}, c.zoom, kZoom);
+  v.list({"path", "keys for `--frames`: frames spread evenly over them, angles linear, zoom geometric"}, c.path,
+         {0, 100000}, [&] { return CameraKey{c.azimuth_deg, c.elevation_deg, c.zoom}; }, Table::Inline);
+}
+
+template <typename V>
+void describe(V& v, Canvas& c) {
+  v.choice({"type",
+            "`rice_paper` (Perlin) and `silk` (Gabor weave) move with the scene; `static` is fixed to the screen "
+            "(the shower-door baseline); `none` builds no canvas pass",
+            kRebuild},
+           c.type, kCanvasTypes);
+  v.choice({"static_pattern", "what `static` draws", kRebuild}, c.static_pattern, kCanvasPatterns);
+  v.number({"contrast", "the paper's brightness is multiplied by 1 + contrast × the unit-variance canvas noise"},
+           c.contrast, kUnit);
+  v.number({"absorbency", "how far the canvas varies the diffusion's absorbency: 0.75 + 0.25 × absorbency × noise"},
+           c.absorbency, kUnit);
+  v.number({"grain", "r, the radius of one noise kernel (half the side of a canvas quad)", Effect::Uniform,
+            "pixels at 1024 high"},
+           c.grain, {0.5, 256});
+  v.number({"frequency", "F0, the silk's thread frequency", Effect::Uniform, "cycles/pixel"}, c.frequency, {0, 2});
+  v.number({"orientation", "ω0, the thread direction; the second silk noise runs across it", Effect::Uniform,
+            "degrees"},
+           c.orientation_deg, {-360, 360});
+  v.boolean({"isotropic", "each kernel gets a random direction (a felt rather than a weave)"}, c.isotropic);
+  v.number({"mix", "silk: weight of the noise with swapped coordinates (0: threads one way only)"}, c.mix, kUnit);
+  v.number({"perlin_frequency", "rice paper: Perlin cycles across one kernel radius"}, c.perlin_frequency, {0, 64});
+  v.number({"impulses", "N′, kernels per kernel disc: more is smoother and costs more"}, c.impulses,
+           noise::kImpulsesRange);
+}
+
+template <typename V>
+void describe(V& v, Diffusion& d) {
+  v.integer({"ring_steps", "d, main diffusion distance around the strokes; 0 with `iterations` 0: no pass",
+             Effect::Uniform, "pixels"},
+            d.ring_steps, wide(ink::kRingStepsRange));
+  v.number({"attenuation", "f, ink kept per ring: ring r holds f^r of its stroke's ink"}, d.attenuation,
+           ink::kAttenuationRange);
+  v.number({"absorb", "I_p, ink a paper pixel can absorb over the n iterations (times its absorbency)"}, d.absorb,
+           ink::kAbsorbRange);
+  v.number({"residual", "I_r, ink a donor pixel keeps; more gives a tighter, more ragged edge"}, d.residual,
+           ink::kResidualRange);
+  v.integer({"iterations", "n, boundary diffusion iterations"}, d.iterations, wide(ink::kIterationsRange));
+  v.number({"threshold", "ink (1 − luminance relative to the paper) above which a pixel is a stroke"}, d.threshold,
+           ink::kThresholdRange);
+}
+
+template <typename V>
+void describe(V& v, Output& o) {
+  v.integer({"width", "`--size WxH` overrides", Effect::Uniform, "pixels"}, o.width, {1, 16384});
+  v.integer({"height", "`--size WxH` overrides", Effect::Uniform, "pixels"}, o.height, {1, 16384});
+  v.vec3({"paper", "paper colour behind and under the ink", Effect::Uniform, "RGB"}, o.paper, kUnit, Vec::Color);
+  v.number({"fade", "distance fade: far surfaces move towards the paper by up to this much"}, o.fade, kUnit);
+}
+
+template <typename V>
+void describe(V& v, Scene& s) {
+  v.integer({"seed", "seed of every noise (erosion, canvas kernels, paper absorbency); same seed, same picture"},
+            s.seed, {0, 1LL << 53});
+  v.list({"objects", "the objects, below", kRebuild}, s.objects, {1, 255}, [] { return Object{}; }, Table::Own);
+  v.group("light", s.light, Table::Inline);
+  v.group("camera", s.camera, Table::Own);
+  v.group("canvas", s.canvas, Table::Own);
+  v.group("diffusion", s.diffusion, Table::Own);
+  v.group("output", s.output, Table::Own);
+}
+
+}  // namespace shanshui::scene
