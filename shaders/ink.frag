@@ -95,20 +95,19 @@ void main() {
   // soft width), silhouettes where N·V is small, outlines where the depth jumps away.
   float line_weight = 0.0, col = 1.0;
 #ifdef LINES
-  int line_flags = int(o.line_misc.w);
-  if ((line_flags & kLinesOn) != 0) {
-    col = 1.0 - k * o.line_color.w;
-    float threshold = o.bg_color.w, soft = o.line_misc.x;
-    if ((line_flags & kNormalOnly) == 0) {
+  if ((o.line_flags & kLinesOn) != 0u) {
+    col = 1.0 - k * o.curve_factor;
+    float threshold = o.line_threshold, soft = o.soft_width;
+    if ((o.line_flags & kNormalOnly) == 0u) {
       line_weight = soft > 0.0 ? 1.0 - smoothstep(threshold - 0.5 * soft, threshold + 0.5 * soft, col)
                                : (col < threshold ? 1.0 : 0.0);
     }
-    float silhouette = o.line_misc.y;
+    float silhouette = o.silhouette;
     if (silhouette > 0.0) {
       float n_dot_v = abs(dot(n, normalize(u_eye - position)));
       line_weight = max(line_weight, 1.0 - smoothstep(0.5 * silhouette, silhouette, n_dot_v));
     }
-    float jump = o.line_misc.z;
+    float jump = o.depth_edges;
     if (jump > 0.0) {
       float z = viewDepth(depth);
       if (viewDepth(farthestNeighbour(p)) - z > jump * z) line_weight = 1.0;
@@ -122,19 +121,19 @@ void main() {
   // with Gaussian-smoothed steps.
   float tone = 1.0;
 #ifdef SHADING
-  int shade_flags = int(o.shade_misc2.z);
-  if ((shade_flags & kShadingOn) != 0) {
+  uint shade_flags = o.shade_flags;
+  if ((shade_flags & kShadingOn) != 0u) {
     float n_dot_l = dot(n, u_light_dir);
-    float t_d = (shade_flags & kHalfLambert) != 0 ? 0.5 * n_dot_l + 0.5 : max(n_dot_l, 0.0);
-    float t_w = 1.0 - o.shade_misc.w * (1.0 - surface.r);
+    float t_d = (shade_flags & kHalfLambert) != 0u ? 0.5 * n_dot_l + 0.5 : max(n_dot_l, 0.0);
+    float t_w = 1.0 - o.erosion * (1.0 - surface.r);
 #ifdef WRINKLE
-    if ((shade_flags & kWrinkled) != 0 && line_weight < 0.5) t_w = surface.b * o.shade_misc2.y;
+    if ((shade_flags & kWrinkled) != 0u && line_weight < 0.5) t_w = surface.b * o.inv_inner_tex_factor;
 #endif
-    float t = clamp(t_d + t_w + o.shade_misc.z, 0.0, 1.0);
-    if ((shade_flags & kLineValue) != 0) t *= col;
-    t += o.shade_misc2.x * (2.0 * surface.g - 1.0);
-    float sigma = o.shade_misc.y;
-    float c[5] = float[5](o.tones.x, o.tones.y, o.tones.z, o.tones.w, o.shade_misc.x);
+    float t = clamp(t_d + t_w + o.beta, 0.0, 1.0);
+    if ((shade_flags & kLineValue) != 0u) t *= col;
+    t += o.noise * (2.0 * surface.g - 1.0);
+    float sigma = o.sigma;
+    float c[5] = float[5](o.tones.x, o.tones.y, o.tones.z, o.tones.w, o.tone5);
     tone = c[0];
     for (int k = 0; k < 4; ++k) {
       // Φ only near the step: beyond 6σ it is 0 or 1 to within 1e-9.
@@ -146,7 +145,7 @@ void main() {
 #endif
 
   // Composite: ink on paper, lines over the interior, far surfaces fading into the paper.
-  vec3 colour = mix(u_paper * o.bg_color.rgb * tone, o.line_color.rgb, line_weight);
+  vec3 colour = mix(u_paper * o.bg_color * tone, o.line_color, line_weight);
   float fade = u_fade * smoothstep(u_fade_range.x, u_fade_range.y, distance(u_eye, position));
   o_colour = onPaper(p, mix(colour, u_paper, fade));
 #ifdef DEBUG_OUTPUTS

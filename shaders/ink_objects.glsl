@@ -1,14 +1,10 @@
-// Per-object parameters of the ink pass, indexed by the G-buffer's object id − 1.
-// Layout matches ObjectParamsGpu in libs/render/src/ink_renderer.cpp (std430, and std140
-// too: the struct is vec4s only).
+// Per-object parameters of the ink pass, indexed by the G-buffer's object id − 1. The
+// members and flag bits are defined in ink_object_params.glsl, shared with C++.
+#include "ink_object_params.glsl"
+
+#define SHANSHUI_DECLARE_FIELD(type, name) type name;
 struct ObjectParams {
-  vec4 line_color;   // rgb, curve_factor
-  vec4 bg_color;     // rgb, Curv0 threshold
-  vec4 line_misc;    // soft width, silhouette N·V, depth-edge jump, flags
-  vec4 tones;        // C1..C4
-  vec4 thresholds;   // t1..t4
-  vec4 shade_misc;   // C5, sigma, beta, erosion
-  vec4 shade_misc2;  // noise amplitude, 1 / R_InnerTexFactor, flags, unused
+  SHANSHUI_OBJECT_PARAMS(SHANSHUI_DECLARE_FIELD)
 };
 
 #ifdef SINGLE_OBJECT
@@ -18,10 +14,3 @@ layout(std140, binding = 0) uniform Objects { ObjectParams objects[1]; };
 #else
 layout(std430, binding = 0) readonly buffer Objects { ObjectParams objects[]; };
 #endif
-
-const int kLinesOn = 1;       // line_misc.w bits
-const int kNormalOnly = 2;    // small object: N·V lines only
-const int kShadingOn = 1;     // shade_misc2.z bits
-const int kHalfLambert = 2;
-const int kLineValue = 4;
-const int kWrinkled = 8;

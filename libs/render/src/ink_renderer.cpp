@@ -14,19 +14,11 @@
 #include "shanshui/core/random.h"
 #include "shanshui/noise/value_noise.h"
 #include "shanshui/render/gl_check.h"
+#include "shanshui/render/ink_object_params.h"
 
 namespace shanshui::render {
 
 namespace {
-
-// std430 (and std140) mirror of ObjectParams in shaders/ink_objects.glsl.
-struct ObjectParamsGpu {
-  glm::vec4 line_color, bg_color, line_misc, tones, thresholds, shade_misc, shade_misc2;
-};
-static_assert(sizeof(ObjectParamsGpu) == 7 * 16);
-
-constexpr int kLinesOn = 1, kNormalOnly = 2;
-constexpr int kShadingOn = 1, kHalfLambert = 2, kLineValue = 4, kWrinkled = 8;
 
 bool wrinkled(const scene::Object& o) { return !o.wrinkle.texture.empty() && o.shading.enabled; }
 
@@ -57,8 +49,6 @@ std::string joined(const std::vector<std::string>& v) {
   for (const auto& x : v) s += (s.empty() ? "" : " ") + x;
   return s;
 }
-
-glm::vec4 v4(const glm::dvec3& v, double w) { return glm::vec4(glm::vec3(v), static_cast<float>(w)); }
 
 }  // namespace
 
@@ -274,7 +264,7 @@ void InkRenderer::ensureTargets(int width, int height) {
 }
 
 void InkRenderer::uploadObjectParams(const OrbitCamera& camera, int height) {
-  std::vector<ObjectParamsGpu> params(objects_.size());
+  std::vector<gpu::ObjectParams> params(objects_.size());
   const double pixels_per_unit_at_1 = 0.5 * height / std::tan(glm::radians(camera.fov_y_deg) * 0.5);
   for (std::size_t i = 0; i < objects_.size(); ++i) {
     const scene::Object& o = scene_.objects[i];
@@ -285,19 +275,27 @@ void InkRenderer::uploadObjectParams(const OrbitCamera& camera, int height) {
     const double d = std::max(glm::length(camera.eye() - g.centre), 1e-12);
     const double r_px = g.radius / d * pixels_per_unit_at_1;
     const bool small = std::numbers::pi * r_px * r_px < l.small_object_px;
-    int line_flags = (l.enabled ? kLinesOn : 0) | (small ? kNormalOnly : 0);
-    int shade_flags = (sh.enabled ? kShadingOn : 0) | (sh.half_lambert ? kHalfLambert : 0) |
-                      (sh.line_value ? kLineValue : 0) | (wrinkled(o) ? kWrinkled : 0);
-    ObjectParamsGpu& p = params[i];
-    p.line_color = v4(l.line_color, l.curve_factor);
-    p.bg_color = v4(l.bg_color, l.threshold);
-    p.line_misc = glm::vec4(l.soft_width, l.silhouette, l.depth_edges, line_flags);
+    gpu::ObjectParams& p = params[i];
+    p.line_color = glm::vec3(l.line_color);
+    p.curve_factor = static_cast<float>(l.curve_factor);
+    p.bg_color = glm::vec3(l.bg_color);
+    p.line_threshold = static_cast<float>(l.threshold);
+    p.soft_width = static_cast<float>(l.soft_width);
+    p.silhouette = static_cast<float>(l.silhouette);
+    p.depth_edges = static_cast<float>(l.depth_edges);
+    p.line_flags = (l.enabled ? gpu::kLinesOn : 0u) | (small ? gpu::kNormalOnly : 0u);
     p.tones = glm::vec4(sh.tones[0], sh.tones[1], sh.tones[2], sh.tones[3]);
     p.thresholds = glm::vec4(sh.thresholds[0], sh.thresholds[1], sh.thresholds[2], sh.thresholds[3]);
-    p.shade_misc = glm::vec4(sh.tones[4], sh.sigma, sh.beta, sh.erosion);
-    p.shade_misc2 = glm::vec4(sh.noise, 1.0 / o.wrinkle.inner_tex_factor, shade_flags, 0.0f);
+    p.tone5 = static_cast<float>(sh.tones[4]);
+    p.sigma = static_cast<float>(sh.sigma);
+    p.beta = static_cast<float>(sh.beta);
+    p.erosion = static_cast<float>(sh.erosion);
+    p.noise = static_cast<float>(sh.noise);
+    p.inv_inner_tex_factor = static_cast<float>(1.0 / o.wrinkle.inner_tex_factor);
+    p.shade_flags = (sh.enabled ? gpu::kShadingOn : 0u) | (sh.half_lambert ? gpu::kHalfLambert : 0u) |
+                    (sh.line_value ? gpu::kLineValue : 0u) | (wrinkled(o) ? gpu::kWrinkled : 0u);
   }
-  const std::size_t bytes = params.size() * sizeof(ObjectParamsGpu);
+  const std::size_t bytes = params.size() * sizeof(gpu::ObjectParams);
   if (bytes > params_capacity_) {
     glDeleteBuffers(1, &params_buffer_);
     glCreateBuffers(1, &params_buffer_);

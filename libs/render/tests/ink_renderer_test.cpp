@@ -13,6 +13,7 @@
 #include "shanshui/image/image_io.h"
 #include "shanshui/ink/diffusion.h"
 #include "shanshui/render/gl_context.h"
+#include "shanshui/render/ink_object_params.h"
 #include "shanshui/render/ink_renderer.h"
 #include "shanshui/render/shader_library.h"
 #include "shanshui/scene/scene.h"
@@ -441,6 +442,52 @@ TEST_F(Ink, SampleSceneMatchesItsGoldenImage) {
   // few pixels far off (edges of lines and tone steps move by a pixel).
   EXPECT_LT(sum / static_cast<double>(img.pixels.size()), 0.01);
   EXPECT_LT(far_off, img.pixels.size() / 50);
+}
+
+}  // namespace
+}  // namespace shanshui::render
+
+namespace shanshui::render {
+namespace {
+
+// The per-object block: every member at the offset C++ writes it to, as the driver lays
+// it out, in both the uniform-block (one object) and storage-buffer variants.
+class ObjectBlock : public test::HeadlessGl {};
+
+TEST_F(ObjectBlock, DriverOffsetsAreTheCppOffsets) {
+  for (const bool single : {true, false}) {
+    SCOPED_TRACE(single ? "uniform block" : "storage buffer");
+    std::vector<std::string> defines = {"LINES", "SHADING", "WRINKLE"};
+    if (single) defines.emplace_back("SINGLE_OBJECT");
+    const Program p({"fullscreen.vert", "ink.frag"}, defines);
+    const GLenum interface = single ? GL_UNIFORM : GL_BUFFER_VARIABLE;
+    int found = 0;
+    for (const gpu::FieldOffset& f : gpu::kObjectParamsFields) {
+      const std::string name = std::string(single ? "Objects.objects[0]." : "Objects.objects[0].") + f.name;
+      GLuint index = glGetProgramResourceIndex(p.id(), interface, name.c_str());
+      if (index == GL_INVALID_INDEX) {
+        const std::string bare = std::string("objects[0].") + f.name;
+        index = glGetProgramResourceIndex(p.id(), interface, bare.c_str());
+      }
+      if (index == GL_INVALID_INDEX) continue;  // not read by the shader: optimised away
+      const GLenum property = GL_OFFSET;
+      GLint offset = -1;
+      glGetProgramResourceiv(p.id(), interface, index, 1, &property, 1, nullptr, &offset);
+      EXPECT_EQ(static_cast<std::size_t>(offset), f.offset) << f.name;
+      ++found;
+    }
+    // Every member but the padding is read by the full variant.
+    EXPECT_GE(found, static_cast<int>(std::size(gpu::kObjectParamsFields)) - 1);
+    if (!single) {
+      const GLuint block = glGetProgramResourceIndex(p.id(), GL_SHADER_STORAGE_BLOCK, "Objects");
+      ASSERT_NE(block, GL_INVALID_INDEX);
+      const GLenum property = GL_BUFFER_DATA_SIZE;
+      GLint size = 0;
+      glGetProgramResourceiv(p.id(), GL_SHADER_STORAGE_BLOCK, block, 1, &property, 1, nullptr, &size);
+      // An unsized array: the block's size is one element's stride.
+      EXPECT_EQ(static_cast<std::size_t>(size), sizeof(gpu::ObjectParams));
+    }
+  }
 }
 
 }  // namespace

@@ -1,0 +1,23 @@
+// Per-object parameters of the ink pass, defined once for GLSL (ink_objects.glsl) and C++
+// (libs/render/include/shanshui/render/ink_object_params.h): names, order and flag bits
+// cannot drift apart. Members are vec4s, scalars and vec3 + scalar pairs, so std140 and
+// std430 place each where C++ does (a vec3 starts a 16-byte slot and the scalar after it
+// fills the slot); the C++ side checks this statically and a GL test compares every
+// offset with the driver's.
+#define SHANSHUI_OBJECT_PARAMS(F) \
+  F(vec3, line_color)     F(float, curve_factor) \
+  F(vec3, bg_color)       F(float, line_threshold) \
+  F(float, soft_width)    F(float, silhouette)   F(float, depth_edges)          F(uint, line_flags) \
+  F(vec4, tones)  \
+  F(vec4, thresholds) \
+  F(float, tone5)         F(float, sigma)        F(float, beta)                 F(float, erosion) \
+  F(float, noise)         F(float, inv_inner_tex_factor) F(uint, shade_flags)   F(uint, unused)
+
+// line_flags bits
+const uint kLinesOn = 1u;
+const uint kNormalOnly = 2u;  // small object: N·V and depth-edge lines only
+// shade_flags bits
+const uint kShadingOn = 1u;
+const uint kHalfLambert = 2u;
+const uint kLineValue = 4u;
+const uint kWrinkled = 8u;
