@@ -247,3 +247,46 @@ const Texture2D& CanvasPass::run(const std::vector<Item>& items, const Texture2D
 }
 
 }  // namespace shanshui::render
+
+namespace shanshui::render {
+
+namespace {
+
+// The canvas in the renderer's pass list.
+class CanvasStage final : public RenderPass {
+ public:
+  explicit CanvasStage(const PassSetup& setup) : canvas_(setup.scene.canvas, setup.scene.seed, setup.world_bounds) {}
+  std::string name() const override { return canvas_.passName(); }
+  void buildPrograms() override { canvas_.reloadShaders(); }
+  std::vector<std::string> variants() const override { return canvas_.variants(); }
+  void setScene(const scene::Scene& s) override { canvas_.setParams(s.canvas, s.seed); }
+  void resize(int, int) override {}  // the canvas sizes its target on each run
+  void run(const FrameInputs& in, FrameImages& images) override {
+    std::vector<CanvasPass::Item> items;
+    for (std::size_t i = 0; i < in.objects.size(); ++i) {
+      const SceneObjectGpu& g = in.objects[i];
+      items.push_back({&g.mesh, in.modelAt(i), g.max_triangle_area, 0.5 * glm::length(g.model_bounds.size())});
+    }
+    images.canvas = &canvas_.run(items, images.gbuffer->depth(), in.camera, in.width, in.height, in.timer);
+  }
+  const Framebuffer* target() const override { return &canvas_.target(); }
+  const CanvasPass& canvas() const { return canvas_; }
+
+ private:
+  CanvasPass canvas_;
+};
+
+}  // namespace
+
+std::string canvasStructure(const scene::Scene& s) {
+  return std::to_string(static_cast<int>(s.canvas.type)) + std::to_string(static_cast<int>(s.canvas.pattern()));
+}
+
+std::unique_ptr<RenderPass> makeCanvasPass(const PassSetup& setup) { return std::make_unique<CanvasStage>(setup); }
+
+const CanvasPass* canvasOf(const RenderPass& pass) {
+  const auto* stage = dynamic_cast<const CanvasStage*>(&pass);
+  return stage ? &stage->canvas() : nullptr;
+}
+
+}  // namespace shanshui::render

@@ -93,48 +93,28 @@ image::Image Texture2D::download(int channels) const {
 }
 
 Framebuffer::Framebuffer(int width, int height, const std::vector<GLenum>& colour_formats, bool depth)
-    : width_(width), height_(height) {
-  glCreateFramebuffers(1, &id_);
+    : name_(GlName<FramebufferKind>::create()), width_(width), height_(height) {
+  const GLuint id = name_.id();
   std::vector<GLenum> buffers;
   for (std::size_t i = 0; i < colour_formats.size(); ++i) {
     colours_.emplace_back(width, height, colour_formats[i]);
-    glNamedFramebufferTexture(id_, static_cast<GLenum>(GL_COLOR_ATTACHMENT0 + i), colours_.back().id(), 0);
+    glNamedFramebufferTexture(id, static_cast<GLenum>(GL_COLOR_ATTACHMENT0 + i), colours_.back().id(), 0);
     buffers.push_back(static_cast<GLenum>(GL_COLOR_ATTACHMENT0 + i));
   }
-  glNamedFramebufferDrawBuffers(id_, static_cast<GLsizei>(buffers.size()), buffers.data());
+  glNamedFramebufferDrawBuffers(id, static_cast<GLsizei>(buffers.size()), buffers.data());
   if (depth) {
     depth_ = Texture2D(width, height, GL_DEPTH_COMPONENT32F);
-    glNamedFramebufferTexture(id_, GL_DEPTH_ATTACHMENT, depth_.id(), 0);
+    glNamedFramebufferTexture(id, GL_DEPTH_ATTACHMENT, depth_.id(), 0);
   }
-  const GLenum status = glCheckNamedFramebufferStatus(id_, GL_FRAMEBUFFER);
+  const GLenum status = glCheckNamedFramebufferStatus(id, GL_FRAMEBUFFER);
   if (status != GL_FRAMEBUFFER_COMPLETE) {
     throw makeError("framebuffer ", width, "x", height, " is incomplete (status 0x", std::hex, status, ")");
   }
   SHANSHUI_GL_CHECK("Framebuffer create");
 }
 
-Framebuffer::~Framebuffer() {
-  if (id_) glDeleteFramebuffers(1, &id_);
-}
-
-Framebuffer::Framebuffer(Framebuffer&& o) noexcept
-    : id_(std::exchange(o.id_, 0)), width_(o.width_), height_(o.height_),
-      colours_(std::move(o.colours_)), depth_(std::move(o.depth_)) {}
-
-Framebuffer& Framebuffer::operator=(Framebuffer&& o) noexcept {
-  if (this != &o) {
-    if (id_) glDeleteFramebuffers(1, &id_);
-    id_ = std::exchange(o.id_, 0);
-    width_ = o.width_;
-    height_ = o.height_;
-    colours_ = std::move(o.colours_);
-    depth_ = std::move(o.depth_);
-  }
-  return *this;
-}
-
 void Framebuffer::bind() const {
-  glBindFramebuffer(GL_FRAMEBUFFER, id_);
+  glBindFramebuffer(GL_FRAMEBUFFER, name_.id());
   glViewport(0, 0, width_, height_);
 }
 

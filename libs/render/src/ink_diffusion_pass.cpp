@@ -1,12 +1,15 @@
 #include "shanshui/render/ink_diffusion_pass.h"
 
 #include <algorithm>
+#include <memory>
+#include <optional>
 #include <cmath>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "shanshui/core/error.h"
+#include "shanshui/noise/value_noise.h"
 #include "shanshui/render/gl_check.h"
 
 namespace shanshui::render {
@@ -237,6 +240,62 @@ double InkDiffusionPass::lastActiveFraction() const {
   glGetTextureImage(active_tex_.id(), 0, GL_RED_INTEGER, GL_UNSIGNED_BYTE, static_cast<GLsizei>(flags.size()), flags.data());
   SHANSHUI_GL_CHECK("diffusion active areas");
   return static_cast<double>(std::count(flags.begin(), flags.end(), GLubyte{1})) / static_cast<double>(flags.size());
+}
+
+}  // namespace shanshui::render
+
+namespace shanshui::render {
+
+namespace {
+
+// The diffusion in the renderer's pass list: the picture so far diffused into the paper,
+// whose absorbency is the canvas when the scene has one, else value noise.
+class DiffusionStage final : public RenderPass {
+ public:
+  explicit DiffusionStage(const PassSetup& setup)
+      : pass_(std::make_unique<InkDiffusionPass>()), has_canvas_(setup.scene.canvas.type != scene::CanvasType::None) {}
+  std::string name() const override { return "diffusion"; }
+  void buildPrograms() override { pass_ = std::make_unique<InkDiffusionPass>(); }  // the old one stays on a throw
+  std::vector<std::string> variants() const override { return {""}; }
+  void setScene(const scene::Scene& s) override {
+    if (has_canvas_ || seed_ == s.seed) return;
+    // Without a canvas the paper's absorbency is value noise in [0.5, 1].
+    const image::Image noise = noise::erosionNoise(256, s.seed ^ 0xAB50Bull);
+    image::Image a(noise.width, noise.height, 1);
+    for (std::size_t i = 0; i < a.pixels.size(); ++i) a.pixels[i] = 0.5f + 0.5f * noise.pixels[2 * i];
+    absorbency_ = Texture2D::fromImage(a, GL_R8);
+    seed_ = s.seed;
+  }
+  void resize(int width, int height) override { target_ = Framebuffer(width, height, {GL_RGBA8}, false); }
+  void run(const FrameInputs& in, FrameImages& images) override {
+    PaperTexture paper{absorbency_ ? &*absorbency_ : nullptr};
+    if (has_canvas_) {
+      // Absorbency 0.75 + 0.25 · absorbency · noise: the unit-variance canvas keeps most
+      // pixels within [0.5, 1] at full strength, like the value noise it replaces.
+      paper = {images.canvas, glm::vec2(0.25 * in.scene.canvas.absorbency, 0.75), images.canvas,
+               static_cast<float>(in.scene.canvas.contrast)};
+    }
+    pass_->run(*images.picture, paper, in.scene.diffusion, glm::vec3(in.scene.output.paper), target_.colour(0), in.timer);
+    images.picture = &target_.colour(0);
+  }
+  const Framebuffer* target() const override { return &target_; }
+  const Texture2D* absorbency() const { return absorbency_ ? &*absorbency_ : nullptr; }
+
+ private:
+  std::unique_ptr<InkDiffusionPass> pass_;
+  bool has_canvas_;
+  std::optional<Texture2D> absorbency_;
+  std::optional<std::uint64_t> seed_;
+  Framebuffer target_;
+};
+
+}  // namespace
+
+std::unique_ptr<RenderPass> makeDiffusionPass(const PassSetup& setup) { return std::make_unique<DiffusionStage>(setup); }
+
+const Texture2D* absorbencyOf(const RenderPass& pass) {
+  const auto* stage = dynamic_cast<const DiffusionStage*>(&pass);
+  return stage ? stage->absorbency() : nullptr;
 }
 
 }  // namespace shanshui::render

@@ -14,6 +14,7 @@
 #include "shanshui/render/gl_resources.h"
 #include "shanshui/render/gpu_mesh.h"
 #include "shanshui/render/gpu_timer.h"
+#include "shanshui/render/render_pass.h"
 #include "shanshui/render/shader_program.h"
 #include "shanshui/scene/scene.h"
 
@@ -91,6 +92,9 @@ class CanvasPass {
   CanvasPass(const CanvasPass&) = delete;
   CanvasPass& operator=(const CanvasPass&) = delete;
 };
+
+//! The CanvasPass of the renderer's canvas pass; null for any other pass.
+const CanvasPass* canvasOf(const RenderPass& pass);
 
 //! The largest triangle area of a mesh.
 double maxTriangleArea(const mesh::Mesh& m);

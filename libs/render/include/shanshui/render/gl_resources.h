@@ -1,4 +1,5 @@
-// RAII wrappers for GL textures and framebuffers (OpenGL 4.5 direct state access).
+// RAII wrappers for GL objects: vertex arrays, buffers, textures and framebuffers (OpenGL 4.5
+// direct state access). Every GL name the renderer creates is owned by one of these.
 #pragma once
 
 #include <epoxy/gl.h>
@@ -8,6 +9,64 @@
 #include "shanshui/image/image.h"
 
 namespace shanshui::render {
+
+//! One GL name of a kind (K::create() / K::destroy()), deleted with its owner.
+template <typename K>
+class GlName {
+ public:
+  GlName() = default;
+  static GlName create() {
+    GlName n;
+    n.id_ = K::create();
+    return n;
+  }
+  ~GlName() {
+    if (id_) K::destroy(id_);
+  }
+  GlName(GlName&& o) noexcept : id_(o.id_) { o.id_ = 0; }
+  GlName& operator=(GlName&& o) noexcept {
+    if (this != &o) {
+      if (id_) K::destroy(id_);
+      id_ = o.id_;
+      o.id_ = 0;
+    }
+    return *this;
+  }
+  GlName(const GlName&) = delete;
+  GlName& operator=(const GlName&) = delete;
+  GLuint id() const { return id_; }
+  explicit operator bool() const { return id_ != 0; }
+
+ private:
+  GLuint id_ = 0;
+};
+
+struct VertexArrayKind {
+  static GLuint create() {
+    GLuint id = 0;
+    glCreateVertexArrays(1, &id);
+    return id;
+  }
+  static void destroy(GLuint id) { glDeleteVertexArrays(1, &id); }
+};
+struct BufferKind {
+  static GLuint create() {
+    GLuint id = 0;
+    glCreateBuffers(1, &id);
+    return id;
+  }
+  static void destroy(GLuint id) { glDeleteBuffers(1, &id); }
+};
+struct FramebufferKind {
+  static GLuint create() {
+    GLuint id = 0;
+    glCreateFramebuffers(1, &id);
+    return id;
+  }
+  static void destroy(GLuint id) { glDeleteFramebuffers(1, &id); }
+};
+using VertexArray = GlName<VertexArrayKind>;
+using Buffer = GlName<BufferKind>;
 
 class Texture2D {
  public:
@@ -45,15 +104,10 @@ class Texture2D {
 class Framebuffer {
  public:
   Framebuffer() = default;
-  //! Throws Error if the combination is incomplete on this driver.
+  //! Throws Error if the combination is incomplete on this driver (nothing is leaked).
   Framebuffer(int width, int height, const std::vector<GLenum>& colour_formats, bool depth = true);
-  ~Framebuffer();
-  Framebuffer(Framebuffer&& other) noexcept;
-  Framebuffer& operator=(Framebuffer&& other) noexcept;
-  Framebuffer(const Framebuffer&) = delete;
-  Framebuffer& operator=(const Framebuffer&) = delete;
 
-  GLuint id() const { return id_; }
+  GLuint id() const { return name_.id(); }
   int width() const { return width_; }
   int height() const { return height_; }
   const Texture2D& colour(int i = 0) const { return colours_.at(static_cast<std::size_t>(i)); }
@@ -62,7 +116,7 @@ class Framebuffer {
   void bind() const;
 
  private:
-  GLuint id_ = 0;
+  GlName<FramebufferKind> name_;
   int width_ = 0;
   int height_ = 0;
   std::vector<Texture2D> colours_;

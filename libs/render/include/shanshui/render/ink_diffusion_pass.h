@@ -12,6 +12,7 @@
 #include "shanshui/ink/diffusion.h"
 #include "shanshui/render/gl_resources.h"
 #include "shanshui/render/gpu_timer.h"
+#include "shanshui/render/render_pass.h"
 #include "shanshui/render/shader_program.h"
 
 namespace shanshui::render {
@@ -66,5 +67,10 @@ class InkDiffusionPass {
   const Texture2D* after_ = nullptr;
   int last_iterations_ = 0;  //!< n of the last run
 };
+
+//! The paper absorbency of the renderer's diffusion pass when the scene has no canvas
+//! (value noise, one channel, tiled over the picture from GL's bottom-left); null for any
+//! other pass or with a canvas.
+const Texture2D* absorbencyOf(const RenderPass& pass);
 
 }  // namespace shanshui::render

@@ -1,6 +1,6 @@
-// The ink-wash renderer (SPEC.md sections 6, 7, 10): a G-buffer pass, then one image pass
-// for feature lines, interior shading (with wrinkles) and the composite on paper, built with
-// only the shader variants the scene uses. The headless renderer and the viewer both draw through it.
+// The ink-wash renderer (SPEC.md sections 6, 7, 10): the passes of render_pass.h's list
+// that the scene wants (G-buffer, canvas, ink, diffusion), each built with only the shader
+// variants the scene uses. The headless renderer and the viewer both draw through it.
 #pragma once
 
 #include <map>
@@ -13,6 +13,7 @@
 #include "shanshui/render/canvas_pass.h"
 #include "shanshui/render/gl_resources.h"
 #include "shanshui/render/gpu_mesh.h"
+#include "shanshui/render/render_pass.h"
 #include "shanshui/render/gpu_timer.h"
 #include "shanshui/render/ink_diffusion_pass.h"
 #include "shanshui/render/shader_program.h"
@@ -51,8 +52,8 @@ class InkRenderer {
   void setScene(const scene::Scene& s);
   const scene::Scene& scene() const { return scene_; }
 
-  //! Renders the view at `time` (seconds, for spinning objects) into an internal RGBA8
-  //! framebuffer and returns it. Seed 002's render states: an identical request (camera,
+  //! Renders the view at `time` (seconds, for spinning objects) and returns the target of
+  //! the last pass that drew the picture (colour 0, RGBA8). Seed 002's render states: an identical request (camera,
   //! size, parameters, and time when something is animated) returns the cached image
   //! without running a pass; with animated objects the static ones are drawn into a cached
   //! layer ("gbuffer_static", only when the camera, size or parameters change) and the
@@ -70,7 +71,7 @@ class InkRenderer {
   void reloadShaders();
 
   //! Pass names in execution order, and the defines each pass's programs were built with.
-  const std::vector<std::string>& passesBuilt() const { return passes_; }
+  const std::vector<std::string>& passesBuilt() const { return pass_names_; }
   const std::map<std::string, std::vector<std::string>>& variants() const { return variants_; }
   const mesh::Bounds& worldBounds() const { return world_bounds_; }
   std::size_t triangleCount() const;
@@ -94,73 +95,40 @@ class InkRenderer {
 
   //! The paper absorbency the diffusion uses when the scene has no canvas (value noise, one
   //! channel, tiled over the picture from GL's bottom-left); null otherwise.
-  const Texture2D* absorbency() const { return absorbency_ ? &*absorbency_ : nullptr; }
+  const Texture2D* absorbency() const;
 
   //! The canvas pass, when the scene has a canvas.
-  const CanvasPass* canvas() const { return canvas_ ? &*canvas_ : nullptr; }
+  const CanvasPass* canvas() const;
 
   //! Builds the ink pass with the DEBUG_OUTPUTS variant (line weight and tone as targets).
   void setDebugOutputs(bool on);
 
- private:
-  struct GpuObject {
-    GpuMesh mesh;                      //!< uploaded relative to the centre of model_bounds
-    mesh::Bounds model_bounds;
-    double model_feature_size = 0.0;   //!< model units
-    glm::dmat4 model{1.0};             //!< uploaded coordinates to world (setScene)
-    glm::dvec3 centre{0.0};            //!< world, of the bounding sphere
-    double radius = 1.0;               //!< world bounding-sphere radius
-    double feature_size = 0.0;         //!< world units
-    double max_triangle_area = 0.0;    //!< model units, for the canvas
-    int program = 0;                   //!< index into gbuffer_programs_
-    std::optional<Texture2D> wrinkle;
-  };
-  struct GbufferProgram {
-    std::vector<std::string> defines;
-    Program program;
-  };
-
-  enum { kAllObjects, kStaticObjects, kAnimatedObjects };
-  void drawObjects(const Framebuffer& target, bool clear, int which, const OrbitCamera& camera,
-                   const glm::mat4& view_projection, double time);
-  void buildPrograms();
-  //! (Re)makes the textures drawn from the scene seed: erosion noise, paper absorbency.
-  void seedNoise(const scene::Scene& s);
-  void ensureTargets(int width, int height);
-  void uploadObjectParams(const OrbitCamera& camera, int height);
-  glm::dmat4 modelAt(std::size_t object, double time) const;
-  std::string requestKey(const OrbitCamera& camera, int width, int height) const;
-
-  scene::Scene scene_;
-  std::vector<GpuObject> objects_;
-  mesh::Bounds world_bounds_;
-  std::vector<std::string> passes_;
-  std::map<std::string, std::vector<std::string>> variants_;
-  bool lines_ = false, shading_ = false, wrinkles_ = false, debug_outputs_ = false;
-
-  std::vector<GbufferProgram> gbuffer_programs_;
-  Program ink_program_;
-  GLuint empty_vao_ = 0;
-  GLuint params_buffer_ = 0;
-  std::size_t params_capacity_ = 0;
-  std::optional<Texture2D> noise_;
-  std::optional<std::uint64_t> noise_seed_;  //!< the seed noise_ and absorbency_ were drawn from
-
-  Framebuffer gbuffer_, static_gbuffer_, final_;
-  Framebuffer diffused_;                        //!< the picture after ink diffusion
-  std::optional<InkDiffusionPass> diffusion_;   //!< built only when the scene diffuses ink
-  std::optional<Texture2D> absorbency_;
-  std::optional<CanvasPass> canvas_;            //!< built only when the scene has a canvas
-  const Texture2D* canvas_noise_ = nullptr;     //!< the last frame's canvas
-  std::string static_layer_key_;  //!< request the static layer was drawn for
-  GpuTimer timer_;
-  std::string last_key_;
-  glm::dmat4 last_inverse_view_projection_{1.0};
-
- public:
   InkRenderer(const InkRenderer&) = delete;
   InkRenderer& operator=(const InkRenderer&) = delete;
   ~InkRenderer();
+
+ private:
+  struct Built {
+    const PassEntry* entry;
+    std::unique_ptr<RenderPass> pass;
+  };
+  const RenderPass* find(const std::string& name) const;
+  //! Model matrices, bounding spheres and the world bounds from the scene's transforms.
+  void setObjects(const scene::Scene& s);
+  void collectVariants();
+  std::string requestKey(const OrbitCamera& camera, int width, int height) const;
+
+  scene::Scene scene_;
+  std::vector<SceneObjectGpu> objects_;
+  mesh::Bounds world_bounds_;
+  std::vector<Built> passes_;
+  std::vector<std::string> pass_names_;
+  std::map<std::string, std::vector<std::string>> variants_;
+  int width_ = 0, height_ = 0;
+  const Framebuffer* last_output_ = nullptr;  //!< the picture's framebuffer
+  GpuTimer timer_;
+  std::string last_key_;
+  glm::dmat4 last_inverse_view_projection_{1.0};
 };
 
 }  // namespace shanshui::render

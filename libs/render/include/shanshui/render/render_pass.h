@@ -1,0 +1,110 @@
+// The renderer's passes behind one interface, and the one list of them (pass_list.cpp).
+// The renderer builds the passes the scene wants, in list order, hands each frame's
+// inputs and the images made so far to each, times them, and shows the last picture.
+// Adding a pass: its shaders, one source file with a RenderPass, one line in passList(),
+// its keys in the scene's parameter description, its tests (docs/render.md, "Adding a pass").
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "shanshui/render/camera.h"
+#include "shanshui/render/gl_resources.h"
+#include "shanshui/render/gpu_mesh.h"
+#include "shanshui/render/gpu_timer.h"
+#include "shanshui/scene/scene.h"
+#include "shanshui/scene/scene_assets.h"
+
+namespace shanshui::render {
+
+//! One object of the scene on the GPU, shared by the passes.
+struct SceneObjectGpu {
+  GpuMesh mesh;                      //!< uploaded relative to the centre of model_bounds
+  mesh::Bounds model_bounds;
+  double model_feature_size = 0.0;   //!< model units
+  double max_triangle_area = 0.0;    //!< model units
+  std::optional<Texture2D> wrinkle;
+  glm::dmat4 model{1.0};             //!< uploaded coordinates to world (from the scene's transform)
+  glm::dvec3 centre{0.0};            //!< world, of the bounding sphere
+  double radius = 1.0;               //!< world bounding-sphere radius
+  double feature_size = 0.0;         //!< world units
+};
+
+//! What every pass of a frame reads.
+struct FrameInputs {
+  const scene::Scene& scene;
+  const std::vector<SceneObjectGpu>& objects;
+  const mesh::Bounds& world_bounds;
+  const OrbitCamera& camera;
+  int width = 0, height = 0;
+  double time = 0.0;                 //!< seconds, for spinning objects
+  std::string static_key;            //!< changes when anything but the time changes
+  GpuTimer* timer = nullptr;         //!< time each pass under its name when set
+
+  //! Model matrix of object i at the frame's time.
+  glm::dmat4 modelAt(std::size_t i) const;
+  glm::mat4 viewProjection() const;
+};
+
+//! The images the passes hand on; a pass reads what earlier passes wrote.
+struct FrameImages {
+  const Framebuffer* gbuffer = nullptr;  //!< normal + curvature, surface + id, depth
+  const Texture2D* canvas = nullptr;     //!< unit-variance paper noise (R32F)
+  const Texture2D* picture = nullptr;    //!< the picture so far (RGBA8)
+};
+
+class RenderPass {
+ public:
+  virtual ~RenderPass() = default;
+  //! Name in statistics and debug views.
+  virtual std::string name() const = 0;
+  //! Compiles the programs from the current shader sources (also the hot reload); on an
+  //! error the old programs stay and the error is thrown.
+  virtual void buildPrograms() = 0;
+  //! The defines of each program built.
+  virtual std::vector<std::string> variants() const = 0;
+  //! Takes the scene's live parameters (the structure is the same as at construction).
+  virtual void setScene(const scene::Scene&) {}
+  //! Makes the targets for an output size (called when it changes).
+  virtual void resize(int width, int height) = 0;
+  virtual void run(const FrameInputs& in, FrameImages& images) = 0;
+  //! The pass's output, for tests and debug views.
+  virtual const Framebuffer* target() const = 0;
+  //! Extra debug targets (the ink pass's line weight and tone); false if not supported.
+  virtual bool setDebugOutputs(bool) { return false; }
+};
+
+//! What a pass is built from.
+struct PassSetup {
+  const scene::Scene& scene;
+  const std::vector<SceneObjectGpu>& objects;
+  const mesh::Bounds& world_bounds;
+};
+
+//! One entry of the pass list: a name, whether a scene wants the pass, the compile-time
+//! choices it makes for that scene (with the scene's rebuild keys, what decides when a new
+//! renderer is needed), and how to build it.
+struct PassEntry {
+  const char* name;
+  bool (*wanted)(const scene::Scene&);
+  std::string (*structure)(const scene::Scene&);
+  std::unique_ptr<RenderPass> (*make)(const PassSetup&);
+};
+
+//! Every pass, in execution order.
+const std::vector<PassEntry>& passList();
+
+// The passes (each in its own source file).
+std::unique_ptr<RenderPass> makeGbufferPass(const PassSetup&);
+std::string gbufferStructure(const scene::Scene&);
+std::unique_ptr<RenderPass> makeCanvasPass(const PassSetup&);
+std::string canvasStructure(const scene::Scene&);
+std::unique_ptr<RenderPass> makeInkPass(const PassSetup&);
+std::string inkStructure(const scene::Scene&);
+std::unique_ptr<RenderPass> makeDiffusionPass(const PassSetup&);
+
+std::string joined(const std::vector<std::string>& v);
+
+}  // namespace shanshui::render

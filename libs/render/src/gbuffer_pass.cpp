@@ -1,0 +1,173 @@
+// The G-buffer pass: every object's normal and curvature, surface detail (erosion noise,
+// added noise, wrinkle luma) and object id, and depth. Each object gets the program
+// variant its parameters need (SURFACE, WRINKLE, OBJECT_CURVATURE / SCREEN_CURVATURE).
+// With spinning objects the static ones are drawn into a cached layer (again only when
+// the camera, size or parameters change) and copied under the animated ones each frame.
+#include <algorithm>
+#include <optional>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "shanshui/noise/value_noise.h"
+#include "shanshui/render/gl_check.h"
+#include "shanshui/render/render_pass.h"
+#include "shanshui/render/shader_program.h"
+
+namespace shanshui::render {
+
+namespace {
+
+bool wrinkled(const scene::Object& o) { return !o.wrinkle.texture.empty() && o.shading.enabled; }
+
+std::vector<std::string> objectDefines(const scene::Scene& s, const scene::Object& o) {
+  std::vector<std::string> d;
+  if (s.usesShading()) d.emplace_back("SURFACE");
+  if (wrinkled(o)) d.emplace_back("WRINKLE");
+  if (o.lines.enabled) d.emplace_back(scene::perVertex(o.lines.curvature) ? "OBJECT_CURVATURE" : "SCREEN_CURVATURE");
+  return d;
+}
+
+class GbufferPass final : public RenderPass {
+ public:
+  explicit GbufferPass(const PassSetup& setup) : shading_(setup.scene.usesShading()), animated_(setup.scene.hasAnimation()) {
+    for (const scene::Object& o : setup.scene.objects) {
+      const std::vector<std::string> defines = objectDefines(setup.scene, o);
+      const auto it = std::find_if(programs_.begin(), programs_.end(), [&](const Variant& v) { return v.defines == defines; });
+      program_of_.push_back(static_cast<int>(it - programs_.begin()));
+      if (it == programs_.end()) programs_.push_back({defines, Program()});
+    }
+    buildPrograms();
+  }
+
+  std::string name() const override { return "gbuffer"; }
+
+  void buildPrograms() override {
+    std::vector<Program> built;  // all first, so a failure keeps the old ones
+    for (const Variant& v : programs_) built.emplace_back(std::vector<std::string>{"ink_gbuffer.vert", "ink_gbuffer.frag"}, v.defines);
+    for (std::size_t i = 0; i < built.size(); ++i) programs_[i].program = std::move(built[i]);
+  }
+
+  std::vector<std::string> variants() const override {
+    std::vector<std::string> out;
+    for (const Variant& v : programs_) out.push_back(joined(v.defines));
+    return out;
+  }
+
+  void setScene(const scene::Scene& s) override {
+    // Value noise is smooth at texel scale: one texel of the right mip level is enough
+    // when minified (a quarter of the bilinear fetches); magnified it is still filtered.
+    if (shading_ && seed_ != s.seed) {
+      noise_ = Texture2D::tiledFromImage(noise::erosionNoise(256, s.seed), GL_RG8, GL_NEAREST_MIPMAP_NEAREST);
+      seed_ = s.seed;
+    }
+  }
+
+  void resize(int width, int height) override {
+    // Normal and curvature in 16-bit unsigned normalised channels (encoded in
+    // shaders/ink_gbuffer.frag): llvmpipe converts to half floats in software, and an
+    // RGBA16F target cost ~10 ms more a frame at 1024² (measured side by side).
+    gbuffer_ = Framebuffer(width, height, {GL_RGBA16, GL_RGBA8}, true);
+    if (animated_) static_gbuffer_ = Framebuffer(width, height, {GL_RGBA16, GL_RGBA8}, true);
+    static_key_.clear();
+  }
+
+  void run(const FrameInputs& in, FrameImages& images) override {
+    if (!animated_) {
+      if (in.timer) in.timer->begin("gbuffer");
+      draw(in, gbuffer_, true, Which::All);
+      if (in.timer) in.timer->end();
+    } else {
+      if (in.static_key != static_key_) {
+        if (in.timer) in.timer->begin("gbuffer_static");
+        draw(in, static_gbuffer_, true, Which::Static);
+        if (in.timer) in.timer->end();
+        static_key_ = in.static_key;
+      }
+      if (in.timer) in.timer->begin("gbuffer_animated");
+      for (int i = 0; i < 2; ++i) copy(static_gbuffer_.colour(i), gbuffer_.colour(i), in);
+      copy(static_gbuffer_.depth(), gbuffer_.depth(), in);
+      draw(in, gbuffer_, false, Which::Animated);
+      if (in.timer) in.timer->end();
+    }
+    SHANSHUI_GL_CHECK("gbuffer pass");
+    images.gbuffer = &gbuffer_;
+  }
+
+  const Framebuffer* target() const override { return &gbuffer_; }
+
+ private:
+  struct Variant {
+    std::vector<std::string> defines;
+    Program program;
+  };
+  enum class Which { All, Static, Animated };
+
+  static void copy(const Texture2D& from, const Texture2D& to, const FrameInputs& in) {
+    glCopyImageSubData(from.id(), GL_TEXTURE_2D, 0, 0, 0, 0, to.id(), GL_TEXTURE_2D, 0, 0, 0, 0, in.width, in.height, 1);
+  }
+
+  void draw(const FrameInputs& in, const Framebuffer& target, bool clear, Which which) const {
+    target.bind();
+    if (clear) {
+      // Only depth: the ink pass reads the colour targets where something was drawn
+      // (depth below 1), so clearing them would be wasted bandwidth.
+      const float far_depth = 1.0f;
+      glClearNamedFramebufferfv(target.id(), GL_DEPTH, 0, &far_depth);
+    }
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glDisable(GL_CULL_FACE);
+    glDisable(GL_BLEND);
+    const glm::mat4 view_projection = in.viewProjection();
+    for (std::size_t i = 0; i < in.objects.size(); ++i) {
+      const scene::Object& o = in.scene.objects[i];
+      if ((which == Which::Static && o.animated()) || (which == Which::Animated && !o.animated())) continue;
+      const SceneObjectGpu& g = in.objects[i];
+      const glm::dmat4 model = in.modelAt(i);
+      const Program& p = programs_[static_cast<std::size_t>(program_of_[i])].program;
+      p.use();
+      p.set("u_model", glm::mat4(model));
+      p.set("u_normal_matrix", glm::mat3(glm::transpose(glm::inverse(glm::dmat3(model)))));
+      p.set("u_view_projection", view_projection);
+      p.set("u_object_id", static_cast<float>(i + 1) / 255.0f);
+      if (o.lines.enabled && o.lines.curvature == scene::CurvatureSource::Screen) {
+        p.set("u_feature_size", static_cast<float>(g.feature_size));
+      }
+      if (shading_) {
+        glBindTextureUnit(0, noise_->id());
+        p.set("u_noise", 0);
+        const double model_radius = 0.5 * glm::length(g.model_bounds.size());
+        const double tile = noise::kErosionCells * o.shading.noise_scale * model_radius;
+        p.set("u_noise_frequency", static_cast<float>(1.0 / std::max(tile, 1e-30)));
+      }
+      if (g.wrinkle) {
+        glBindTextureUnit(1, g.wrinkle->id());
+        p.set("u_wrinkle", 1);
+        p.set("u_repeat", static_cast<float>(o.wrinkle.repeat));
+      }
+      // Front to back, so hidden fragments fail the depth test before they are shaded.
+      const glm::dvec3 forward = glm::inverse(glm::dmat3(model)) * (in.camera.target - in.camera.eye());
+      g.mesh.drawFrontToBack(glm::vec3(forward));
+    }
+  }
+
+  bool shading_, animated_;
+  std::vector<Variant> programs_;
+  std::vector<int> program_of_;  //!< per object, index into programs_
+  std::optional<Texture2D> noise_;
+  std::optional<std::uint64_t> seed_;
+  Framebuffer gbuffer_, static_gbuffer_;
+  std::string static_key_;  //!< request the static layer was drawn for
+};
+
+}  // namespace
+
+std::string gbufferStructure(const scene::Scene& s) {
+  std::string k = s.hasAnimation() ? "animated" : "static";
+  for (const scene::Object& o : s.objects) k += "|" + joined(objectDefines(s, o));
+  return k;
+}
+
+std::unique_ptr<RenderPass> makeGbufferPass(const PassSetup& setup) { return std::make_unique<GbufferPass>(setup); }
+
+}  // namespace shanshui::render

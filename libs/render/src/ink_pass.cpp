@@ -1,0 +1,163 @@
+// The ink pass: feature lines (seed 001 Eq. 1), interior shading (Eqs. 2, 3, 5) and the
+// composite on paper in one image pass over the G-buffer (shaders/ink.frag), with the
+// per-object parameters in the block of shaders/ink_object_params.glsl.
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "shanshui/render/gl_check.h"
+#include "shanshui/render/ink_object_params.h"
+#include "shanshui/render/render_pass.h"
+#include "shanshui/render/shader_program.h"
+
+namespace shanshui::render {
+
+namespace {
+
+bool wrinkled(const scene::Object& o) { return !o.wrinkle.texture.empty() && o.shading.enabled; }
+
+// The paper grain goes on last: here, or after the diffusion when there is one.
+bool grainHere(const scene::Scene& s) { return s.canvas.type != scene::CanvasType::None && !s.diffusion.enabled(); }
+
+std::vector<std::string> inkDefines(const scene::Scene& s, bool debug_outputs) {
+  std::vector<std::string> d;
+  if (s.usesLines()) d.emplace_back("LINES");
+  if (s.usesShading()) d.emplace_back("SHADING");
+  if (s.usesWrinkles()) d.emplace_back("WRINKLE");
+  if (s.objects.size() == 1) d.emplace_back("SINGLE_OBJECT");
+  if (grainHere(s)) d.emplace_back("CANVAS");
+  if (debug_outputs) d.emplace_back("DEBUG_OUTPUTS");
+  return d;
+}
+
+class InkPass final : public RenderPass {
+ public:
+  explicit InkPass(const PassSetup& setup)
+      : scene_(setup.scene), vao_(VertexArray::create()), params_(Buffer::create()) {
+    buildPrograms();
+  }
+
+  std::string name() const override { return "ink"; }
+
+  void buildPrograms() override {
+    defines_ = inkDefines(scene_, debug_outputs_);
+    program_ = Program({"fullscreen.vert", "ink.frag"}, defines_);
+  }
+
+  std::vector<std::string> variants() const override { return {joined(defines_)}; }
+
+  void setScene(const scene::Scene& s) override { scene_ = s; }
+
+  void resize(int width, int height) override {
+    std::vector<GLenum> out{GL_RGBA8};
+    if (debug_outputs_) out.insert(out.end(), {GL_RG16F, GL_R16F});
+    target_ = Framebuffer(width, height, out, false);
+  }
+
+  bool setDebugOutputs(bool on) override {
+    if (on != debug_outputs_) {
+      debug_outputs_ = on;
+      buildPrograms();
+      if (target_.width() > 0) resize(target_.width(), target_.height());
+    }
+    return true;
+  }
+
+  void run(const FrameInputs& in, FrameImages& images) override {
+    uploadObjectParams(in);
+    if (in.timer) in.timer->begin("ink");
+    const Framebuffer& g = *images.gbuffer;
+    glDisable(GL_DEPTH_TEST);
+    glBindVertexArray(vao_.id());
+    glBindImageTexture(0, g.colour(0).id(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA16);
+    glBindImageTexture(1, g.colour(1).id(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA8);
+    glBindTextureUnit(2, g.depth().id());
+    target_.bind();
+    const Program& ink = program_;
+    ink.use();
+    const double aspect = static_cast<double>(in.width) / in.height;
+    const OrbitCamera& camera = in.camera;
+    ink.set("u_inverse_view_projection",
+            glm::mat4(glm::inverse(glm::dmat4(camera.projection(aspect)) * glm::dmat4(camera.view()))));
+    ink.set("u_eye", glm::vec3(camera.eye()));
+    ink.set("u_near_far", glm::vec2(static_cast<float>(camera.near_plane), static_cast<float>(camera.far_plane)));
+    ink.set("u_light_dir", glm::vec3(glm::normalize(in.scene.light.direction)));
+    ink.set("u_paper", glm::vec3(in.scene.output.paper));
+    ink.set("u_fade", static_cast<float>(in.scene.output.fade));
+    const double to_centre = glm::length(camera.eye() - in.world_bounds.centre());
+    const double radius = 0.5 * glm::length(in.world_bounds.size());
+    ink.set("u_fade_range", glm::vec2(static_cast<float>(to_centre - 0.5 * radius), static_cast<float>(to_centre + radius)));
+    if (grainHere(in.scene)) {
+      glBindImageTexture(2, images.canvas->id(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_R32F);
+      ink.set("u_canvas_contrast", static_cast<float>(in.scene.canvas.contrast));
+    }
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    if (in.timer) in.timer->end();
+    SHANSHUI_GL_CHECK("ink pass");
+    images.picture = &target_.colour(0);
+  }
+
+  const Framebuffer* target() const override { return &target_; }
+
+ private:
+  void uploadObjectParams(const FrameInputs& in) {
+    std::vector<gpu::ObjectParams> params(in.objects.size());
+    const double pixels_per_unit_at_1 = 0.5 * in.height / std::tan(glm::radians(in.camera.fov_y_deg) * 0.5);
+    for (std::size_t i = 0; i < in.objects.size(); ++i) {
+      const scene::Object& o = in.scene.objects[i];
+      const SceneObjectGpu& g = in.objects[i];
+      const scene::LineParams& l = o.lines;
+      const scene::ShadingParams& sh = o.shading;
+      // Projected area of the bounding sphere decides the small-object path.
+      const double d = std::max(glm::length(in.camera.eye() - g.centre), 1e-12);
+      const double r_px = g.radius / d * pixels_per_unit_at_1;
+      const bool small = std::numbers::pi * r_px * r_px < l.small_object_px;
+      gpu::ObjectParams& p = params[i];
+      p.line_color = glm::vec3(l.line_color);
+      p.curve_factor = static_cast<float>(l.curve_factor);
+      p.bg_color = glm::vec3(l.bg_color);
+      p.line_threshold = static_cast<float>(l.threshold);
+      p.soft_width = static_cast<float>(l.soft_width);
+      p.silhouette = static_cast<float>(l.silhouette);
+      p.depth_edges = static_cast<float>(l.depth_edges);
+      p.line_flags = (l.enabled ? gpu::kLinesOn : 0u) | (small ? gpu::kNormalOnly : 0u);
+      p.tones = glm::vec4(sh.tones[0], sh.tones[1], sh.tones[2], sh.tones[3]);
+      p.thresholds = glm::vec4(sh.thresholds[0], sh.thresholds[1], sh.thresholds[2], sh.thresholds[3]);
+      p.tone5 = static_cast<float>(sh.tones[4]);
+      p.sigma = static_cast<float>(sh.sigma);
+      p.beta = static_cast<float>(sh.beta);
+      p.erosion = static_cast<float>(sh.erosion);
+      p.noise = static_cast<float>(sh.noise);
+      p.inv_inner_tex_factor = static_cast<float>(1.0 / o.wrinkle.inner_tex_factor);
+      p.shade_flags = (sh.enabled ? gpu::kShadingOn : 0u) | (sh.half_lambert ? gpu::kHalfLambert : 0u) |
+                      (sh.line_value ? gpu::kLineValue : 0u) | (wrinkled(o) ? gpu::kWrinkled : 0u);
+    }
+    const std::size_t bytes = params.size() * sizeof(gpu::ObjectParams);
+    if (bytes > capacity_) {
+      params_ = Buffer::create();
+      glNamedBufferStorage(params_.id(), static_cast<GLsizeiptr>(bytes), nullptr, GL_DYNAMIC_STORAGE_BIT);
+      capacity_ = bytes;
+    }
+    glNamedBufferSubData(params_.id(), 0, static_cast<GLsizeiptr>(bytes), params.data());
+    // One object: a uniform block (see shaders/ink_objects.glsl); more: a storage buffer.
+    if (in.objects.size() == 1) glBindBufferBase(GL_UNIFORM_BUFFER, 0, params_.id());
+    else glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, params_.id());
+  }
+
+  scene::Scene scene_;
+  bool debug_outputs_ = false;
+  std::vector<std::string> defines_;
+  Program program_;
+  VertexArray vao_;
+  Buffer params_;
+  std::size_t capacity_ = 0;
+  Framebuffer target_;
+};
+
+}  // namespace
+
+std::string inkStructure(const scene::Scene& s) { return joined(inkDefines(s, false)); }
+
+std::unique_ptr<RenderPass> makeInkPass(const PassSetup& setup) { return std::make_unique<InkPass>(setup); }
+
+}  // namespace shanshui::render

@@ -1,0 +1,43 @@
+// The renderer's passes, in execution order: the one place a pass is added.
+#include "shanshui/render/render_pass.h"
+
+#include <glm/gtc/matrix_transform.hpp>
+
+namespace shanshui::render {
+
+namespace {
+bool always(const scene::Scene&) { return true; }
+bool hasCanvas(const scene::Scene& s) { return s.canvas.type != scene::CanvasType::None; }
+bool diffuses(const scene::Scene& s) { return s.diffusion.enabled(); }
+std::string nothing(const scene::Scene&) { return ""; }
+}  // namespace
+
+const std::vector<PassEntry>& passList() {
+  static const std::vector<PassEntry> list = {
+      {"gbuffer", always, gbufferStructure, makeGbufferPass},
+      {"canvas", hasCanvas, canvasStructure, makeCanvasPass},
+      {"ink", always, inkStructure, makeInkPass},
+      {"diffusion", diffuses, nothing, makeDiffusionPass},
+  };
+  return list;
+}
+
+std::string joined(const std::vector<std::string>& v) {
+  std::string s;
+  for (const auto& x : v) s += (s.empty() ? "" : " ") + x;
+  return s;
+}
+
+glm::dmat4 FrameInputs::modelAt(std::size_t i) const {
+  // A spinning object turns about the vertical axis through its centre (the origin of its
+  // uploaded coordinates).
+  const scene::Object& o = scene.objects[i];
+  const glm::dmat4& model = objects[i].model;
+  return o.animated() ? glm::rotate(model, glm::radians(o.spin_deg_per_s * time), glm::dvec3(0, 0, 1)) : model;
+}
+
+glm::mat4 FrameInputs::viewProjection() const {
+  return camera.projection(static_cast<double>(width) / height) * camera.view();
+}
+
+}  // namespace shanshui::render
