@@ -230,3 +230,23 @@ TEST(Random, StreamsAreDistinctAndReproducible) {
 
 }  // namespace
 }  // namespace shanshui
+
+namespace shanshui {
+namespace {
+
+// A failed check aborts and prints the condition with both values.
+TEST(CheckDeathTest, ComparisonsPrintBothValues) {
+  const int three = 3, four = 4;
+  EXPECT_DEATH(SHANSHUI_CHECK_EQ(three, four), "CHECK\\(three == four\\) with 3 vs 4");
+  EXPECT_DEATH(SHANSHUI_CHECK_NE(three, three), "CHECK\\(three != three\\) with 3 vs 3");
+  EXPECT_DEATH(SHANSHUI_CHECK_GT(three, four), "CHECK\\(three > four\\) with 3 vs 4");
+  EXPECT_DEATH(SHANSHUI_CHECK_GE(three, four), "CHECK\\(three >= four\\) with 3 vs 4");
+  EXPECT_DEATH(SHANSHUI_CHECK_LT(four, three), "CHECK\\(four < three\\) with 4 vs 3");
+  EXPECT_DEATH(SHANSHUI_CHECK_LE(four, three), "CHECK\\(four <= three\\) with 4 vs 3");
+  SHANSHUI_CHECK_NE(three, four);
+  SHANSHUI_CHECK_GT(four, three);
+  SHANSHUI_CHECK_GE(three, three);
+}
+
+}  // namespace
+}  // namespace shanshui

@@ -373,7 +373,8 @@ Decoded readPng(const std::filesystem::path& path) {
 
 std::string encodePng(const Image& img, const std::string& name, PixelDepth depth, bool smallest) {
   SHANSHUI_CHECK(depth == PixelDepth::UInt8 || depth == PixelDepth::UInt16);
-  SHANSHUI_CHECK(img.channels >= 1 && img.channels <= 4);
+  SHANSHUI_CHECK_GE(img.channels, 1);
+  SHANSHUI_CHECK_LE(img.channels, 4);
   const int bits = depth == PixelDepth::UInt16 ? 16 : 8;
   if (!smallest) return encodePngParallel(img, name, bits);
   PngContext ctx;

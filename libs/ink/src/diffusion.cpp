@@ -57,7 +57,7 @@ InkField inkFromImage(const image::Image& rgb, const double paper[3]) {
 }
 
 image::Image applyInk(const image::Image& rgb, const InkField& before, const InkField& after, const double paper[3]) {
-  SHANSHUI_CHECK(before.ink.size() == after.ink.size());
+  SHANSHUI_CHECK_EQ(before.ink.size(), after.ink.size());
   image::Image out = rgb;
   for (int y = 0; y < rgb.height; ++y) {
     for (int x = 0; x < rgb.width; ++x) {
@@ -168,7 +168,7 @@ InkField boundaryDiffusion(const InkField& in, const std::vector<float>& absorbe
   const int w = in.width, h = in.height;
   const std::size_t n = in.ink.size();
   SHANSHUI_CHECK(absorbency.empty() || absorbency.size() == n);
-  SHANSHUI_CHECK(stroke.size() == n);
+  SHANSHUI_CHECK_EQ(stroke.size(), n);
   InkField cur = in;
   if (o.iterations == 0 || n == 0) return cur;
   std::vector<double> capacity(n);  // ink a receiver takes per iteration

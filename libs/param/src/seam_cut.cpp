@@ -104,7 +104,7 @@ SeamCut cutOpen(const mesh::Mesh& m, const std::string& what) {
       }
       if (y == c) break;
       f = faceOf.at(directed(p, y));
-      SHANSHUI_CHECK(guard < m.triangles.size());
+      SHANSHUI_CHECK_LT(guard, m.triangles.size());
     }
   }
   return cut;

@@ -134,7 +134,8 @@ GLsizei CanvasPass::uploadVisibleDome(const glm::dmat4& model_view_projection) {
 }
 
 void CanvasPass::setParams(const scene::Canvas& canvas, std::uint64_t seed) {
-  SHANSHUI_CHECK(canvas.type == canvas_.type && canvas.pattern() == canvas_.pattern());
+  SHANSHUI_CHECK(canvas.type == canvas_.type);
+  SHANSHUI_CHECK(canvas.pattern() == canvas_.pattern());
   canvas_ = canvas;
   seed_ = canvasSeed(seed);
   static_key_.clear();

@@ -4,7 +4,9 @@
 #include <epoxy/gl.h>
 #include <GLFW/glfw3.h>
 
+#include <mutex>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "shanshui/core/error.h"
@@ -14,15 +16,27 @@ namespace shanshui::render {
 
 namespace {
 
-void GLAPIENTRY debugMessage(GLenum, GLenum type, GLuint, GLenum severity, GLsizei,
-                             const GLchar* message, const void*) {
+std::mutex& debugMutex() {
+  static std::mutex m;
+  return m;
+}
+std::vector<std::string>& debugMessages() {
+  static std::vector<std::string> messages;
+  return messages;
+}
+
+void GLAPIENTRY debugMessage(GLenum, GLenum type, GLuint, GLenum severity, GLsizei, const GLchar* message,
+                             const void*) {
   if (type == GL_DEBUG_TYPE_ERROR || severity == GL_DEBUG_SEVERITY_HIGH) {
     std::fprintf(stderr, "GL debug: %s\n", message);
+    const std::lock_guard<std::mutex> lock(debugMutex());
+    debugMessages().emplace_back(message);
   }
 }
 
 void enableDebugOutput() {
   if (epoxy_gl_version() >= 43 || epoxy_has_gl_extension("GL_KHR_debug")) {
+    glEnable(GL_DEBUG_OUTPUT);
     glEnable(GL_DEBUG_OUTPUT_SYNCHRONOUS);
     glDebugMessageCallback(debugMessage, nullptr);
   }
@@ -191,6 +205,11 @@ std::string GlContext::description() const {
   };
   return std::string(kind() == ContextKind::Headless ? "EGL headless" : "GLFW window") + ", " +
          str(GL_VENDOR) + ", " + str(GL_RENDERER) + ", OpenGL " + str(GL_VERSION);
+}
+
+std::vector<std::string> GlContext::takeDebugMessages() {
+  const std::lock_guard<std::mutex> lock(debugMutex());
+  return std::exchange(debugMessages(), {});
 }
 
 }  // namespace shanshui::render

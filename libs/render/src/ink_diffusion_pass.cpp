@@ -106,7 +106,7 @@ void InkDiffusionPass::run(const Texture2D& colour, const PaperTexture& texture,
   SHANSHUI_CHECK(texture.absorbency != nullptr);
   const int w = colour.width(), h = colour.height();
   // Read and written as images, which fixes their formats.
-  SHANSHUI_CHECK(colour.format() == GL_RGBA8);
+  SHANSHUI_CHECK_EQ(colour.format(), static_cast<GLenum>(GL_RGBA8));
   SHANSHUI_CHECK(output.width() == w && output.height() == h && output.format() == GL_RGBA8);
   SHANSHUI_CHECK(!texture.grain || texture.grain->format() == GL_R32F);
   ensureSize(w, h);

@@ -110,6 +110,8 @@ TEST_F(Headless, DriverErrorsAreMappedToFileAndLine) {
   glGetShaderInfoLog(s, sizeof log, nullptr, log);
   glDeleteShader(s);
   ASSERT_FALSE(ok);
+  // The driver also reports the broken shader on the debug output: expected here.
+  for (const std::string& m : GlContext::takeDebugMessages()) EXPECT_NE(m.find("error"), std::string::npos) << m;
   const std::string mapped = mapShaderLog(log, pre.files);
   EXPECT_NE(mapped.find("mesh_preview.frag:42"), std::string::npos) << mapped << " from " << log;
   // The variant defines do not shift line numbers of the real code either.
@@ -133,6 +135,22 @@ TEST_F(Headless, BadPreviewOptionsAreRefused) {
   o.elevation_deg = 90;
   EXPECT_THROW(renderPreview(sphere, o), Error);
   EXPECT_THROW(renderPreview(mesh::Mesh{}, {}), Error);
+}
+
+}  // namespace
+}  // namespace shanshui::render
+
+namespace shanshui::render {
+namespace {
+
+// The GL tests' debug output catches a real error: an invalid enum reaches the list.
+TEST_F(Headless, DebugOutputReportsGlErrors) {
+  GlContext::takeDebugMessages();
+  glBindTexture(GL_TEXTURE_2D + 12345, 0);  // GL_INVALID_ENUM
+  const std::vector<std::string> messages = GlContext::takeDebugMessages();
+  EXPECT_FALSE(messages.empty());
+  while (glGetError() != GL_NO_ERROR) {
+  }
 }
 
 }  // namespace

@@ -5,7 +5,9 @@
 namespace shanshui::texsynth {
 
 std::vector<int> minimumErrorPath(const cv::Mat& cost) {
-  SHANSHUI_CHECK(cost.type() == CV_64F && cost.rows >= 1 && cost.cols >= 1);
+  SHANSHUI_CHECK_EQ(cost.type(), CV_64F);
+  SHANSHUI_CHECK_GE(cost.rows, 1);
+  SHANSHUI_CHECK_GE(cost.cols, 1);
   const int rows = cost.rows, cols = cost.cols;
   // total(r, c): least cost of a path from row 0 ending at (r, c).
   cv::Mat total(rows, cols, CV_64F);

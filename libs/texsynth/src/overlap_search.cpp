@@ -16,7 +16,9 @@ const char* searchModeName(SearchMode mode) {
 }
 
 OverlapSearch::OverlapSearch(const image::Image& sample, int block) : sample_(sample), block_(block) {
-  SHANSHUI_CHECK(block >= 1 && block <= sample.width && block <= sample.height);
+  SHANSHUI_CHECK_GE(block, 1);
+  SHANSHUI_CHECK_LE(block, sample.width);
+  SHANSHUI_CHECK_LE(block, sample.height);
   // Circular correlation of size >= the sample never wraps for windows that fit inside it,
   // so no padding beyond the next fast DFT size is needed.
   dftSize_ = {cv::getOptimalDFTSize(sample.width), cv::getOptimalDFTSize(sample.height)};
@@ -49,7 +51,9 @@ void OverlapSearch::errors(const image::Image& patch, const cv::Mat& mask, Searc
   SHANSHUI_CHECK_EQ(patch.width, block_);
   SHANSHUI_CHECK_EQ(patch.height, block_);
   SHANSHUI_CHECK_EQ(patch.channels, sample_.channels);
-  SHANSHUI_CHECK(mask.type() == CV_8U && mask.rows == block_ && mask.cols == block_);
+  SHANSHUI_CHECK_EQ(mask.type(), CV_8U);
+  SHANSHUI_CHECK_EQ(mask.rows, block_);
+  SHANSHUI_CHECK_EQ(mask.cols, block_);
   switch (mode) {
     case SearchMode::Fft: return fftErrors(patch, mask, out);
     case SearchMode::Exhaustive: return exhaustiveErrors(patch, mask, out);

@@ -15,7 +15,8 @@ const char* seamModeName(SeamMode mode) {
 }
 
 OverlapStrips overlapStrips(const cv::Mat& filled) {
-  SHANSHUI_CHECK(filled.type() == CV_8U && filled.rows == filled.cols);
+  SHANSHUI_CHECK_EQ(filled.type(), CV_8U);
+  SHANSHUI_CHECK_EQ(filled.rows, filled.cols);
   const int b = filled.rows;
   auto columnFull = [&](int x) {
     for (int y = 0; y < b; ++y) {
@@ -93,7 +94,10 @@ cv::Mat dpCutMask(const cv::Mat& diff, const cv::Mat& filled) {
 
 cv::Mat seamMask(const image::Image& old, const image::Image& patch, const cv::Mat& filled, SeamMode mode) {
   const int b = filled.rows;
-  SHANSHUI_CHECK(old.width == b && old.height == b && patch.width == b && patch.height == b);
+  SHANSHUI_CHECK_EQ(old.width, b);
+  SHANSHUI_CHECK_EQ(old.height, b);
+  SHANSHUI_CHECK_EQ(patch.width, b);
+  SHANSHUI_CHECK_EQ(patch.height, b);
   SHANSHUI_CHECK_EQ(old.channels, patch.channels);
   cv::Mat isNew;
   switch (mode) {

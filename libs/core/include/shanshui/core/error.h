@@ -49,6 +49,9 @@ namespace detail {
 #define SHANSHUI_CHECK_EQ(a, b) SHANSHUI_CHECK_OP(a, ==, b)
 #define SHANSHUI_CHECK_LT(a, b) SHANSHUI_CHECK_OP(a, <, b)
 #define SHANSHUI_CHECK_LE(a, b) SHANSHUI_CHECK_OP(a, <=, b)
+#define SHANSHUI_CHECK_NE(a, b) SHANSHUI_CHECK_OP(a, !=, b)
+#define SHANSHUI_CHECK_GT(a, b) SHANSHUI_CHECK_OP(a, >, b)
+#define SHANSHUI_CHECK_GE(a, b) SHANSHUI_CHECK_OP(a, >=, b)
 
 #ifdef NDEBUG
 #define SHANSHUI_DCHECK(cond) \

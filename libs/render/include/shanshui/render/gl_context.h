@@ -3,6 +3,7 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 struct GLFWwindow;
 
@@ -20,7 +21,7 @@ struct ContextOptions {
   std::string title = "shanshui";
   bool visible = true;  //!< window only
   bool vsync = true;    //!< window only
-  bool debug = false;   //!< GL debug context with messages turned into errors
+  bool debug = false;   //!< GL debug context: errors and high-severity messages are printed and kept
 };
 
 //! Owns the context; it is current on the creating thread after create().
@@ -36,6 +37,9 @@ class GlContext {
   virtual GLFWwindow* window() const { return nullptr; }
   //! One line naming the platform, vendor, renderer and version.
   std::string description() const;
+  //! The GL errors and high-severity messages of debug contexts (KHR_debug) since the
+  //! last call; the GL tests fail on any.
+  static std::vector<std::string> takeDebugMessages();
 };
 
 }  // namespace shanshui::render
