@@ -50,8 +50,10 @@ bench: build
 	$(BUILD)/bin/shanshui-bench --stage all --out out/bench
 	@echo "bench results: $(CURDIR)/out/bench/README.md"
 
+# Rewrites every C++ source to .clang-format's layout (CTest's style.clang_format checks it).
 format:
-	find apps libs tools tests bench -name '*.cpp' -o -name '*.h' | xargs clang-format -i
+	git ls-files -z 'apps/*.cpp' 'apps/*.h' 'libs/*.cpp' 'libs/*.h' 'tools/*.cpp' 'tools/*.h' 'tests/*.cpp' \
+	  'tests/*.h' 'bench/*.cpp' 'bench/*.h' 'fuzz/*.cpp' 'fuzz/*.h' | xargs -0 clang-format -i
 
 clean:
 	rm -rf $(BUILD) build-asan build-fuzz out

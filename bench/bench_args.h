@@ -61,8 +61,10 @@ inline BenchArgs parseBenchArgs(int argc, char** argv, const char* usage, std::i
     if (flag == "--quick") {
       a.quick = true;
     } else if ((flag == "--out" || known) && i + 1 < argc) {
-      if (flag == "--out") a.out = argv[++i];
-      else a.values[flag] = argv[++i];
+      if (flag == "--out")
+        a.out = argv[++i];
+      else
+        a.values[flag] = argv[++i];
     } else {
       std::fprintf(stderr, "usage: %s\n", usage);
       std::exit(2);

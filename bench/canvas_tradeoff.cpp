@@ -25,8 +25,10 @@
 
 #include <nlohmann/json.hpp>
 
-#include "shanshui/mesh/shapes.h"
+#include "bench_args.h"
+#include "order_stats.h"
 #include "shanshui/image/image_io.h"
+#include "shanshui/mesh/shapes.h"
 #include "shanshui/noise/canvas.h"
 #include "shanshui/noise/gabor.h"
 #include "shanshui/render/canvas_metrics.h"
@@ -34,8 +36,6 @@
 #include "shanshui/render/ink_renderer.h"
 #include "shanshui/scene/scene.h"
 #include "shanshui/scene/scene_assets.h"
-#include "bench_args.h"
-#include "order_stats.h"
 #include "tradeoff_points.h"
 
 namespace {
@@ -146,8 +146,8 @@ int main(int argc, char** argv) {
   std::ofstream csv(out / "canvas_tradeoff.csv"), md(out / "canvas_tradeoff.md");
   bench::TradeoffPoints points(out / "canvas_tradeoff_points.csv");
   const auto context = render::GlContext::create({.kind = render::ContextKind::Headless});
-  md << "# Dynamic canvas: temporal coherence, flatness, and error against run time\n\nDevice: " << context->description()
-     << "\n\n";
+  md << "# Dynamic canvas: temporal coherence, flatness, and error against run time\n\nDevice: "
+     << context->description() << "\n\n";
 
   scene::Scene sc = scene::loadScene(std::filesystem::path(SHANSHUI_SOURCE_DIR) / "samples/scenes/default.json");
   scene::AssetCache cache;
@@ -234,9 +234,10 @@ int main(int argc, char** argv) {
     csv << "section,kind,path,warping_error,ratio_to_static\n";
     for (Kind kind : {Kind::Silk, Kind::RicePaper, Kind::Static, Kind::ObjectSpace}) {
       char line[512];
-      std::snprintf(line, sizeof line, "| %s | %.4f | %.4f | %.4f | %.3f, %.3f, %.3f |\n", kKindNames[static_cast<int>(kind)],
-                    errors[kind]["orbit"], errors[kind]["dolly"], errors[kind]["pan"],
-                    errors[kind]["orbit"] / errors[Kind::Static]["orbit"], errors[kind]["dolly"] / errors[Kind::Static]["dolly"],
+      std::snprintf(line, sizeof line, "| %s | %.4f | %.4f | %.4f | %.3f, %.3f, %.3f |\n",
+                    kKindNames[static_cast<int>(kind)], errors[kind]["orbit"], errors[kind]["dolly"],
+                    errors[kind]["pan"], errors[kind]["orbit"] / errors[Kind::Static]["orbit"],
+                    errors[kind]["dolly"] / errors[Kind::Static]["dolly"],
                     errors[kind]["pan"] / errors[Kind::Static]["pan"]);
       md << line;
       for (const char* path : paths) {
@@ -317,7 +318,8 @@ int main(int argc, char** argv) {
        << "Cost: the sample scene at 1024², silk canvas, canvas and G-buffer passes timed by GPU timestamps in the "
           "same frames (median of 3). Error: one-way silk (`mix` 0) on a plane of 128 triangles filling a 512² "
           "frame, `grain` 32 (16 px here), `frequency` 0.1 (0.05 cycles per pixel here): the triangles are large "
-          "enough to hold several kernels each even at N′ = 8 (see render.md on fine meshes); relative L2 distance between the ring-averaged periodogram (Hann "
+          "enough to hold several kernels each even at N′ = 8 (see render.md on fine meshes); relative L2 distance "
+          "between the ring-averaged periodogram (Hann "
           "window, mean of 4 seeds) and the same average of the analytic Gabor spectrum, over rings above 1 % of "
           "its peak; the variance (1 expected); the excess kurtosis (0 for Gaussian noise, ~1/N′ for sparse "
           "convolution).\n\n"
@@ -333,10 +335,12 @@ int main(int argc, char** argv) {
     // The plane keeps its size with --quick: its pattern is in pixels of a 1024-tall frame.
     const int n = 512, frame = quick ? 256 : 1024;
     scene::Scene ps = scene::parseScene(
-        nlohmann::json{{"objects", nlohmann::json::array({{{"mesh", "memory.obj"}, {"lines", {{"enabled", false}}}, {"shading", {{"enabled", false}}}}})},
-         {"camera", {{"elevation", 89.0}, {"azimuth", 0.0}, {"zoom", 1.6}}},
-         {"canvas", {{"type", "silk"}, {"grain", 32}, {"frequency", 0.1}, {"mix", 0.0}}},
-         {"output", {{"width", n}, {"height", n}, {"fade", 0.0}}}},
+        nlohmann::json{{"objects", nlohmann::json::array({{{"mesh", "memory.obj"},
+                                                           {"lines", {{"enabled", false}}},
+                                                           {"shading", {{"enabled", false}}}}})},
+                       {"camera", {{"elevation", 89.0}, {"azimuth", 0.0}, {"zoom", 1.6}}},
+                       {"canvas", {{"type", "silk"}, {"grain", 32}, {"frequency", 0.1}, {"mix", 0.0}}},
+                       {"output", {{"width", n}, {"height", n}, {"fade", 0.0}}}},
         "plane", ".");
     const mesh::Mesh plane = mesh::heightGrid(9, 9, 1.0 / 8, [](double, double) { return 0.0; });
     const std::vector<scene::LoadedObject> plane_objects{
@@ -388,7 +392,8 @@ int main(int argc, char** argv) {
       const double sigma = noise::canvasSigma(o);
       for (int y = 0; y < n; ++y)
         for (int x = 0; x < n; ++x) {
-          const double fx = (x <= n / 2 ? x : x - n) / static_cast<double>(n), fy = (y <= n / 2 ? y : y - n) / static_cast<double>(n);
+          const double fx = (x <= n / 2 ? x : x - n) / static_cast<double>(n),
+                       fy = (y <= n / 2 ? y : y - n) / static_cast<double>(n);
           const auto b = static_cast<std::size_t>(std::hypot(fx, fy) * n);
           if (b == 0 || b >= expected.size()) continue;
           expected[b] += gabor.spectrum(fx, fy) / (sigma * sigma);
@@ -405,12 +410,12 @@ int main(int argc, char** argv) {
       const double spectrum_error = std::sqrt(err2 / ref2);
       const double cm = median(canvas_ms), gm = median(gbuffer_ms);
       char line[512];
-      std::snprintf(line, sizeof line, "| %.0f | %.0f | %.0f | %.1f | %.3f | %.3f | %.3f |\n", impulses, cm, gm, cm / gm,
-                    spectrum_error, var, kurt);
+      std::snprintf(line, sizeof line, "| %.0f | %.0f | %.0f | %.1f | %.3f | %.3f | %.3f |\n", impulses, cm, gm,
+                    cm / gm, spectrum_error, var, kurt);
       md << line;
       std::fputs(line, stderr);
-      csv << "impulses," << impulses << "," << cm << "," << gm << "," << cm / gm << "," << spectrum_error << "," << var << ","
-          << kurt << "\n";
+      csv << "impulses," << impulses << "," << cm << "," << gm << "," << cm / gm << "," << spectrum_error << "," << var
+          << "," << kurt << "\n";
       const std::string series = "silk canvas, N' 8 .. 128 (sample scene at " + std::to_string(frame) + "²)";
       points.add("canvas: spectrum against N'", "relative L2 error of the power spectrum", series, true, cm,
                  spectrum_error);

@@ -14,9 +14,9 @@
 #include <string>
 #include <vector>
 
-#include "shanshui/mesh/shapes.h"
-#include "shanshui/mesh/curvature.h"
 #include "bench_args.h"
+#include "shanshui/mesh/curvature.h"
+#include "shanshui/mesh/shapes.h"
 #include "tradeoff_points.h"
 
 namespace {
@@ -66,10 +66,12 @@ int main(int argc, char** argv) {
         const int repeats = std::max(1, (quick ? 20000 : 200000) / static_cast<int>(s.mesh.positions.size()));
         mesh::VertexCurvature c;
         const auto start = Clock::now();
-        for (int r = 0; r < repeats; ++r) c = fit ? mesh::estimateCurvatureByFit(s.mesh) : mesh::estimateCurvature(s.mesh);
+        for (int r = 0; r < repeats; ++r)
+          c = fit ? mesh::estimateCurvatureByFit(s.mesh) : mesh::estimateCurvature(s.mesh);
         const double ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count() / repeats;
         std::vector<double> e;
-        for (std::size_t i = 0; i < s.mean.size(); ++i) e.push_back(std::abs(std::abs(c.mean[i]) - s.mean[i]) / s.mean[i]);
+        for (std::size_t i = 0; i < s.mean.size(); ++i)
+          e.push_back(std::abs(std::abs(c.mean[i]) - s.mean[i]) / s.mean[i]);
         std::sort(e.begin(), e.end());
         const double median = e[e.size() / 2], p95 = e[e.size() * 95 / 100];
         csv << name << "," << estimator << "," << res << "," << s.mesh.positions.size() << "," << ms << "," << median

@@ -16,14 +16,14 @@
 #include <string>
 #include <vector>
 
+#include "bench_args.h"
+#include "order_stats.h"
 #include "shanshui/ink/diffusion.h"
 #include "shanshui/render/gl_context.h"
 #include "shanshui/render/ink_diffusion_pass.h"
 #include "shanshui/render/ink_renderer.h"
 #include "shanshui/scene/scene.h"
 #include "shanshui/scene/scene_assets.h"
-#include "bench_args.h"
-#include "order_stats.h"
 #include "tradeoff_points.h"
 
 namespace {
@@ -33,7 +33,9 @@ using bench::median;
 using bench::quartiles;
 using Clock = std::chrono::steady_clock;
 
-double ms(Clock::time_point start) { return std::chrono::duration<double, std::milli>(Clock::now() - start).count(); }
+double ms(Clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
 
 struct Diff {
   double max = 0, mean = 0;
@@ -128,12 +130,12 @@ int main(int argc, char** argv) {
       const image::Image gpu = pass.inkAfter();
       const Diff gdiff = difference(std::vector<double>(gpu.pixels.begin(), gpu.pixels.end()), a.ink);
       char line[256];
-      std::snprintf(line, sizeof line, "| %d | %.1f | %.1f | %s | %.2e | %.1f | %.2e |\n", d, ta, tb, ra == rb ? "yes" : "NO",
-                    diff.max, gpu_ms, gdiff.max);
+      std::snprintf(line, sizeof line, "| %d | %.1f | %.1f | %s | %.2e | %.1f | %.2e |\n", d, ta, tb,
+                    ra == rb ? "yes" : "NO", diff.max, gpu_ms, gdiff.max);
       md << line;
       std::fputs(line, stderr);
-      csv << "main," << d << "," << ta << "," << tb << "," << (ra == rb) << "," << diff.max << "," << gpu_ms << "," << gdiff.max
-          << "\n";
+      csv << "main," << d << "," << ta << "," << tb << "," << (ra == rb) << "," << diff.max << "," << gpu_ms << ","
+          << gdiff.max << "\n";
       const char* plot = "diffusion main region against the ring iteration";
       const char* y = "max |ink difference| to the ring-by-ring iteration";
       points.add(plot, y, "ring iteration (CPU, the reference)", true, ta, 0.0);

@@ -28,16 +28,16 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <nlohmann/json.hpp>
 
-#include "shanshui/mesh/shapes.h"
+#include "bench_args.h"
+#include "order_stats.h"
 #include "shanshui/core/random.h"
 #include "shanshui/mesh/curvature.h"
+#include "shanshui/mesh/shapes.h"
 #include "shanshui/render/gl_context.h"
 #include "shanshui/render/ink_renderer.h"
 #include "shanshui/render/shader_program.h"
 #include "shanshui/scene/scene.h"
 #include "shanshui/scene/scene_assets.h"
-#include "bench_args.h"
-#include "order_stats.h"
 #include "tradeoff_points.h"
 
 namespace {
@@ -59,7 +59,8 @@ Surface sphere(int stacks, bool jitter) {
     const double edge = std::numbers::pi / stacks;
     for (std::size_t i = 0; i < m.positions.size(); ++i) {
       glm::dvec3 d;
-      for (int c = 0; c < 3; ++c) d[c] = (static_cast<double>(streamValue(7, i * 3 + c) >> 11) / 9007199254740992.0 - 0.5);
+      for (int c = 0; c < 3; ++c)
+        d[c] = (static_cast<double>(streamValue(7, i * 3 + c) >> 11) / 9007199254740992.0 - 0.5);
       m.positions[i] = glm::normalize(m.positions[i] + 0.6 * edge * d);
     }
     m.normals = mesh::vertexNormals(m);
@@ -94,9 +95,9 @@ struct CurvatureRow {
 
 CurvatureRow measureCurvature(const Surface& s, const char* source, int size) {
   nlohmann::json j = {{"objects", nlohmann::json::array({{{"mesh", "memory"},
-                                                           {"recentre", false},
-                                                           {"lines", {{"curvature", source}}},
-                                                           {"shading", {{"enabled", false}}}}})}};
+                                                          {"recentre", false},
+                                                          {"lines", {{"curvature", source}}},
+                                                          {"shading", {{"enabled", false}}}}})}};
   const scene::Scene sc = scene::parseScene(j, "bench", ".");
   CurvatureRow row;
   const auto start = Clock::now();
@@ -141,8 +142,12 @@ double cdfAs(double x) {  // shaders/ink_gaussian_cdf.glsl, default
   const double poly = t * (0.254829592 + t * (-0.284496736 + t * (1.421413741 + t * (-1.453152027 + t * 1.061405429))));
   return 0.5 + 0.5 * (x < 0 ? -1 : 1) * (1.0 - poly * std::exp(-z * z));
 }
-double cdfLogistic(double x) { return 1.0 / (1.0 + std::exp(-1.702 * x)); }  // the cheaper candidate
-double cdfExact(double x) { return 0.5 * std::erfc(-x / std::numbers::sqrt2); }
+double cdfLogistic(double x) {
+  return 1.0 / (1.0 + std::exp(-1.702 * x));
+}  // the cheaper candidate
+double cdfExact(double x) {
+  return 0.5 * std::erfc(-x / std::numbers::sqrt2);
+}
 
 }  // namespace
 
@@ -191,8 +196,9 @@ int main(int argc, char** argv) {
   md << "\n## Gaussian CDF of the smoothed tone steps against std::erf\n\n"
      << "| formula | max abs error on [-6, 6] | ns per evaluation (CPU) |\n|---|---|---|\n";
   csv << "section,formula,max_abs_error,ns_per_eval\n";
-  const std::pair<const char*, double (*)(double)> formulas[] = {
-      {"exact (std::erfc)", cdfExact}, {"Abramowitz-Stegun 7.1.26 (default)", cdfAs}, {"logistic 1.702 (not used)", cdfLogistic}};
+  const std::pair<const char*, double (*)(double)> formulas[] = {{"exact (std::erfc)", cdfExact},
+                                                                 {"Abramowitz-Stegun 7.1.26 (default)", cdfAs},
+                                                                 {"logistic 1.702 (not used)", cdfLogistic}};
   for (const auto& [name, f] : formulas) {
     double worst = 0;
     for (int i = 0; i <= 120000; ++i) {
@@ -210,8 +216,9 @@ int main(int argc, char** argv) {
     std::fputs(line, stderr);
     csv << "cdf," << name << "," << worst << "," << ns << "\n";
     if (f != cdfExact)  // the reference itself has no error to plot
-      points.add("Gaussian CDF of the tone steps, per million evaluations (CPU)", "max |error| against std::erf on [-6, 6]",
-                 name, false, ns, worst);  // ns per evaluation = ms per million
+      points.add("Gaussian CDF of the tone steps, per million evaluations (CPU)",
+                 "max |error| against std::erf on [-6, 6]", name, false, ns,
+                 worst);  // ns per evaluation = ms per million
   }
 
   // 3. Ink passes against a Lambert render of the same mesh, interleaved.
@@ -243,8 +250,10 @@ int main(int argc, char** argv) {
     lambert.set("u_normal_matrix", glm::mat3(1.0f));
     lambert.set("u_view_projection", c.projection(1.0) * c.view());
     lambert.set("u_light_dir", glm::vec3(glm::normalize(sc.light.direction)));
-    if (front_to_back) lambert_mesh.drawFrontToBack(glm::vec3(glm::inverse(glm::dmat3(model)) * (c.target - c.eye())));
-    else lambert_mesh.draw();
+    if (front_to_back)
+      lambert_mesh.drawFrontToBack(glm::vec3(glm::inverse(glm::dmat3(model)) * (c.target - c.eye())));
+    else
+      lambert_mesh.draw();
     glFinish();
     return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
   };
@@ -296,8 +305,8 @@ int main(int argc, char** argv) {
   // Quartiles of the per-round ratios.
   const auto qk = quartiles(r_ink), qp = quartiles(r_plain), sk = quartiles(s_ink), sp = quartiles(s_plain),
              sl = quartiles(s_lambert);
-  md << "\n## Frame cost at " << size << "x" << size << ", sample scene (" << ink.triangleCount()
-     << " triangles), " << rounds << " interleaved rounds\n\n"
+  md << "\n## Frame cost at " << size << "x" << size << ", sample scene (" << ink.triangleCount() << " triangles), "
+     << rounds << " interleaved rounds\n\n"
      << "Each round times a Lambert frame then a render (each after an untimed frame of the same render); the "
         "ratio is taken per round and its median and quartiles reported. The plain Lambert render draws the "
         "mesh in its file's triangle order; the renderer draws chunks of it front to back, which the last column "
@@ -314,9 +323,9 @@ int main(int argc, char** argv) {
                 sp[0], sp[2]);
   md << line;
   std::fputs(line, stderr);
-  csv << "section,render,ms,ratio,ratio_to_front_to_back_lambert\nframe,lambert," << l << ",1,\nframe,lambert_front_to_back,"
-      << ls << "," << sl[1] << ",1\nframe,ink," << k << "," << qk[1] << "," << sk[1] << "\nframe,ink_no_wrinkle," << p << ","
-      << qp[1] << "," << sp[1] << "\n";
+  csv << "section,render,ms,ratio,ratio_to_front_to_back_lambert\nframe,lambert," << l
+      << ",1,\nframe,lambert_front_to_back," << ls << "," << sl[1] << ",1\nframe,ink," << k << "," << qk[1] << ","
+      << sk[1] << "\nframe,ink_no_wrinkle," << p << "," << qp[1] << "," << sp[1] << "\n";
   md << "\nPer pass (GPU timestamps, median): ";
   for (const auto& name : ink.passesBuilt()) {
     std::snprintf(line, sizeof line, "%s %.1f ms; ", name.c_str(), median(pass_ms[name]));
@@ -363,7 +372,8 @@ int main(int argc, char** argv) {
     md << line;
     std::fputs(line, stderr);
     csv << "filter," << name << "," << ms_f << "," << sum / n << "\n";
-    if (f > 0) points.add("wrinkle texture filter, sample scene frame", "mean |luma - trilinear|", name, false, ms_f, sum / n);
+    if (f > 0)
+      points.add("wrinkle texture filter, sample scene frame", "mean |luma - trilinear|", name, false, ms_f, sum / n);
   }
   return 0;
 }

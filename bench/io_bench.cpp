@@ -1,8 +1,8 @@
 // Import speed of the foundation stages on the shipped real DEM. Compare rows of one run
 // with each other (this machine is shared); absolute times are only indicative.
-#include <benchmark/benchmark.h>
-
 #include <filesystem>
+
+#include <benchmark/benchmark.h>
 
 #include "shanshui/mesh/mesh_io.h"
 #include "shanshui/mesh/repair.h"

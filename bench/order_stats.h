@@ -14,6 +14,8 @@ inline std::array<double, 3> quartiles(std::vector<double> v) {
   return {v[v.size() / 4], v[v.size() / 2], v[(3 * v.size()) / 4]};
 }
 
-inline double median(std::vector<double> v) { return quartiles(std::move(v))[1]; }
+inline double median(std::vector<double> v) {
+  return quartiles(std::move(v))[1];
+}
 
 }  // namespace shanshui::bench

@@ -13,13 +13,13 @@
 #include <string>
 #include <vector>
 
+#include "bench_args.h"
 #include "shanshui/core/error.h"
 #include "shanshui/mesh/mesh_io.h"
 #include "shanshui/mesh/repair.h"
 #include "shanshui/param/parameterize.h"
 #include "shanshui/terrain/heightfield.h"
 #include "shanshui/terrain/terrain_mesh.h"
-#include "bench_args.h"
 #include "tradeoff_points.h"
 
 namespace {
@@ -64,8 +64,8 @@ mesh::Mesh developableRidge(int n) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  const bench::BenchArgs args =
-      bench::parseBenchArgs(argc, argv, "bench_param_tradeoff [--out DIR] [--max-vertices N] [--quick]", {"--max-vertices"});
+  const bench::BenchArgs args = bench::parseBenchArgs(
+      argc, argv, "bench_param_tradeoff [--out DIR] [--max-vertices N] [--quick]", {"--max-vertices"});
   const fs::path out = args.out;
   const bool quick = args.quick;
   const int maxVertices = args.integer("--max-vertices", quick ? 3000 : 30000);
@@ -73,8 +73,8 @@ int main(int argc, char** argv) {
   std::vector<Input> inputs;
   inputs.push_back({kDevelopable, developableRidge(quick ? 40 : 120)});
   const fs::path source = SHANSHUI_SOURCE_DIR, data = SHANSHUI_DATA_DIR;
-  for (const fs::path& f : {source / "samples/terrain/mount_st_helens.dem", data / "terrain/jacksboro_fault_dem_u16.png",
-                            data / "terrain/bc_coast_topobathy.asc"}) {
+  for (const fs::path& f : {source / "samples/terrain/mount_st_helens.dem",
+                            data / "terrain/jacksboro_fault_dem_u16.png", data / "terrain/bc_coast_topobathy.asc"}) {
     if (fs::exists(f)) inputs.push_back({f.filename().string(), demMesh(f, maxVertices)});
   }
   for (const char* name : {"three_peaks", "holes", "lion", "blobby_3cc"}) {
@@ -94,10 +94,14 @@ int main(int argc, char** argv) {
   using param::Border;
   using param::Method;
   const std::vector<Config> configs = {
-      {"auto", Method::Auto, Border::Circle},       {"xy", Method::Xy, Border::Circle},
-      {"mvc circle", Method::Mvc, Border::Circle},  {"mvc square", Method::Mvc, Border::Square},
-      {"dcm circle", Method::Dcm, Border::Circle},  {"tutte circle", Method::Tutte, Border::Circle},
-      {"authalic circle", Method::Authalic, Border::Circle}, {"lscm", Method::Lscm, Border::Circle},
+      {"auto", Method::Auto, Border::Circle},
+      {"xy", Method::Xy, Border::Circle},
+      {"mvc circle", Method::Mvc, Border::Circle},
+      {"mvc square", Method::Mvc, Border::Square},
+      {"dcm circle", Method::Dcm, Border::Circle},
+      {"tutte circle", Method::Tutte, Border::Circle},
+      {"authalic circle", Method::Authalic, Border::Circle},
+      {"lscm", Method::Lscm, Border::Circle},
       {"arap", Method::Arap, Border::Circle},
   };
   std::ofstream csv(out / "param_tradeoff.csv");
@@ -107,7 +111,8 @@ int main(int argc, char** argv) {
   md << "Parameterization: distortion against seconds per method (DEMs decimated to at most " << maxVertices
      << " vertices). L2/Linf: Sander stretch, angle: mean σ1/σ2, area: mean |log σ1σ2| (all area-weighted; "
         "1, 1, 1, 0 ideal). Invalid = flipped or degenerate UV faces.\n\n"
-     << "| input | vertices | method | seconds | L2 | Linf | angle | area | valid |\n|---|---|---|---|---|---|---|---|---|\n";
+     << "| input | vertices | method | seconds | L2 | Linf | angle | area | valid "
+        "|\n|---|---|---|---|---|---|---|---|---|\n";
   bench::TradeoffPoints points(out / "param_tradeoff_points.csv");
   char line[512];
   for (const Input& in : inputs) {
@@ -126,7 +131,8 @@ int main(int argc, char** argv) {
       }
       const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
       const param::Distortion& d = r.distortion;
-      const std::string label = c.method == Method::Auto ? "auto -> " + std::string(param::methodName(r.method)) : c.name;
+      const std::string label =
+          c.method == Method::Auto ? "auto -> " + std::string(param::methodName(r.method)) : c.name;
       csv << in.name << "," << in.mesh.vertexCount() << "," << label << "," << seconds << "," << d.l2_stretch << ","
           << d.linf_stretch << "," << d.angle_distortion << "," << d.area_distortion << "," << d.flipped << ","
           << d.degenerate << "," << (note.empty() && d.valid()) << ",\"" << note << "\"\n";

@@ -21,13 +21,13 @@
 #include <string>
 #include <vector>
 
+#include "bench_args.h"
 #include "shanshui/core/parse.h"
 #include "shanshui/image/image_io.h"
 #include "shanshui/render/gl_context.h"
 #include "shanshui/render/ink_renderer.h"
 #include "shanshui/scene/scene.h"
 #include "shanshui/scene/scene_assets.h"
-#include "bench_args.h"
 #include "tradeoff_points.h"
 
 namespace {
@@ -37,12 +37,14 @@ using namespace shanshui;
 struct Preset {
   std::string name;
   scene::CurvatureSource curvature;
-  int iterations;         // diffusion n
-  int supersample;        // 1 or 2
+  int iterations;   // diffusion n
+  int supersample;  // 1 or 2
 };
 
 const char* curvatureName(scene::CurvatureSource c) {
-  return c == scene::CurvatureSource::Screen ? "screen" : c == scene::CurvatureSource::Cotangent ? "cotangent" : "quadric";
+  return c == scene::CurvatureSource::Screen      ? "screen"
+         : c == scene::CurvatureSource::Cotangent ? "cotangent"
+                                                  : "quadric";
 }
 
 double median(std::vector<double> v) {
@@ -111,9 +113,8 @@ int main(int argc, char** argv) {
   base.output.height = height;
   using Curvature = scene::CurvatureSource;
   const std::vector<Preset> presets = {
-      {"draft", Curvature::Screen, 1, 1},       {"fast", Curvature::Cotangent, 2, 1},
-      {"default", Curvature::Quadric, 5, 1},    {"high", Curvature::Quadric, 20, 1},
-      {"ultra", Curvature::Quadric, 50, 1},
+      {"draft", Curvature::Screen, 1, 1},  {"fast", Curvature::Cotangent, 2, 1}, {"default", Curvature::Quadric, 5, 1},
+      {"high", Curvature::Quadric, 20, 1}, {"ultra", Curvature::Quadric, 50, 1},
   };
   const Preset reference{"reference", Curvature::Quadric, 100, 1};
   const Preset supersampled{"reference, 2x2 supersampled", Curvature::Quadric, 100, 2};
@@ -191,12 +192,13 @@ int main(int argc, char** argv) {
   {
     const LumaError e = lumaError(ref2, ref);
     char line[768];
-    std::snprintf(line, sizeof line,
-                  "\nThe reference itself took %.0f ms. Supersampled 2×2 instead (rendered at twice the size with d and n "
-                  "doubled, box-filtered; %.0f ms) it differs from it by %.4f mean, %.3f at the 99th percentile: line "
-                  "widths are pixels of the rendered frame, so supersampling makes thinner lines — a different picture, "
-                  "which is why it is not the reference.\n",
-                  ref_ms, ref2_ms, e.mean, e.p99);
+    std::snprintf(
+        line, sizeof line,
+        "\nThe reference itself took %.0f ms. Supersampled 2×2 instead (rendered at twice the size with d and n "
+        "doubled, box-filtered; %.0f ms) it differs from it by %.4f mean, %.3f at the 99th percentile: line "
+        "widths are pixels of the rendered frame, so supersampling makes thinner lines — a different picture, "
+        "which is why it is not the reference.\n",
+        ref_ms, ref2_ms, e.mean, e.p99);
     md << line;
     std::fputs(line, stderr);
   }

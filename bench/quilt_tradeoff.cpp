@@ -11,11 +11,11 @@
 #include <string>
 #include <vector>
 
+#include "bench_args.h"
 #include "shanshui/core/error.h"
 #include "shanshui/image/image_io.h"
 #include "shanshui/texsynth/quilt_metrics.h"
 #include "shanshui/texsynth/quilting.h"
-#include "bench_args.h"
 #include "tradeoff_points.h"
 
 namespace {
@@ -53,8 +53,8 @@ int main(int argc, char** argv) {
   if (quick && files.size() > 3) files.resize(3);
   fs::create_directories(out);
 
-  using texsynth::SearchMode;
   using texsynth::SeamMode;
+  using texsynth::SearchMode;
   const std::vector<Config> configs = {
       {"fft + cut", SearchMode::Fft, SeamMode::Cut, false},
       {"exhaustive + cut", SearchMode::Exhaustive, SeamMode::Cut, false},
@@ -82,13 +82,18 @@ int main(int argc, char** argv) {
       const texsynth::QuiltResult audited = texsynth::quilt(sample, o);
       SHANSHUI_CHECK(audited.source == timed.source);  // the audit must not change the result
       const texsynth::QuiltMetrics m = texsynth::measureQuilt(sample, timed, o.block);
-      const Row r{timed.stats.seconds, audited.stats.search_error_ratio, audited.stats.search_rule_violations,
+      const Row r{timed.stats.seconds,
+                  audited.stats.search_error_ratio,
+                  audited.stats.search_rule_violations,
                   timed.stats.overlap_error_per_pixel,
-                  m.seam_error_per_edge, m.coherence_mean, m.verbatim_copy_ratio, m.sample_coverage,
+                  m.seam_error_per_edge,
+                  m.coherence_mean,
+                  m.verbatim_copy_ratio,
+                  m.sample_coverage,
                   m.wrap_seam_error};
       rows[c.name].push_back(r);
-      csv << f.filename().string() << "," << c.name << "," << r.seconds << "," << r.ratio << "," << r.violations << "," << r.overlapError
-          << "," << r.seamError << "," << r.coherence << "," << r.verbatim << "," << r.coverage << ","
+      csv << f.filename().string() << "," << c.name << "," << r.seconds << "," << r.ratio << "," << r.violations << ","
+          << r.overlapError << "," << r.seamError << "," << r.coherence << "," << r.verbatim << "," << r.coverage << ","
           << r.wrapError << "\n";
       std::fprintf(stderr, "%-24s %-22s %7.3f s  ratio %.3f\n", f.filename().c_str(), c.name.c_str(), r.seconds,
                    r.ratio);
@@ -98,7 +103,8 @@ int main(int argc, char** argv) {
   std::ofstream md(out / "quilt_tradeoff.md");
   md << "Image quilting, " << size << "x" << size << " output, block " << block << " (or the sample size), "
      << "overlap B/6, tolerance 0.1, one thread; means over " << files.size() << " textures.\n\n"
-     << "| configuration | seconds | time / fft | chosen / exhaustive min | blocks outside the exact rule | overlap error per px "
+     << "| configuration | seconds | time / fft | chosen / exhaustive min | blocks outside the exact rule | overlap "
+        "error per px "
         "| seam error per edge | coherence (nearest-patch SSD per px) | verbatim copy ratio | sample coverage "
         "| wrap seam error |\n"
      << "|---|---|---|---|---|---|---|---|---|---|---|\n";
@@ -112,9 +118,9 @@ int main(int argc, char** argv) {
   for (const Config& c : configs) {
     const auto& v = rows[c.name];
     std::snprintf(line, sizeof line, "| %s | %.3f | %.1f | %.3f | %.3f | %.4f | %.4f | %.4f | %.4f | %.3f | %.4f |\n",
-                  c.name.c_str(), mean(v, &Row::seconds), mean(v, &Row::seconds) / fftSeconds, mean(v, &Row::ratio), mean(v, &Row::violations),
-                  mean(v, &Row::overlapError), mean(v, &Row::seamError), mean(v, &Row::coherence),
-                  mean(v, &Row::verbatim), mean(v, &Row::coverage), mean(v, &Row::wrapError));
+                  c.name.c_str(), mean(v, &Row::seconds), mean(v, &Row::seconds) / fftSeconds, mean(v, &Row::ratio),
+                  mean(v, &Row::violations), mean(v, &Row::overlapError), mean(v, &Row::seamError),
+                  mean(v, &Row::coherence), mean(v, &Row::verbatim), mean(v, &Row::coverage), mean(v, &Row::wrapError));
     md << line;
   }
   bench::TradeoffPoints points(out / "quilt_tradeoff_points.csv");

@@ -4,7 +4,6 @@
 // histogram, convertTo, imwrite with OpenCV's default PNG settings): no process start, so
 // the ratio flatters OpenCV slightly. Side by side in one run; real time.
 //   build/bin/bench_startup --benchmark_min_time=1
-#include <benchmark/benchmark.h>
 #include <fcntl.h>
 #include <spawn.h>
 #include <sys/wait.h>
@@ -16,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include <benchmark/benchmark.h>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
@@ -27,7 +27,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
-fs::path binDir() { return fs::canonical("/proc/self/exe").parent_path(); }
+fs::path binDir() {
+  return fs::canonical("/proc/self/exe").parent_path();
+}
 
 // Runs the program with stdout and stderr discarded; aborts the benchmark on failure.
 void runQuiet(benchmark::State& state, const std::vector<std::string>& args) {
@@ -60,7 +62,8 @@ const fs::path& bigPng() {
     std::mt19937 rng(1);
     std::normal_distribution<float> noise(0.0f, 0.05f);
     for (int y = 0; y < img.height; ++y)
-      for (int x = 0; x < img.width; ++x) img.at(x, y, 0) = std::clamp(0.3f + 0.4f * x / img.width + noise(rng), 0.0f, 1.0f);
+      for (int x = 0; x < img.width; ++x)
+        img.at(x, y, 0) = std::clamp(0.3f + 0.4f * x / img.width + noise(rng), 0.0f, 1.0f);
     shanshui::image::saveImage(img, p, shanshui::image::PixelDepth::UInt16);
     return p;
   }();

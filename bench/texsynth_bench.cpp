@@ -2,10 +2,10 @@
 // block 48 / overlap 8 in <= 1.5 s; FFT search >= 10x faster than exhaustive; enhancement
 // of a 4096² 16-bit image in <= 0.5 s). Compare rows of one run with each other: this
 // machine is shared and noisy.
-#include <benchmark/benchmark.h>
-
 #include <filesystem>
 #include <random>
+
+#include <benchmark/benchmark.h>
 
 #include "shanshui/image/convert.h"
 #include "shanshui/image/image_io.h"

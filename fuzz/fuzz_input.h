@@ -20,9 +20,9 @@ namespace shanshui::fuzz {
 class ScratchFile {
  public:
   ScratchFile(const std::uint8_t* data, std::size_t size, const std::string& extension) {
-    path_ = std::filesystem::temp_directory_path() /
-            ("shanshui_fuzz_" + std::to_string(::getpid()) + extension);
-    std::ofstream(path_, std::ios::binary).write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(size));
+    path_ = std::filesystem::temp_directory_path() / ("shanshui_fuzz_" + std::to_string(::getpid()) + extension);
+    std::ofstream(path_, std::ios::binary)
+        .write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(size));
   }
   ~ScratchFile() {
     std::error_code ec;

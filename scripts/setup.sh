@@ -13,6 +13,7 @@ packages=(
   libimgui-dev libcli11-dev nlohmann-json3-dev libtinyobjloader-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   xvfb xauth
+  clang-format git
 )
 
 # `setup.sh fuzz`: also clang and its libFuzzer runtime, for make fuzz.

@@ -32,10 +32,16 @@ struct StageDef {
 
 const std::vector<StageDef> kStages = {
     {"quilt", {"bench_quilt_tradeoff"}, "image quilting: search and seam modes, error against the exhaustive search"},
-    {"param", {"bench_param_tradeoff"}, "parameterization: every method's distortion and time; a developable ridge has an isometric answer"},
-    {"curvature", {"bench_curvature_tradeoff", "bench_ink_tradeoff"},
-     "curvature estimators on analytic surfaces, per vertex and per pixel; the ink frame against Lambert; wrinkle filters"},
-    {"diffusion", {"bench_diffusion_tradeoff"}, "ink diffusion: distance transform against rings, n against a converged result"},
+    {"param",
+     {"bench_param_tradeoff"},
+     "parameterization: every method's distortion and time; a developable ridge has an isometric answer"},
+    {"curvature",
+     {"bench_curvature_tradeoff", "bench_ink_tradeoff"},
+     "curvature estimators on analytic surfaces, per vertex and per pixel; the ink frame against Lambert; wrinkle "
+     "filters"},
+    {"diffusion",
+     {"bench_diffusion_tradeoff"},
+     "ink diffusion: distance transform against rings, n against a converged result"},
     {"noise", {"bench_canvas_tradeoff"}, "paper canvas: N′ against the analytic Gabor spectrum; temporal coherence"},
     {"pipeline", {"bench_pipeline_tradeoff"}, "the whole frame at quality presets against a high-quality reference"},
 };
@@ -47,9 +53,12 @@ std::vector<std::string> splitCsv(const std::string& line) {
   for (std::size_t i = 0; i < line.size(); ++i) {
     const char c = line[i];
     if (quoted) {
-      if (c == '"' && i + 1 < line.size() && line[i + 1] == '"') f.back() += '"', ++i;
-      else if (c == '"') quoted = false;
-      else f.back() += c;
+      if (c == '"' && i + 1 < line.size() && line[i + 1] == '"')
+        f.back() += '"', ++i;
+      else if (c == '"')
+        quoted = false;
+      else
+        f.back() += c;
     } else if (c == '"') {
       quoted = true;
     } else if (c == ',') {
@@ -74,8 +83,10 @@ double number(const std::string& s) {
 std::string slug(const std::string& s) {
   std::string o;
   for (char c : s) {
-    if (std::isalnum(static_cast<unsigned char>(c))) o += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    else if (!o.empty() && o.back() != '_') o += '_';
+    if (std::isalnum(static_cast<unsigned char>(c)))
+      o += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    else if (!o.empty() && o.back() != '_')
+      o += '_';
   }
   while (!o.empty() && o.back() == '_') o.pop_back();
   return o;
@@ -122,9 +133,10 @@ struct Ran {
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"Runs the error-against-run-time sweep of every approximate stage on inputs with known answers and "
-               "writes tables (Markdown, CSV), plots (PNG) and an index (README.md) under --out.",
-               "shanshui-bench"};
+  CLI::App app{
+      "Runs the error-against-run-time sweep of every approximate stage on inputs with known answers and "
+      "writes tables (Markdown, CSV), plots (PNG) and an index (README.md) under --out.",
+      "shanshui-bench"};
   app.footer(
       "Stages: quilt, param, curvature, diffusion, noise, pipeline (or all). A full run takes about seven minutes\n"
       "on two idle CPU cores with llvmpipe; --quick runs every sweep on small inputs in under a minute.\n\n"
@@ -200,9 +212,10 @@ int main(int argc, char** argv) {
     }
 
     std::string index = "# shanshui-bench results\n\n";
-    index += std::string("The last call ran ") + (quick ? "quick sweeps (--quick: small inputs; the numbers show the shape, "
-                                                          "not the final values)"
-                                                        : "full sweeps") +
+    index += std::string("The last call ran ") +
+             (quick ? "quick sweeps (--quick: small inputs; the numbers show the shape, "
+                      "not the final values)"
+                    : "full sweeps") +
              "; rows marked *earlier* are results an earlier call left in this directory.\n\n";
     index += "| stage | program | seconds | status | tables |\n|---|---|---|---|---|\n";
     int failed = 0, now = 0;
@@ -210,7 +223,9 @@ int main(int argc, char** argv) {
       const std::string base = r.program.substr(std::string("bench_").size());
       char seconds[32];
       std::snprintf(seconds, sizeof seconds, "%.1f", r.seconds);
-      const std::string status = r.earlier ? "*earlier*" : r.ok ? "ok" : "**failed**: " + r.last_line + " (logs/" + r.program + ".log)";
+      const std::string status = r.earlier ? "*earlier*"
+                                 : r.ok    ? "ok"
+                                           : "**failed**: " + r.last_line + " (logs/" + r.program + ".log)";
       index += "| " + r.stage + " | " + r.program + " | " + (r.earlier ? "—" : seconds) + " | " + status + " | " +
                (r.ok ? "[" + base + ".md](" + base + ".md), [csv](" + base + ".csv)" : "") + " |\n";
       failed += r.ok || r.earlier ? 0 : 1;

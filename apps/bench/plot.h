@@ -23,8 +23,8 @@ struct Plot {
 //! than a factor of 20, linear otherwise. Non-finite values are ignored.
 struct Axis {
   bool log = false;
-  double lo = 0.0, hi = 1.0;  //!< the drawn range (in log10 units when log)
-  std::vector<double> ticks;  //!< tick values (not logged)
+  double lo = 0.0, hi = 1.0;   //!< the drawn range (in log10 units when log)
+  std::vector<double> ticks;   //!< tick values (not logged)
   double map(double v) const;  //!< value -> [0, 1] along the axis
 };
 Axis chooseAxis(const std::vector<double>& values);

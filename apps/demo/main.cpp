@@ -139,10 +139,11 @@ std::string jsonNumber(const fs::path& file, const std::vector<std::string>& pat
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"Runs the whole shanshui chain on the bundled samples and writes the assets, the pictures and a "
-               "report (report.md) under the output directory. A second run reuses every stage whose program, "
-               "arguments and input files are unchanged.",
-               "shanshui-demo"};
+  CLI::App app{
+      "Runs the whole shanshui chain on the bundled samples and writes the assets, the pictures and a "
+      "report (report.md) under the output directory. A second run reuses every stage whose program, "
+      "arguments and input files are unchanged.",
+      "shanshui-demo"};
   app.footer(
       "Example:\n"
       "  shanshui-demo --samples samples --out out       # what `make demo` runs\n"
@@ -157,7 +158,8 @@ int main(int argc, char** argv) {
   app.add_flag("--quick", quick, "small sizes everywhere (for tests)");
   return shanshui::tools::runTool(app, argc, argv, [&] {
     const fs::path s(samples), o(out), assets = fs::path(out) / "assets";
-    for (const fs::path& f : {s / "textures/rain_strokes_scan.png", s / "terrain/mount_st_helens.dem", s / "scenes/default.json"}) {
+    for (const fs::path& f :
+         {s / "textures/rain_strokes_scan.png", s / "terrain/mount_st_helens.dem", s / "scenes/default.json"}) {
       if (!fs::exists(f)) throw shanshui::makeError(f.string(), ": not found (is --samples the samples directory?)");
     }
     fs::create_directories(assets);
@@ -167,34 +169,50 @@ int main(int argc, char** argv) {
     const std::string max_vertices = quick ? "4000" : "250000";
     const std::string orbit_size = quick ? "96x72" : "640x480";
     std::vector<Stage> stages = {
-        {"enhance", "shanshui-enhance", {(s / "textures/rain_strokes_scan.png").string(), "-o", (assets / "wrinkle_sample.png").string()},
-         {s / "textures/rain_strokes_scan.png"}, {assets / "wrinkle_sample.png"}},
-        {"quilt", "shanshui-quilt",
-         {(assets / "wrinkle_sample.png").string(), "-o", (assets / "wrinkle.png").string(), "--size", size, "--tileable",
-          "--report", (assets / "quilt.json").string()},
-         {assets / "wrinkle_sample.png"}, {assets / "wrinkle.png", assets / "quilt.json"}},
-        {"terrain", "shanshui-terrain",
+        {"enhance",
+         "shanshui-enhance",
+         {(s / "textures/rain_strokes_scan.png").string(), "-o", (assets / "wrinkle_sample.png").string()},
+         {s / "textures/rain_strokes_scan.png"},
+         {assets / "wrinkle_sample.png"}},
+        {"quilt",
+         "shanshui-quilt",
+         {(assets / "wrinkle_sample.png").string(), "-o", (assets / "wrinkle.png").string(), "--size", size,
+          "--tileable", "--report", (assets / "quilt.json").string()},
+         {assets / "wrinkle_sample.png"},
+         {assets / "wrinkle.png", assets / "quilt.json"}},
+        {"terrain",
+         "shanshui-terrain",
          {(s / "terrain/mount_st_helens.dem").string(), "-o", (assets / "st_helens.obj").string(), "--z-scale", "1.5",
           "--max-vertices", max_vertices},
-         {s / "terrain/mount_st_helens.dem"}, {assets / "st_helens.obj"}},
-        {"param", "shanshui-param",
+         {s / "terrain/mount_st_helens.dem"},
+         {assets / "st_helens.obj"}},
+        {"param",
+         "shanshui-param",
          {(assets / "st_helens.obj").string(), "-o", (assets / "st_helens_uv.obj").string(), "--report",
           (assets / "param.json").string(), "--checker", (assets / "checker.png").string()},
-         {assets / "st_helens.obj"}, {assets / "st_helens_uv.obj", assets / "param.json", assets / "checker.png"}},
+         {assets / "st_helens.obj"},
+         {assets / "st_helens_uv.obj", assets / "param.json", assets / "checker.png"}},
     };
     std::vector<Result> results;
     for (const Stage& st : stages) results.push_back(runner.run(st));
     // The report shows the scan beside what became of it.
     fs::copy_file(s / "textures/rain_strokes_scan.png", assets / "scan.png", fs::copy_options::overwrite_existing);
     writeScene(s / "scenes/default.json", assets / "scene.json", quick);
-    const std::vector<fs::path> scene_inputs = {assets / "scene.json", assets / "st_helens_uv.obj", assets / "wrinkle.png"};
-    Stage still{"still", "shanshui-render",
-                {(assets / "scene.json").string(), "-o", (o / "mountain.png").string(), "--stats", (o / "mountain_stats.json").string()},
-                scene_inputs, {o / "mountain.png", o / "mountain_stats.json"}};
-    Stage orbit{"orbit", "shanshui-render",
+    const std::vector<fs::path> scene_inputs = {assets / "scene.json", assets / "st_helens_uv.obj",
+                                                assets / "wrinkle.png"};
+    Stage still{"still",
+                "shanshui-render",
+                {(assets / "scene.json").string(), "-o", (o / "mountain.png").string(), "--stats",
+                 (o / "mountain_stats.json").string()},
+                scene_inputs,
+                {o / "mountain.png", o / "mountain_stats.json"}};
+    Stage orbit{"orbit",
+                "shanshui-render",
                 {(assets / "scene.json").string(), "-o", (o / "orbit.png").string(), "--size", orbit_size, "--frames",
-                 std::to_string(frames), "--orbit", "40", "--set", "camera.path=[]", "--stats", (o / "orbit_stats.json").string()},
-                scene_inputs, {o / "orbit_stats.json"}};
+                 std::to_string(frames), "--orbit", "40", "--set", "camera.path=[]", "--stats",
+                 (o / "orbit_stats.json").string()},
+                scene_inputs,
+                {o / "orbit_stats.json"}};
     results.push_back(runner.run(still));
     stages.push_back(still);
     results.push_back(runner.run(orbit));
@@ -208,13 +226,14 @@ int main(int argc, char** argv) {
     if (have_suite) {
       ::setenv("SHANSHUI_STABILITY_DIR", fs::absolute(stability).c_str(), 1);
       std::vector<fs::path> programs;
-      for (const char* p : {"shanshui-terrain", "shanshui-repair", "shanshui-enhance", "shanshui-quilt", "shanshui-param",
-                            "shanshui-render"})
+      for (const char* p : {"shanshui-terrain", "shanshui-repair", "shanshui-enhance", "shanshui-quilt",
+                            "shanshui-param", "shanshui-render"})
         programs.push_back(bin / p);
       Stage st{"stability", "test_stability", {"--gtest_brief=1"}, programs, {stability / "stability.md"}};
       if (quick)
-        st.args.push_back("--gtest_filter=Stability.RepairOn*:Stability.CurvatureOn*:Stability.InkDiffusionOn*:"
-                          "Stability.NoiseOn*");
+        st.args.push_back(
+            "--gtest_filter=Stability.RepairOn*:Stability.CurvatureOn*:Stability.InkDiffusionOn*:"
+            "Stability.NoiseOn*");
       // A failing case still leaves its table: the report is written, then the demo fails.
       try {
         results.push_back(runner.run(st, [&] {
@@ -236,8 +255,10 @@ int main(int argc, char** argv) {
        << "| stage | program | seconds | this run | result |\n|---|---|---|---|---|\n";
     // Paths in the programs' messages, relative to the report.
     auto relative = [&](std::string text) {
-      for (const auto& [from, to] : {std::pair{o.string() + "/", std::string()}, std::pair{s.string() + "/", std::string("samples/")}}) {
-        for (std::size_t at = 0; (at = text.find(from, at)) != std::string::npos; at += to.size()) text.replace(at, from.size(), to);
+      for (const auto& [from, to] :
+           {std::pair{o.string() + "/", std::string()}, std::pair{s.string() + "/", std::string("samples/")}}) {
+        for (std::size_t at = 0; (at = text.find(from, at)) != std::string::npos; at += to.size())
+          text.replace(at, from.size(), to);
       }
       return text;
     };
@@ -250,12 +271,14 @@ int main(int argc, char** argv) {
       md << "| " << stages[i].name << " | `" << stages[i].tool << "` | " << secs << " | "
          << (results[i].reused ? "reused" : "ran") << " | " << summary << " |\n";
     }
-    md << "\n## Texture\n\n![scan](assets/scan.png) ![enhanced](assets/wrinkle_sample.png) ![quilted](assets/wrinkle.png)\n\n"
+    md << "\n## Texture\n\n![scan](assets/scan.png) ![enhanced](assets/wrinkle_sample.png) "
+          "![quilted](assets/wrinkle.png)\n\n"
        << "Scan, enhanced sample, quilted texture. Quilting: overlap error "
        << jsonNumber(assets / "quilt.json", {"overlap_error_per_pixel"}) << " per pixel, seam error "
-       << jsonNumber(assets / "quilt.json", {"mean_seam_error_per_overlap_pixel"}) << " per overlap pixel, largest copied "
+       << jsonNumber(assets / "quilt.json", {"mean_seam_error_per_overlap_pixel"})
+       << " per overlap pixel, largest copied "
        << "region " << jsonNumber(assets / "quilt.json", {"largest_copy_blocks"}) << " blocks.\n\n"
-       << "## Mesh and UVs\n\n![checker](assets/checker.png)\n\nParameterization (`" 
+       << "## Mesh and UVs\n\n![checker](assets/checker.png)\n\nParameterization (`"
        << jsonNumber(assets / "param.json", {"method"}) << "`): L2 stretch "
        << jsonNumber(assets / "param.json", {"distortion", "l2_stretch"}) << ", angle distortion "
        << jsonNumber(assets / "param.json", {"distortion", "angle_distortion"}) << ", flipped faces "
@@ -281,12 +304,15 @@ int main(int argc, char** argv) {
     if (have_suite && fs::exists(stability / "stability.md")) {
       std::string table = readFile(stability / "stability.md");
       table = table.substr(table.find('\n') + 1);  // without its title
-      md << "The stability suite (`test_stability`, also `ctest -L stability`)" << (quick ? ", fast cases only (--quick)" : "")
-         << "; also as [CSV](stability/stability.csv).\n" << table;
+      md << "The stability suite (`test_stability`, also `ctest -L stability`)"
+         << (quick ? ", fast cases only (--quick)" : "") << "; also as [CSV](stability/stability.csv).\n"
+         << table;
     } else {
-      md << "The stability suite is built with the tests (SHANSHUI_BUILD_TESTS=ON); this build has none, so no table.\n";
+      md << "The stability suite is built with the tests (SHANSHUI_BUILD_TESTS=ON); this build has none, so no "
+            "table.\n";
     }
-    md << "\n## Error against run time\n\n`make bench` (or `shanshui-bench --stage all --out out/bench`) measures every "
+    md << "\n## Error against run time\n\n`make bench` (or `shanshui-bench --stage all --out out/bench`) measures "
+          "every "
           "approximate stage on inputs with known answers and writes tables and plots to out/bench/README.md; the "
           "results of a full run ship in docs/bench/README.md.\n";
     shanshui::writeAtomically(o / "report.md", [&](const fs::path& tmp) { std::ofstream(tmp) << md.str(); });

@@ -5,13 +5,13 @@
 
 #include <nlohmann/json.hpp>
 
+#include "json_text.h"
 #include "shanshui/core/atomic_output.h"
 #include "shanshui/core/parse.h"
 #include "shanshui/image/image_io.h"
 #include "shanshui/render/gl_context.h"
 #include "shanshui/render/ink_renderer.h"
 #include "shanshui/scene/scene.h"
-#include "json_text.h"
 #include "tool_main.h"
 
 namespace {
@@ -41,7 +41,8 @@ std::filesystem::path framePath(const std::string& pattern, int index, int count
       int width = 0;
       if (j < pattern.size() && pattern[j] >= '1' && pattern[j] <= '9') width = pattern[j++] - '0';
       if (j >= pattern.size() || pattern[j] != 'd' || ++fields > 1) {
-        throw makeError("-o ", pattern, ": a frame pattern takes one %d or %0Nd (e.g. frame_%04d.png); '%' must be "
+        throw makeError("-o ", pattern,
+                        ": a frame pattern takes one %d or %0Nd (e.g. frame_%04d.png); '%' must be "
                         "written %%");
       }
       std::string number = std::to_string(index);
@@ -65,9 +66,10 @@ std::filesystem::path framePath(const std::string& pattern, int index, int count
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"Renders a scene (or a single mesh or DEM with default ink parameters) headless, with EGL: "
-               "no display needed.",
-               "shanshui-render"};
+  CLI::App app{
+      "Renders a scene (or a single mesh or DEM with default ink parameters) headless, with EGL: "
+      "no display needed.",
+      "shanshui-render"};
   app.footer(
       "Examples:\n"
       "  shanshui-render samples/scenes/default.json -o out/mountain.png\n"
@@ -122,7 +124,8 @@ int main(int argc, char** argv) {
     }
     const scene::Scene sc = scene::loadSceneInput(input, sets);
     OutputSet outputs({input});
-    for (int i = 0; i < frames; ++i) outputs.declare(framePath(output, i, frames), "-o", image::writableImageExtensions());
+    for (int i = 0; i < frames; ++i)
+      outputs.declare(framePath(output, i, frames), "-o", image::writableImageExtensions());
     if (!stats_path.empty()) outputs.declare(stats_path, "--stats", {".json"});
 
     scene::AssetCache cache;
@@ -147,8 +150,8 @@ int main(int argc, char** argv) {
       const image::Image img = renderer.renderImage(render::frameKey(sc, i, frames, orbit), &fs, time);
       const std::filesystem::path path = framePath(output, i, frames);
       outputs.stage(path, image::encodeImage(img, path, image::PixelDepth::UInt8, {.smallest = smallest}));
-      nlohmann::json f = {{"index", i}, {"time", time}, {"file", path.string()}, {"frame_ms", fs.frame_ms},
-                          {"cached", fs.cached}};
+      nlohmann::json f = {
+          {"index", i}, {"time", time}, {"file", path.string()}, {"frame_ms", fs.frame_ms}, {"cached", fs.cached}};
       f["passes"] = nlohmann::json::object();
       for (const auto& p : fs.passes) f["passes"][p.name] = p.gpu_ms;
       stats["frames"].push_back(f);

@@ -1,10 +1,6 @@
 // shanshui-view: a GLFW window on a scene, drawn by the same InkRenderer as shanshui-render,
 // with a Dear ImGui panel over every scene parameter, per-pass timings and shader reload.
-#include <epoxy/gl.h>
-#include <GLFW/glfw3.h>
 #include <imgui.h>
-#include <backends/imgui_impl_glfw.h>
-#include <backends/imgui_impl_opengl3.h>
 
 #include <algorithm>
 #include <cmath>
@@ -14,6 +10,10 @@
 #include <map>
 #include <memory>
 
+#include <GLFW/glfw3.h>
+#include <backends/imgui_impl_glfw.h>
+#include <backends/imgui_impl_opengl3.h>
+#include <epoxy/gl.h>
 #include <nlohmann/json.hpp>
 
 #include "shanshui/core/parse.h"
@@ -39,7 +39,8 @@ image::Image readBackBuffer(int width, int height) {
   glReadPixels(0, 0, width, height, GL_RGB, GL_FLOAT, rows.data());
   const std::size_t row = static_cast<std::size_t>(width) * 3;
   for (int y = 0; y < height; ++y) {
-    std::copy_n(&rows[static_cast<std::size_t>(height - 1 - y) * row], row, &img.pixels[static_cast<std::size_t>(y) * row]);
+    std::copy_n(&rows[static_cast<std::size_t>(height - 1 - y) * row], row,
+                &img.pixels[static_cast<std::size_t>(y) * row]);
   }
   return img;
 }
@@ -55,8 +56,10 @@ std::string schemaPath(const std::string& path) {
     part.clear();
   };
   for (char c : path) {
-    if (c == '.') flush();
-    else part += c;
+    if (c == '.')
+      flush();
+    else
+      part += c;
   }
   flush();
   return out;
@@ -114,7 +117,8 @@ bool editJson(json& node, const std::string& path, const std::string& label) {
   } else if (node.is_string()) {
     char buf[1024];
     std::snprintf(buf, sizeof buf, "%s", node.get<std::string>().c_str());
-    if (ImGui::InputText(id, buf, sizeof buf, ImGuiInputTextFlags_EnterReturnsTrue)) node = std::string(buf), changed = true;
+    if (ImGui::InputText(id, buf, sizeof buf, ImGuiInputTextFlags_EnterReturnsTrue))
+      node = std::string(buf), changed = true;
   } else if (node.is_number_integer() || (e && e->kind == "integer")) {
     // 64-bit: the seed goes up to 2^53.
     long long v = node.get<long long>();
@@ -125,13 +129,15 @@ bool editJson(json& node, const std::string& path, const std::string& label) {
   } else if (node.is_number()) {
     float v = node.get<float>();
     if (ImGui::DragFloat(id, &v, speed, bounded ? lo : 0.0f, bounded ? hi : 0.0f, "%.4g")) node = v, changed = true;
-  } else if (node.is_array() && node.size() <= 5 && std::all_of(node.begin(), node.end(), [](const json& x) { return x.is_number(); })) {
+  } else if (node.is_array() && node.size() <= 5 &&
+             std::all_of(node.begin(), node.end(), [](const json& x) { return x.is_number(); })) {
     float v[5] = {};
     for (std::size_t i = 0; i < node.size(); ++i) v[i] = node[i].get<float>();
     const int n = static_cast<int>(node.size());
-    bool edited = e && e->kind == "color" ? ImGui::ColorEdit3(id, v)
-                                          : ImGui::DragScalarN(id, ImGuiDataType_Float, v, n, speed, bounded ? &lo : nullptr,
-                                                               bounded ? &hi : nullptr, "%.3g");
+    bool edited = e && e->kind == "color"
+                      ? ImGui::ColorEdit3(id, v)
+                      : ImGui::DragScalarN(id, ImGuiDataType_Float, v, n, speed, bounded ? &lo : nullptr,
+                                           bounded ? &hi : nullptr, "%.3g");
     if (edited) {
       for (std::size_t i = 0; i < node.size(); ++i) node[i] = v[i];
       changed = true;
@@ -141,7 +147,8 @@ bool editJson(json& node, const std::string& path, const std::string& label) {
   }
   if (e && ImGui::IsItemHovered()) {
     ImGui::SetTooltip("%s%s%s\nrange %s%s", e->doc.c_str(), e->unit.empty() ? "" : ", ", e->unit.c_str(),
-                      e->range_text.c_str(), e->effect == scene::Effect::Rebuild ? "; a change rebuilds the renderer" : "");
+                      e->range_text.c_str(),
+                      e->effect == scene::Effect::Rebuild ? "; a change rebuilds the renderer" : "");
   }
   return changed;
 }
@@ -163,12 +170,14 @@ std::filesystem::file_time_type newestShader(const std::filesystem::path& dir) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"Interactive ink-wash viewer. Left drag orbits, right drag pans, scroll zooms; S saves a "
-               "screenshot, R reloads shaders, Esc quits. The panel edits every scene parameter live.",
-               "shanshui-view"};
-  app.footer("Examples:\n  shanshui-view samples/scenes/default.json\n"
-             "  shanshui-view samples/scenes/default.json --shaders shaders   # hot reload while editing GLSL\n"
-             "  xvfb-run -a shanshui-view scene.json --frames 3 --screenshot shot.png   # scripted");
+  CLI::App app{
+      "Interactive ink-wash viewer. Left drag orbits, right drag pans, scroll zooms; S saves a "
+      "screenshot, R reloads shaders, Esc quits. The panel edits every scene parameter live.",
+      "shanshui-view"};
+  app.footer(
+      "Examples:\n  shanshui-view samples/scenes/default.json\n"
+      "  shanshui-view samples/scenes/default.json --shaders shaders   # hot reload while editing GLSL\n"
+      "  xvfb-run -a shanshui-view scene.json --frames 3 --screenshot shot.png   # scripted");
   std::string input, size = "1024x768", screenshot = "shanshui-screenshot.png", shader_dir, save_path;
   std::vector<std::string> sets;
   int frames = 0;
@@ -177,8 +186,10 @@ int main(int argc, char** argv) {
   app.add_option("scene", input, "scene (.json), or a mesh or DEM to view with default parameters")->required();
   app.add_option("--size", size, "window size WxH")->default_val("1024x768");
   app.add_option("--set", sets, "override a scene key, dotted path = JSON value (repeatable)");
-  app.add_option("--frames", frames, "quit after N frames (0: run until closed); with --screenshot, "
-                                     "the last frame is saved")->default_val(0);
+  app.add_option("--frames", frames,
+                 "quit after N frames (0: run until closed); with --screenshot, "
+                 "the last frame is saved")
+      ->default_val(0);
   app.add_option("--orbit", orbit, "scripted camera: degrees turned per frame around +Z")->default_val(0.0);
   app.add_option("--screenshot", screenshot, "file for screenshots (S key, or the last of --frames)");
   app.add_option("--shaders", shader_dir, "read shaders from this directory and reload them when they change");
@@ -201,8 +212,10 @@ int main(int argc, char** argv) {
     }
     scene::AssetCache cache;
     auto objects = cache.getAll(sc);
-    const auto context = render::GlContext::create({.kind = render::ContextKind::Window, .width = s.width,
-                                                    .height = s.height, .title = "shanshui-view: " + input,
+    const auto context = render::GlContext::create({.kind = render::ContextKind::Window,
+                                                    .width = s.width,
+                                                    .height = s.height,
+                                                    .title = "shanshui-view: " + input,
                                                     .vsync = frames == 0});
     GLFWwindow* window = context->window();
     auto renderer = std::make_unique<render::InkRenderer>(sc, objects);
@@ -358,8 +371,10 @@ int main(int argc, char** argv) {
         glfwSwapBuffers(window);
         if (last) break;
       }
-      if (frames > 0 || sc.hasAnimation()) glfwPollEvents();
-      else glfwWaitEventsTimeout(0.05);  // nothing moves: wake for input only
+      if (frames > 0 || sc.hasAnimation())
+        glfwPollEvents();
+      else
+        glfwWaitEventsTimeout(0.05);  // nothing moves: wake for input only
     }
     ImGui_ImplOpenGL3_Shutdown();
     ImGui_ImplGlfw_Shutdown();

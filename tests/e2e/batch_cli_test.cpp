@@ -13,9 +13,13 @@ namespace fs = std::filesystem;
 using test::quote;
 using test::run;
 
-std::string bin(const char* name) { return quote(test::binDir() / name); }
+std::string bin(const char* name) {
+  return quote(test::binDir() / name);
+}
 
-void writeText(const fs::path& p, const std::string& text) { std::ofstream(p) << text; }
+void writeText(const fs::path& p, const std::string& text) {
+  std::ofstream(p) << text;
+}
 
 struct ToolCase {
   const char* tool;
@@ -73,7 +77,8 @@ TEST(Batch, SharedArgumentsStdinAndSyntaxErrors) {
     EXPECT_EQ(img.height, 32);
   }
   // An unterminated quote and a nested manifest fail their own lines only.
-  writeText(dir / "bad.txt", "'" + dem.string() + "' -o 'c.png\n--manifest other.txt\n'" + dem.string() + "' -o d.png\n");
+  writeText(dir / "bad.txt",
+            "'" + dem.string() + "' -o 'c.png\n--manifest other.txt\n'" + dem.string() + "' -o d.png\n");
   r = run("cd " + quote(dir.path()) + " && " + bin("shanshui-render") + " --size 48x32 --manifest bad.txt");
   EXPECT_EQ(r.exit_code, 1) << r.output;
   EXPECT_NE(r.output.find("line 1: unterminated ' quote"), std::string::npos) << r.output;

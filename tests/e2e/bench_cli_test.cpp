@@ -42,8 +42,9 @@ TEST(BenchPlot, AxisIsLogarithmicOnlyForPositiveValuesSpanningMoreThanAFactorOf2
   EXPECT_EQ(log.ticks.back(), 1000.0);
   EXPECT_NEAR(log.map(0.1), 0.2, 1e-12);
 
-  for (const std::vector<double>& v : {std::vector<double>{0.0, 5.0}, std::vector<double>{2.0, 3.0},
-                                       std::vector<double>{-1.0, 100.0}, std::vector<double>{7.0}, std::vector<double>{}}) {
+  for (const std::vector<double>& v :
+       {std::vector<double>{0.0, 5.0}, std::vector<double>{2.0, 3.0}, std::vector<double>{-1.0, 100.0},
+        std::vector<double>{7.0}, std::vector<double>{}}) {
     const bench::Axis a = bench::chooseAxis(v);
     EXPECT_FALSE(a.log);
     ASSERT_GE(a.ticks.size(), 2u);
@@ -57,7 +58,8 @@ TEST(BenchPlot, AxisIsLogarithmicOnlyForPositiveValuesSpanningMoreThanAFactorOf2
 
 TEST(BenchPlot, WritesSeriesOrANoDataPlotAndNamesAnUnwritableFile) {
   const test::TempDir dir;
-  bench::Plot p{"t", "run time (ms)", "error", {{"a", {1, 10, 100}, {0.1, 0.01, 0.001}, true}, {"b", {2}, {0.5}, false}}};
+  bench::Plot p{
+      "t", "run time (ms)", "error", {{"a", {1, 10, 100}, {0.1, 0.01, 0.001}, true}, {"b", {2}, {0.5}, false}}};
   bench::writePlot(p, dir / "p.png");
   EXPECT_GE(colours(image::loadImage(dir / "p.png")), 2u);
   bench::Plot empty{"t", "x", "y", {{"nan", {std::nan("")}, {1.0}, true}}};
@@ -131,7 +133,8 @@ TEST(BenchCli, AFailingProgramIsReportedAndTheOthersStillRun) {
   const std::string index = readText(dir / "README.md");
   EXPECT_NE(index.find("| bench_curvature_tradeoff |"), std::string::npos);
   EXPECT_NE(index.find("**failed**: error: "), std::string::npos) << index;
-  EXPECT_NE(index.find("curvature_tradeoff_points.csv: cannot write"), std::string::npos) << "the cause, in one line: " << index;
+  EXPECT_NE(index.find("curvature_tradeoff_points.csv: cannot write"), std::string::npos)
+      << "the cause, in one line: " << index;
   EXPECT_TRUE(fs::exists(dir / "ink_tradeoff_curvature_per_pixel.png")) << "the other program's plot";
 }
 

@@ -1,9 +1,9 @@
 // End-to-end: the real programs on real files, and what they write.
-#include <OpenImageIO/imageio.h>
-
 #include <fstream>
 #include <map>
 #include <sstream>
+
+#include <OpenImageIO/imageio.h>
 #include <nlohmann/json.hpp>
 
 #include "shanshui/image/image_io.h"
@@ -16,7 +16,9 @@ namespace {
 using test::quote;
 using test::run;
 
-std::string bin(const char* name) { return quote(test::binDir() / name); }
+std::string bin(const char* name) {
+  return quote(test::binDir() / name);
+}
 const std::filesystem::path kDem = test::sourceDir() / "samples/terrain/mount_st_helens.dem";
 
 int lines(const std::string& s) {
@@ -26,8 +28,8 @@ int lines(const std::string& s) {
 }
 
 TEST(Cli, EveryProgramHasHelpWithAnExample) {
-  for (const char* p : {"shanshui-terrain", "shanshui-repair", "shanshui-render", "shanshui-view",
-                        "shanshui-enhance", "shanshui-quilt", "shanshui-param", "shanshui-demo"}) {
+  for (const char* p : {"shanshui-terrain", "shanshui-repair", "shanshui-render", "shanshui-view", "shanshui-enhance",
+                        "shanshui-quilt", "shanshui-param", "shanshui-demo"}) {
     const auto r = run(bin(p) + " --help");
     EXPECT_EQ(r.exit_code, 0) << p;
     EXPECT_NE(r.output.find("Example"), std::string::npos) << p << ": " << r.output;
@@ -91,17 +93,26 @@ TEST(Cli, BadInputGivesOneLineNamingTheFileAndWritesNothing) {
     std::filesystem::path output;
   };
   const Case cases[] = {
-      {bin("shanshui-terrain") + " " + quote(dir / "nodata.asc") + " -o " + quote(dir / "a.obj"), "nodata.asc", dir / "a.obj"},
-      {bin("shanshui-terrain") + " " + quote(dir / "cut.dem") + " -o " + quote(dir / "keep.obj"), "cut.dem", dir / "keep.obj"},
-      {bin("shanshui-terrain") + " " + quote(dir / "empty.png") + " -o " + quote(dir / "b.obj"), "empty.png", dir / "b.obj"},
-      {bin("shanshui-terrain") + " " + quote(kDem) + " -o " + quote(dir / "c.obj") + " --step 0", "--step", dir / "c.obj"},
-      {bin("shanshui-terrain") + " " + quote(kDem) + " -o " + quote(dir / "c.obj") + " --cell-size 0", "--cell-size", dir / "c.obj"},
-      {bin("shanshui-repair") + " " + quote(dir / "nofaces.off") + " -o " + quote(dir / "keep.obj"), "nofaces.off", dir / "keep.obj"},
-      {bin("shanshui-render") + " " + quote(dir / "nofaces.off") + " -o " + quote(dir / "d.png"), "nofaces.off", dir / "d.png"},
-      {bin("shanshui-render") + " " + quote(dir / "missing.obj") + " -o " + quote(dir / "d.png"), "missing.obj", dir / "d.png"},
+      {bin("shanshui-terrain") + " " + quote(dir / "nodata.asc") + " -o " + quote(dir / "a.obj"), "nodata.asc",
+       dir / "a.obj"},
+      {bin("shanshui-terrain") + " " + quote(dir / "cut.dem") + " -o " + quote(dir / "keep.obj"), "cut.dem",
+       dir / "keep.obj"},
+      {bin("shanshui-terrain") + " " + quote(dir / "empty.png") + " -o " + quote(dir / "b.obj"), "empty.png",
+       dir / "b.obj"},
+      {bin("shanshui-terrain") + " " + quote(kDem) + " -o " + quote(dir / "c.obj") + " --step 0", "--step",
+       dir / "c.obj"},
+      {bin("shanshui-terrain") + " " + quote(kDem) + " -o " + quote(dir / "c.obj") + " --cell-size 0", "--cell-size",
+       dir / "c.obj"},
+      {bin("shanshui-repair") + " " + quote(dir / "nofaces.off") + " -o " + quote(dir / "keep.obj"), "nofaces.off",
+       dir / "keep.obj"},
+      {bin("shanshui-render") + " " + quote(dir / "nofaces.off") + " -o " + quote(dir / "d.png"), "nofaces.off",
+       dir / "d.png"},
+      {bin("shanshui-render") + " " + quote(dir / "missing.obj") + " -o " + quote(dir / "d.png"), "missing.obj",
+       dir / "d.png"},
       {bin("shanshui-render") + " " + quote(dir / "cut.txt") + " -o " + quote(dir / "d.png"), "cut.txt", dir / "d.png"},
-      {bin("shanshui-render") + " " + quote(test::sourceDir() / "samples/terrain/none.obj") + " -o " + quote(dir / "d.png") +
-           " --size 0x10", "--size", dir / "d.png"},
+      {bin("shanshui-render") + " " + quote(test::sourceDir() / "samples/terrain/none.obj") + " -o " +
+           quote(dir / "d.png") + " --size 0x10",
+       "--size", dir / "d.png"},
   };
   for (const Case& c : cases) {
     SCOPED_TRACE(c.command);
@@ -143,8 +154,8 @@ TEST(Cli, EnhanceThenQuiltATileableTexture) {
   EXPECT_EQ(*lo, 0.0f);
   EXPECT_EQ(*hi, 1.0f);
 
-  const std::string quilt = bin("shanshui-quilt") + " " + quote(dir / "sample.png") +
-                            " --size 300x200 --block 40 --tileable --seed 9";
+  const std::string quilt =
+      bin("shanshui-quilt") + " " + quote(dir / "sample.png") + " --size 300x200 --block 40 --tileable --seed 9";
   r = run(quilt + " -o " + quote(dir / "a.png") + " --threads 1 --report " + quote(dir / "a.json"));
   ASSERT_EQ(r.exit_code, 0) << r.output;
   r = run(quilt + " -o " + quote(dir / "b.png") + " --threads 2");
@@ -202,9 +213,11 @@ TEST(Cli, TextureToolsRefuseBadInputAndWriteNothing) {
       {quilt + keep + " --block 129", "smaller than block 129"},
       {quilt + keep + " --block 24 --overlap 24", "overlap 24; expected 1 <= overlap < block"},
       {quilt + keep + " --block 24 --overlap 0", "--overlap: 0 is out of range"},
-      {bin("shanshui-quilt") + " " + quote(scan) + keep + " --size 20x300", "output size 20x300 is smaller than block 48"},
+      {bin("shanshui-quilt") + " " + quote(scan) + keep + " --size 20x300",
+       "output size 20x300 is smaller than block 48"},
       {quilt + keep + " --tolerance -1", "tolerance -1"},
-      {bin("shanshui-quilt") + " " + quote(dir / "mask.exr") + keep + " --size 64x64 --block 8", "only an alpha channel"},
+      {bin("shanshui-quilt") + " " + quote(dir / "mask.exr") + keep + " --size 64x64 --block 8",
+       "only an alpha channel"},
       {bin("shanshui-quilt") + " " + quote(dir / "broken.png") + keep + " --size 64x64", "broken.png"},
       {quilt + keep + " --report " + quote(dir / "no/such/dir/r.json"), "output directory does not exist"},
   };
@@ -307,12 +320,13 @@ TEST(Cli, DemoRunsTheChainThenReusesWhatIsUpToDate) {
     std::filesystem::copy_file(test::sourceDir() / "samples" / f, samples / f);
   }
   // Relative paths, as `make demo` gives them.
-  const std::string demo = "cd " + quote(dir.path()) + " && " + bin("shanshui-demo") + " --quick --frames 2 --samples samples --out out";
+  const std::string demo =
+      "cd " + quote(dir.path()) + " && " + bin("shanshui-demo") + " --quick --frames 2 --samples samples --out out";
   auto r = run(demo);
   ASSERT_EQ(r.exit_code, 0) << r.output;
-  const std::map<std::string, std::string> all_ran = {{"enhance", "running"}, {"quilt", "running"}, {"terrain", "running"},
-                                                      {"param", "running"},   {"still", "running"}, {"orbit", "running"},
-                                                      {"stability", "running"}};
+  const std::map<std::string, std::string> all_ran = {
+      {"enhance", "running"}, {"quilt", "running"}, {"terrain", "running"},  {"param", "running"},
+      {"still", "running"},   {"orbit", "running"}, {"stability", "running"}};
   EXPECT_EQ(demoStages(r.output), all_ran);
   for (const char* f : {"report.md", "mountain.png", "orbit_0000.png", "orbit_0001.png", "assets/wrinkle.png",
                         "assets/st_helens_uv.obj", "assets/checker.png", "assets/scan.png"}) {
@@ -337,10 +351,13 @@ TEST(Cli, DemoRunsTheChainThenReusesWhatIsUpToDate) {
   image::saveImage(scan, samples / "textures/rain_strokes_scan.png");
   r = run(demo);
   ASSERT_EQ(r.exit_code, 0) << r.output;
-  EXPECT_EQ(demoStages(r.output),
-            (std::map<std::string, std::string>{{"enhance", "running"}, {"quilt", "running"}, {"terrain", "reused"},
-                                                {"param", "reused"}, {"still", "running"}, {"orbit", "running"},
-                                                {"stability", "reused"}}));
+  EXPECT_EQ(demoStages(r.output), (std::map<std::string, std::string>{{"enhance", "running"},
+                                                                      {"quilt", "running"},
+                                                                      {"terrain", "reused"},
+                                                                      {"param", "reused"},
+                                                                      {"still", "running"},
+                                                                      {"orbit", "running"},
+                                                                      {"stability", "reused"}}));
 
   // A missing sample is named.
   std::filesystem::remove(samples / "terrain/mount_st_helens.dem");

@@ -1,6 +1,7 @@
 // End-to-end: shanshui-render on scene files, its statistics, and scene-file errors.
 #include <fstream>
 #include <set>
+
 #include <nlohmann/json.hpp>
 
 #include "shanshui/image/image_io.h"
@@ -13,8 +14,12 @@ using nlohmann::json;
 using test::quote;
 using test::run;
 
-std::string bin(const char* name) { return quote(test::binDir() / name); }
-std::string sampleScene() { return quote(test::sourceDir() / "samples/scenes/default.json"); }
+std::string bin(const char* name) {
+  return quote(test::binDir() / name);
+}
+std::string sampleScene() {
+  return quote(test::sourceDir() / "samples/scenes/default.json");
+}
 
 json readJson(const std::filesystem::path& p) {
   std::ifstream in(p);
@@ -29,9 +34,9 @@ std::set<std::string> passNames(const json& frame) {
 
 TEST(RenderCli, StatsListThePassesBuiltAndTheirGpuTimePerFrame) {
   test::TempDir dir;
-  const auto r = run(bin("shanshui-render") + " " + sampleScene() + " -o " + quote(dir / "f.png") +
-                     " --size 160x120 --frames 3 --stats " + quote(dir / "s.json") +
-                     " --set objects.0.max_vertices=20000");
+  const auto r =
+      run(bin("shanshui-render") + " " + sampleScene() + " -o " + quote(dir / "f.png") +
+          " --size 160x120 --frames 3 --stats " + quote(dir / "s.json") + " --set objects.0.max_vertices=20000");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   for (const char* f : {"f_0000.png", "f_0001.png", "f_0002.png"}) {
     const image::Image img = image::loadImage(dir / f);
@@ -61,9 +66,10 @@ TEST(RenderCli, StatsListThePassesBuiltAndTheirGpuTimePerFrame) {
 
 TEST(RenderCli, ASceneWithoutWrinklesCanvasOrDiffusionRunsNoneOfThem) {
   test::TempDir dir;
-  const auto r = run(bin("shanshui-render") + " " + sampleScene() + " -o " + quote(dir / "f.png") +
-                     " --size 96x64 --frames 2 --orbit 0 --set camera.path='[]' --stats " + quote(dir / "s.json") +
-                     " --set objects.0.max_vertices=5000 --set objects.0.wrinkle.texture='\"\"' --set canvas.type=none");
+  const auto r =
+      run(bin("shanshui-render") + " " + sampleScene() + " -o " + quote(dir / "f.png") +
+          " --size 96x64 --frames 2 --orbit 0 --set camera.path='[]' --stats " + quote(dir / "s.json") +
+          " --set objects.0.max_vertices=5000 --set objects.0.wrinkle.texture='\"\"' --set canvas.type=none");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const json s = readJson(dir / "s.json");
   for (const json& j : s["passes_built"]) {
@@ -86,14 +92,16 @@ TEST(RenderCli, ASceneWithoutWrinklesCanvasOrDiffusionRunsNoneOfThem) {
 
 TEST(RenderCli, LinesOnlyAndShadingOnlyBuildOnlyTheirShaderCode) {
   test::TempDir dir;
-  const std::string base = bin("shanshui-render") + " " + sampleScene() + " --size 64x48 --set objects.0.max_vertices=3000";
+  const std::string base =
+      bin("shanshui-render") + " " + sampleScene() + " --size 64x48 --set objects.0.max_vertices=3000";
   auto r = run(base + " -o " + quote(dir / "a.png") + " --stats " + quote(dir / "a.json") +
                " --set objects.0.shading.enabled=false");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const json a = readJson(dir / "a.json");
   EXPECT_EQ(a["variants"]["ink"], json({"LINES SINGLE_OBJECT CANVAS"}));
   EXPECT_EQ(a["variants"]["gbuffer"], json({"OBJECT_CURVATURE"})) << "no noise, no wrinkle texture, no UVs";
-  r = run(base + " -o " + quote(dir / "b.png") + " --stats " + quote(dir / "b.json") + " --set objects.0.lines.enabled=false");
+  r = run(base + " -o " + quote(dir / "b.png") + " --stats " + quote(dir / "b.json") +
+          " --set objects.0.lines.enabled=false");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const json b = readJson(dir / "b.json");
   EXPECT_EQ(b["variants"]["ink"], json({"SHADING WRINKLE SINGLE_OBJECT CANVAS"}));
@@ -102,7 +110,8 @@ TEST(RenderCli, LinesOnlyAndShadingOnlyBuildOnlyTheirShaderCode) {
 
 TEST(RenderCli, SetChangesTheRenderedPicture) {
   test::TempDir dir;
-  const std::string base = bin("shanshui-render") + " " + sampleScene() + " --size 128x96 --set objects.0.max_vertices=5000";
+  const std::string base =
+      bin("shanshui-render") + " " + sampleScene() + " --size 128x96 --set objects.0.max_vertices=5000";
   ASSERT_EQ(run(base + " -o " + quote(dir / "a.png")).exit_code, 0);
   ASSERT_EQ(run(base + " -o " + quote(dir / "b.png") + " --set objects.0.lines.curve_factor=3").exit_code, 0);
   const image::Image a = image::loadImage(dir / "a.png"), b = image::loadImage(dir / "b.png");
@@ -133,18 +142,26 @@ TEST(RenderCli, EveryKindOfSceneErrorHasItsOwnMessageAndWritesNothing) {
   const Case cases[] = {
       {scene("bad.json", "{ \"objects\": [ }"), {"bad.json", "not valid JSON"}},
       {quote(dir / "absent.json"), {"absent.json", "no such file"}},
-      {scene("unknown.json", obj + ", \"lines\": {\"curve_factr\": 1}}]}"), {"objects.0.lines.curve_factr", "unknown key", "curve_factor"}},
-      {scene("range.json", obj + ", \"lines\": {\"curve_factor\": 500}}]}"), {"objects.0.lines.curve_factor", "500", "[0, 100]"}},
-      {scene("type.json", obj + ", \"shading\": {\"sigma\": \"wide\"}}]}"), {"objects.0.shading.sigma", "expected a number"}},
-      {scene("order.json", obj + ", \"shading\": {\"thresholds\": [0.5, 0.2, 0.6, 0.7]}}]}"), {"objects.0.shading.thresholds", "ascending"}},
-      {scene("count.json", obj + ", \"shading\": {\"tones\": [0.1, 0.2]}}]}"), {"objects.0.shading.tones", "list of 5"}},
-      {scene("choice.json", obj + ", \"lines\": {\"curvature\": \"jet\"}}]}"), {"objects.0.lines.curvature", "quadric, cotangent, screen"}},
+      {scene("unknown.json", obj + ", \"lines\": {\"curve_factr\": 1}}]}"),
+       {"objects.0.lines.curve_factr", "unknown key", "curve_factor"}},
+      {scene("range.json", obj + ", \"lines\": {\"curve_factor\": 500}}]}"),
+       {"objects.0.lines.curve_factor", "500", "[0, 100]"}},
+      {scene("type.json", obj + ", \"shading\": {\"sigma\": \"wide\"}}]}"),
+       {"objects.0.shading.sigma", "expected a number"}},
+      {scene("order.json", obj + ", \"shading\": {\"thresholds\": [0.5, 0.2, 0.6, 0.7]}}]}"),
+       {"objects.0.shading.thresholds", "ascending"}},
+      {scene("count.json", obj + ", \"shading\": {\"tones\": [0.1, 0.2]}}]}"),
+       {"objects.0.shading.tones", "list of 5"}},
+      {scene("choice.json", obj + ", \"lines\": {\"curvature\": \"jet\"}}]}"),
+       {"objects.0.lines.curvature", "quadric, cotangent, screen"}},
       {scene("none.json", "{\"objects\": []}"), {"objects", "needs at least 1 entry"}},
       {scene("both.json", obj + ", \"mesh\": \"a.obj\"}]}"), {"objects.0", "both 'mesh' and 'dem'"}},
       {scene("missing.json", "{\"objects\": [{\"mesh\": \"nowhere.obj\"}]}"), {"objects.0.mesh", "nowhere.obj"}},
-      {scene("tex.json", obj + ", \"wrinkle\": {\"texture\": \"nowhere.png\", \"uv\": \"planar\"}}]}"), {"objects.0.wrinkle.texture", "nowhere.png"}},
+      {scene("tex.json", obj + ", \"wrinkle\": {\"texture\": \"nowhere.png\", \"uv\": \"planar\"}}]}"),
+       {"objects.0.wrinkle.texture", "nowhere.png"}},
       {scene("uv.json", "{\"objects\": [{\"mesh\": \"" + (dir / "quad.obj").string() +
-                            "\", \"wrinkle\": {\"texture\": \"" + (test::sourceDir() / "samples/textures/rain_strokes_wrinkle.png").string() + "\"}}]}"),
+                            "\", \"wrinkle\": {\"texture\": \"" +
+                            (test::sourceDir() / "samples/textures/rain_strokes_wrinkle.png").string() + "\"}}]}"),
        {"objects.0.wrinkle.uv", "no UVs"}},
       {scene("light.json", obj + "}], \"light\": {\"direction\": [0, 0, 0]}}"), {"light.direction", "zero"}},
       {scene("elev.json", obj + "}], \"camera\": {\"elevation\": 90}}"), {"camera.elevation", "89.9"}},
@@ -158,7 +175,8 @@ TEST(RenderCli, EveryKindOfSceneErrorHasItsOwnMessageAndWritesNothing) {
     const auto r = run(bin("shanshui-render") + " " + c.args + " -o " + quote(dir / "out.png"));
     EXPECT_NE(r.exit_code, 0);
     EXPECT_EQ(lineCount(r.output), 1) << r.output;
-    for (const std::string& part : c.expect) EXPECT_NE(r.output.find(part), std::string::npos) << part << " in " << r.output;
+    for (const std::string& part : c.expect)
+      EXPECT_NE(r.output.find(part), std::string::npos) << part << " in " << r.output;
     EXPECT_FALSE(std::filesystem::exists(dir / "out.png"));
   }
 }

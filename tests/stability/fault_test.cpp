@@ -32,7 +32,7 @@ struct Outcome {
   int exit_code = -1;  //!< -1 when ended by a signal
   int signal = 0;
   bool hung = false;
-  std::string err;     //!< stderr
+  std::string err;  //!< stderr
 };
 
 // Runs a program without a shell, with an optional file size limit (SIGXFSZ ignored, as the
@@ -87,7 +87,9 @@ Outcome runProgram(const std::vector<std::string>& args, std::optional<rlim_t> f
   return o;
 }
 
-std::string bin(const char* name) { return (test::binDir() / name).string(); }
+std::string bin(const char* name) {
+  return (test::binDir() / name).string();
+}
 
 std::string slurp(const fs::path& p) {
   std::ifstream in(p, std::ios::binary);
@@ -164,32 +166,46 @@ TEST(Faults, FullDiskForEveryOutputKindOfEveryTool) {
     std::string name;
     std::vector<std::string> args;
     std::vector<std::string> targets;  //!< existing files the run would replace
-    std::string failing;              //!< the target the error must name
+    std::string failing;               //!< the target the error must name
   };
   const std::string in = (f / "in.png").string(), mesh = f.mesh.string(), dem = kDem.string();
   std::vector<Case> cases;
   for (const char* ext : {"png", "jpg", "tif", "exr", "pgm"}) {
     const std::string out = std::string("e.") + ext;
-    cases.push_back({std::string("enhance -o .") + ext, {bin("shanshui-enhance"), in, "-o", (f / out).string()}, {out}, out});
+    cases.push_back(
+        {std::string("enhance -o .") + ext, {bin("shanshui-enhance"), in, "-o", (f / out).string()}, {out}, out});
   }
-  cases.push_back({"quilt -o .png", {bin("shanshui-quilt"), in, "-o", (f / "q.png").string(), "--size", "96x96",
-                                     "--report", (f / "q.json").string()}, {"q.png", "q.json"}, "q.png"});
+  cases.push_back({"quilt -o .png",
+                   {bin("shanshui-quilt"), in, "-o", (f / "q.png").string(), "--size", "96x96", "--report",
+                    (f / "q.json").string()},
+                   {"q.png", "q.json"},
+                   "q.png"});
   for (const char* ext : {"obj", "ply", "off"}) {
     const std::string out = std::string("t.") + ext;
     cases.push_back({std::string("terrain -o .") + ext,
-                     {bin("shanshui-terrain"), dem, "-o", (f / out).string(), "--max-vertices", "2000"}, {out}, out});
+                     {bin("shanshui-terrain"), dem, "-o", (f / out).string(), "--max-vertices", "2000"},
+                     {out},
+                     out});
     const std::string rout = std::string("r.") + ext;
     cases.push_back({std::string("repair -o .") + ext,
                      {bin("shanshui-repair"), mesh, "-o", (f / rout).string(), "--report", (f / "r.json").string()},
-                     {rout, "r.json"}, rout});
+                     {rout, "r.json"},
+                     rout});
   }
-  cases.push_back({"param -o .obj", {bin("shanshui-param"), mesh, "-o", (f / "p.obj").string(), "--report",
-                                     (f / "p.json").string(), "--checker", (f / "c.png").string()},
-                   {"p.obj", "p.json", "c.png"}, "p.obj"});
-  cases.push_back({"render -o .png", {bin("shanshui-render"), mesh, "-o", (f / "m.png").string(), kRenderSmall, "--stats",
-                                      (f / "s.json").string()}, {"m.png", "s.json"}, "m.png"});
-  cases.push_back({"render sequence -o .jpg", {bin("shanshui-render"), mesh, "-o", (f / "m.jpg").string(), kRenderSmall,
-                                               "--frames", "2"}, {"m_0000.jpg", "m_0001.jpg"}, "m_0000.jpg"});
+  cases.push_back({"param -o .obj",
+                   {bin("shanshui-param"), mesh, "-o", (f / "p.obj").string(), "--report", (f / "p.json").string(),
+                    "--checker", (f / "c.png").string()},
+                   {"p.obj", "p.json", "c.png"},
+                   "p.obj"});
+  cases.push_back(
+      {"render -o .png",
+       {bin("shanshui-render"), mesh, "-o", (f / "m.png").string(), kRenderSmall, "--stats", (f / "s.json").string()},
+       {"m.png", "s.json"},
+       "m.png"});
+  cases.push_back({"render sequence -o .jpg",
+                   {bin("shanshui-render"), mesh, "-o", (f / "m.jpg").string(), kRenderSmall, "--frames", "2"},
+                   {"m_0000.jpg", "m_0001.jpg"},
+                   "m_0000.jpg"});
   for (const Case& c : cases) {
     f.precious(c.targets);
     expectCleanFailure("full disk: " + c.name, c.args, f.dir.path(), c.failing + ": cannot write: File too large", 0);
@@ -203,14 +219,23 @@ TEST(Faults, FullDiskForEveryOutputKindOfEveryTool) {
     std::string main, side;
   };
   const std::vector<Side> sides = {
-      {"quilt --report", {bin("shanshui-quilt"), in, "-o", (f / "q.png").string(), "--size", "16x16", "--block", "8",
-                          "--report", (f / "q.json").string()}, "q.png", "q.json"},
-      {"repair --report", {bin("shanshui-repair"), mesh, "-o", (f / "r.off").string(), "--report",
-                           (f / "r.json").string()}, "r.off", "r.json"},
-      {"param --report", {bin("shanshui-param"), mesh, "-o", (f / "p.obj").string(), "--report",
-                          (f / "p.json").string()}, "p.obj", "p.json"},
-      {"render --stats", {bin("shanshui-render"), mesh, "-o", (f / "m.png").string(), "--size=8x8", "--stats",
-                          (f / "s.json").string()}, "m.png", "s.json"},
+      {"quilt --report",
+       {bin("shanshui-quilt"), in, "-o", (f / "q.png").string(), "--size", "16x16", "--block", "8", "--report",
+        (f / "q.json").string()},
+       "q.png",
+       "q.json"},
+      {"repair --report",
+       {bin("shanshui-repair"), mesh, "-o", (f / "r.off").string(), "--report", (f / "r.json").string()},
+       "r.off",
+       "r.json"},
+      {"param --report",
+       {bin("shanshui-param"), mesh, "-o", (f / "p.obj").string(), "--report", (f / "p.json").string()},
+       "p.obj",
+       "p.json"},
+      {"render --stats",
+       {bin("shanshui-render"), mesh, "-o", (f / "m.png").string(), "--size=8x8", "--stats", (f / "s.json").string()},
+       "m.png",
+       "s.json"},
   };
   for (const Side& s : sides) {
     SCOPED_TRACE(s.name);
@@ -229,8 +254,9 @@ TEST(Faults, ReadOnlyTargetsAndDirectoriesAreRefusedBeforeAnyWork) {
   Fixture f;
   f.precious({"ro.png"});
   fs::permissions(f / "ro.png", fs::perms::owner_read | fs::perms::group_read);
-  expectCleanFailure("read-only target", {bin("shanshui-enhance"), (f / "in.png").string(), "-o", (f / "ro.png").string()},
-                     f.dir.path(), "ro.png: exists and is read-only");
+  expectCleanFailure("read-only target",
+                     {bin("shanshui-enhance"), (f / "in.png").string(), "-o", (f / "ro.png").string()}, f.dir.path(),
+                     "ro.png: exists and is read-only");
   fs::create_directories(f / "locked");
   fs::permissions(f / "locked", fs::perms::owner_read | fs::perms::owner_exec);
   expectCleanFailure("read-only directory for --report",
@@ -242,26 +268,29 @@ TEST(Faults, ReadOnlyTargetsAndDirectoriesAreRefusedBeforeAnyWork) {
                      {bin("shanshui-quilt"), (f / "in.png").string(), "-o", (f / "q.png").string(), "--size", "64x64",
                       "--report", (f / "none/q.json").string()},
                      f.dir.path(), "q.json: output directory does not exist");
-  expectCleanFailure("--checker with an unknown extension",
-                     {bin("shanshui-param"), f.mesh.string(), "-o", (f / "p.obj").string(), "--checker",
-                      (f / "c.xyz").string()},
-                     f.dir.path(), "c.xyz: --checker: unknown extension");
+  expectCleanFailure(
+      "--checker with an unknown extension",
+      {bin("shanshui-param"), f.mesh.string(), "-o", (f / "p.obj").string(), "--checker", (f / "c.xyz").string()},
+      f.dir.path(), "c.xyz: --checker: unknown extension");
 }
 
 TEST(Faults, OutputsThatNameTheSameFileOrAnInput) {
   Fixture f;
-  expectCleanFailure("-o is the input", {bin("shanshui-enhance"), (f / "in.png").string(), "-o", (f / "in.png").string()},
-                     f.dir.path(), "names an input file");
+  expectCleanFailure("-o is the input",
+                     {bin("shanshui-enhance"), (f / "in.png").string(), "-o", (f / "in.png").string()}, f.dir.path(),
+                     "names an input file");
   fs::create_symlink(f / "in.obj", f / "alias.obj");
-  expectCleanFailure("-o is a link to the input", {bin("shanshui-repair"), f.mesh.string(), "-o", (f / "alias.obj").string()},
-                     f.dir.path(), "names an input file");
-  expectCleanFailure("-o and --report the same file",
-                     {bin("shanshui-repair"), f.mesh.string(), "-o", (f / "same.obj").string(), "--report",
-                      (f / "same.obj").string()},
-                     f.dir.path(), "same.obj");
-  expectCleanFailure("a frame pattern with %s", {bin("shanshui-render"), f.mesh.string(), "-o", (f / "f%s.png").string(),
-                                                 kRenderSmall, "--frames", "2"},
-                     f.dir.path(), "one %d or %0Nd");
+  expectCleanFailure("-o is a link to the input",
+                     {bin("shanshui-repair"), f.mesh.string(), "-o", (f / "alias.obj").string()}, f.dir.path(),
+                     "names an input file");
+  expectCleanFailure(
+      "-o and --report the same file",
+      {bin("shanshui-repair"), f.mesh.string(), "-o", (f / "same.obj").string(), "--report", (f / "same.obj").string()},
+      f.dir.path(), "same.obj");
+  expectCleanFailure(
+      "a frame pattern with %s",
+      {bin("shanshui-render"), f.mesh.string(), "-o", (f / "f%s.png").string(), kRenderSmall, "--frames", "2"},
+      f.dir.path(), "one %d or %0Nd");
 }
 
 TEST(Faults, InputsThatNeverEndAreRefused) {
@@ -273,8 +302,9 @@ TEST(Faults, InputsThatNeverEndAreRefused) {
   const std::string o = (f / "out").string();
   expectCleanFailure("enhance on /dev/zero", {bin("shanshui-enhance"), (f / "zero.png").string(), "-o", o + ".png"},
                      f.dir.path(), "zero.png: not a regular file");
-  expectCleanFailure("quilt on /dev/zero", {bin("shanshui-quilt"), (f / "zero.png").string(), "-o", o + ".png", "--size",
-                                            "64x64"}, f.dir.path(), "zero.png: not a regular file");
+  expectCleanFailure("quilt on /dev/zero",
+                     {bin("shanshui-quilt"), (f / "zero.png").string(), "-o", o + ".png", "--size", "64x64"},
+                     f.dir.path(), "zero.png: not a regular file");
   for (const char* name : {"zero.png", "zero.dem", "zero.asc"}) {
     expectCleanFailure(std::string("terrain on /dev/zero as ") + name,
                        {bin("shanshui-terrain"), (f / name).string(), "-o", o + ".obj"}, f.dir.path(),
@@ -284,8 +314,9 @@ TEST(Faults, InputsThatNeverEndAreRefused) {
                      f.dir.path(), "zero.obj: not a regular file");
   expectCleanFailure("repair on a FIFO", {bin("shanshui-repair"), (f / "fifo.off").string(), "-o", o + ".obj"},
                      f.dir.path(), "fifo.off: not a regular file");
-  expectCleanFailure("render on /dev/zero as a scene", {bin("shanshui-render"), (f / "zero.json").string(), "-o", o + ".png"},
-                     f.dir.path(), "zero.json: not a regular file");
+  expectCleanFailure("render on /dev/zero as a scene",
+                     {bin("shanshui-render"), (f / "zero.json").string(), "-o", o + ".png"}, f.dir.path(),
+                     "zero.json: not a regular file");
 }
 
 // Waits until a hidden temporary of a frame appears in `dir` (the sequence is mid-write).
@@ -311,7 +342,7 @@ TEST(Faults, SignalsInTheMiddleOfASequenceLeaveNoTemporaries) {
     Fixture f;
     fs::create_directories(f / "seq");
     const std::vector<std::string> args = {bin("shanshui-render"), f.mesh.string(), "-o", (f / "seq/f.png").string(),
-                                           kRenderSmall, "--frames", "200"};
+                                           kRenderSmall,           "--frames",      "200"};
     bool sawTemporary = false;
     const Outcome o = runProgram(args, {}, 120, [&](pid_t pid) {
       sawTemporary = waitForTemporary(f / "seq", 60);
@@ -333,7 +364,7 @@ TEST(Faults, TemporariesOfAKilledRunAreSweptByTheNextRun) {
   Fixture f;
   fs::create_directories(f / "seq");
   const std::vector<std::string> args = {bin("shanshui-render"), f.mesh.string(), "-o", (f / "seq/f.png").string(),
-                                         kRenderSmall, "--frames", "200"};
+                                         kRenderSmall,           "--frames",      "200"};
   runProgram(args, {}, 120, [&](pid_t pid) {
     waitForTemporary(f / "seq", 60);
     ::kill(pid, SIGKILL);
@@ -341,15 +372,15 @@ TEST(Faults, TemporariesOfAKilledRunAreSweptByTheNextRun) {
   const std::vector<fs::path> left = temporaries(f / "seq");
   ASSERT_FALSE(left.empty()) << "SIGKILL cannot be caught: the temporaries stay until the next run";
   // The next run of the same outputs removes the dead run's temporaries of those outputs.
-  const Outcome again = runProgram({bin("shanshui-render"), f.mesh.string(), "-o", (f / "seq/f.png").string(),
-                                    kRenderSmall, "--frames", "200"},
-                                   {}, 300);
+  const Outcome again = runProgram(
+      {bin("shanshui-render"), f.mesh.string(), "-o", (f / "seq/f.png").string(), kRenderSmall, "--frames", "200"}, {},
+      300);
   ASSERT_EQ(again.exit_code, 0) << again.err;
   EXPECT_TRUE(temporaries(f / "seq").empty());
   table().push_back({"faults", "SIGKILL during a render, then the same render again",
-                     temporaries(f / "seq").empty() ? "clear error: the next run swept " + std::to_string(left.size()) +
-                                                          " stale temporaries"
-                                                    : "PARTIAL OUTPUT: stale temporaries left"});
+                     temporaries(f / "seq").empty()
+                         ? "clear error: the next run swept " + std::to_string(left.size()) + " stale temporaries"
+                         : "PARTIAL OUTPUT: stale temporaries left"});
 }
 
 }  // namespace

@@ -10,11 +10,12 @@
 #include <array>
 #include <cmath>
 #include <cstdlib>
-#include <map>
-#include <sstream>
 #include <fstream>
 #include <functional>
+#include <map>
 #include <mutex>
+#include <sstream>
+
 #include <nlohmann/json.hpp>
 
 #include "shanshui/core/error.h"
@@ -79,8 +80,8 @@ class TableWriter : public ::testing::Environment {
             "parameter, nothing written, an existing output kept byte for byte) or a finite result that keeps the "
             "stage's invariants.\n\n"
          << "**Inputs tried: " << rows.size() << "; handled: " << handled << "; crashes: " << kinds["CRASH"]
-         << "; hangs: " << kinds["HANG"] << "; partial outputs: " << kinds["PARTIAL OUTPUT"]
-         << "; other failures: " << static_cast<int>(rows.size()) - handled - kinds["CRASH"] - kinds["HANG"] - kinds["PARTIAL OUTPUT"]
+         << "; hangs: " << kinds["HANG"] << "; partial outputs: " << kinds["PARTIAL OUTPUT"] << "; other failures: "
+         << static_cast<int>(rows.size()) - handled - kinds["CRASH"] - kinds["HANG"] - kinds["PARTIAL OUTPUT"]
          << ".**\n\n| stage | case | outcome |\n|---|---|---|\n";
       csv << "stage,case,outcome\n";
       for (const auto& r : rows) {
@@ -97,7 +98,9 @@ class TableWriter : public ::testing::Environment {
 };
 const auto* const kTableWriter = ::testing::AddGlobalTestEnvironment(new TableWriter);
 
-std::string bin(const char* name) { return quote(test::binDir() / name); }
+std::string bin(const char* name) {
+  return quote(test::binDir() / name);
+}
 
 // What a successful run must satisfy; returns a short description of the result.
 using Check = std::function<std::string(const std::filesystem::path& output)>;
@@ -110,7 +113,8 @@ std::string meshIsFinite(const std::filesystem::path& p) {
   }
   for (const auto& f : soup.faces)
     for (std::size_t i : f) EXPECT_LT(i, soup.positions.size()) << p;
-  return std::to_string(soup.positions.size()) + " vertices, " + std::to_string(soup.faces.size()) + " faces, all finite";
+  return std::to_string(soup.positions.size()) + " vertices, " + std::to_string(soup.faces.size()) +
+         " faces, all finite";
 }
 
 Check imageIsFinite(int width, int height) {
@@ -127,8 +131,8 @@ Check imageIsFinite(int width, int height) {
 
 // Runs `args` (with "-o OUTPUT" appended) and classifies the outcome; `names` is what an
 // error message must contain (the input's file name or the parameter).
-void runCase(const std::string& stage, const std::string& name, const std::string& command, const std::filesystem::path& output,
-             const std::string& names, const Check& check) {
+void runCase(const std::string& stage, const std::string& name, const std::string& command,
+             const std::filesystem::path& output, const std::string& names, const Check& check) {
   SCOPED_TRACE(stage + ": " + name);
   std::filesystem::remove(output);
   const auto r = run(command + " -o " + quote(output));
@@ -141,8 +145,8 @@ void runCase(const std::string& stage, const std::string& name, const std::strin
     EXPECT_FALSE(std::filesystem::exists(output)) << "an error left an output behind";
     EXPECT_TRUE(r.exit_code > 0 && r.exit_code < 128) << "killed or crashed: " << r.output;
     outcome = (r.exit_code < 0 || r.exit_code >= 128) ? "CRASH: " + message
-              : std::filesystem::exists(output)     ? "PARTIAL OUTPUT: " + message
-                                                    : "clear error: " + message;
+              : std::filesystem::exists(output)       ? "PARTIAL OUTPUT: " + message
+                                                      : "clear error: " + message;
     // Paths of this machine stay out of the table.
     const auto slash = outcome.find('/');
     if (slash != std::string::npos) {
@@ -159,7 +163,9 @@ void runCase(const std::string& stage, const std::string& name, const std::strin
   table().push_back({stage, name, outcome});
 }
 
-void writeText(const std::filesystem::path& p, const std::string& text) { std::ofstream(p) << text; }
+void writeText(const std::filesystem::path& p, const std::string& text) {
+  std::ofstream(p) << text;
+}
 
 std::string grid(int cols, int rows, double cell, const std::string& values) {
   std::ostringstream g;
@@ -187,19 +193,22 @@ TEST(Stability, TerrainOnStiffHeightfields) {
   runCase("terrain", "1x1 height map", t + quote(dir / "one.png"), out, "one.png", meshIsFinite);
   runCase("terrain", "2x2 height map", t + quote(dir / "two.png"), out, "two.png", meshIsFinite);
   runCase("terrain", "flat 64x48 (16-bit zeros)", t + quote(dir / "flat.png"), out, "flat.png", meshIsFinite);
-  runCase("terrain", "spike on the border", t + quote(dir / "spike.png") + " --z-scale 1000", out, "spike.png", meshIsFinite);
+  runCase("terrain", "spike on the border", t + quote(dir / "spike.png") + " --z-scale 1000", out, "spike.png",
+          meshIsFinite);
   runCase("terrain", "NaN sample", t + quote(dir / "nan.asc"), out, "nan.asc", meshIsFinite);
   runCase("terrain", "infinite sample", t + quote(dir / "inf.asc"), out, "inf.asc", meshIsFinite);
   runCase("terrain", "NODATA holes and a NODATA row", t + quote(dir / "holes.asc"), out, "holes.asc", meshIsFinite);
   runCase("terrain", "heights of ±1e300", t + quote(dir / "huge.asc"), out, "huge.asc", meshIsFinite);
   writeText(dir / "high.asc", grid(2, 2, 10, "1e14 0\n0 0\n"));
-  runCase("terrain", "height of 1e14 times z-scale 100", t + quote(dir / "high.asc") + " --z-scale 100", out, "high.asc",
-          meshIsFinite);
+  runCase("terrain", "height of 1e14 times z-scale 100", t + quote(dir / "high.asc") + " --z-scale 100", out,
+          "high.asc", meshIsFinite);
   runCase("terrain", "cells of 1e-9 m", t + quote(dir / "tiny_cells.asc"), out, "tiny_cells.asc", meshIsFinite);
   runCase("terrain", "z-scale 0", t + quote(dir / "two.png") + " --z-scale 0", out, "--z-scale", meshIsFinite);
   runCase("terrain", "z-scale NaN", t + quote(dir / "two.png") + " --z-scale nan", out, "--z-scale", meshIsFinite);
-  runCase("terrain", "step far beyond the grid", t + quote(dir / "flat.png") + " --step 1000000", out, "--step", meshIsFinite);
-  runCase("terrain", "max-vertices 1", t + quote(dir / "flat.png") + " --max-vertices 1", out, "--max-vertices", meshIsFinite);
+  runCase("terrain", "step far beyond the grid", t + quote(dir / "flat.png") + " --step 1000000", out, "--step",
+          meshIsFinite);
+  runCase("terrain", "max-vertices 1", t + quote(dir / "flat.png") + " --max-vertices 1", out, "--max-vertices",
+          meshIsFinite);
 }
 
 TEST(Stability, RepairOnDegenerateMeshes) {
@@ -239,26 +248,30 @@ TEST(Stability, TextureToolsOnStiffImages) {
   const std::string e = bin("shanshui-enhance") + " ";
   const auto png = dir / "e.png";
   runCase("enhance", "1x1 image", e + quote(dir / "one.png"), png, "one.png", imageIsFinite(1, 1));
-  runCase("enhance", "two pixels, two levels", e + quote(dir / "two_levels.png"), png, "two_levels.png", imageIsFinite(2, 1));
+  runCase("enhance", "two pixels, two levels", e + quote(dir / "two_levels.png"), png, "two_levels.png",
+          imageIsFinite(2, 1));
   runCase("enhance", "ink only on the border", e + quote(dir / "border.png"), png, "border.png", imageIsFinite(24, 24));
   runCase("enhance", "one 16-bit step of contrast", e + quote(dir / "near_flat.tif"), png, "near_flat.tif",
           imageIsFinite(16, 16));
-  runCase("enhance", "percentiles 0:100", e + quote(dir / "border.png") + " --auto 0:100", png, "--auto", imageIsFinite(24, 24));
-  runCase("enhance", "range NaN", e + quote(dir / "border.png") + " --range nan:1", png, "--range", imageIsFinite(24, 24));
+  runCase("enhance", "percentiles 0:100", e + quote(dir / "border.png") + " --auto 0:100", png, "--auto",
+          imageIsFinite(24, 24));
+  runCase("enhance", "range NaN", e + quote(dir / "border.png") + " --range nan:1", png, "--range",
+          imageIsFinite(24, 24));
 
   const std::string q = bin("shanshui-quilt") + " ";
   runCase("quilt", "1x1 sample", q + quote(dir / "one.png") + " --size 8x8", png, "one.png", imageIsFinite(8, 8));
-  runCase("quilt", "sample exactly one block", q + quote(dir / "border.png") + " --size 64x40 --block 24", png, "border.png",
-          imageIsFinite(64, 40));
-  runCase("quilt", "output of one block, tileable", q + quote(dir / "border.png") + " --size 24x24 --block 24 --tileable", png,
-          "border.png", imageIsFinite(24, 24));
+  runCase("quilt", "sample exactly one block", q + quote(dir / "border.png") + " --size 64x40 --block 24", png,
+          "border.png", imageIsFinite(64, 40));
+  runCase("quilt", "output of one block, tileable",
+          q + quote(dir / "border.png") + " --size 24x24 --block 24 --tileable", png, "border.png",
+          imageIsFinite(24, 24));
   runCase("quilt", "block 3, overlap 1", q + quote(dir / "border.png") + " --size 30x30 --block 3 --overlap 1", png,
           "border.png", imageIsFinite(30, 30));
   runCase("quilt", "tolerance 1e9", q + quote(dir / "border.png") + " --size 48x48 --block 12 --tolerance 1e9", png,
           "border.png", imageIsFinite(48, 48));
   runCase("quilt", "size 0x0", q + quote(dir / "border.png") + " --size 0x0", png, "--size", imageIsFinite(0, 0));
-  runCase("quilt", "size 100000x100000", q + quote(dir / "border.png") + " --size 100000x100000 --block 12", png, "--size: 100000x100000",
-          imageIsFinite(0, 0));
+  runCase("quilt", "size 100000x100000", q + quote(dir / "border.png") + " --size 100000x100000 --block 12", png,
+          "--size: 100000x100000", imageIsFinite(0, 0));
 }
 
 TEST(Stability, ParameterizationOnStiffMeshes) {
@@ -271,7 +284,8 @@ TEST(Stability, ParameterizationOnStiffMeshes) {
   const auto out = dir / "p.obj";
   for (const char* method : {"auto", "xy", "lscm", "arap"}) {
     const std::string m = std::string(" --method ") + method;
-    runCase("param", std::string("single triangle, ") + method, p + quote(dir / "one.obj") + m, out, "one.obj", meshIsFinite);
+    runCase("param", std::string("single triangle, ") + method, p + quote(dir / "one.obj") + m, out, "one.obj",
+            meshIsFinite);
     runCase("param", std::string("needle triangle, ") + method, p + quote(dir / "needle.obj") + m, out, "needle.obj",
             meshIsFinite);
     runCase("param", std::string("closed tetrahedron, ") + method, p + quote(dir / "tetra.obj") + m, out, "tetra.obj",
@@ -290,17 +304,21 @@ TEST(Stability, RendererOnStiffScenesAndParameters) {
   const std::string dem = test::sourceDir().string() + "/samples/terrain/mount_st_helens.dem";
   const std::string small = " --size 64x48 --set objects.0.max_vertices=3000";
   const auto out = dir / "r.png";
-  runCase("render", "a single triangle", r + quote(dir / "one.obj") + " --size 64x48", out, "one.obj", imageIsFinite(64, 48));
+  runCase("render", "a single triangle", r + quote(dir / "one.obj") + " --size 64x48", out, "one.obj",
+          imageIsFinite(64, 48));
   runCase("render", "a sliver of 1e-6 by 1000", r + quote(dir / "sliver.obj") + " --size 64x48", out, "sliver.obj",
           imageIsFinite(64, 48));
-  runCase("render", "a flat DEM", r + quote(dir / "flat.png") + " --size 64x48", out, "flat.png", imageIsFinite(64, 48));
-  runCase("render", "1x1 picture", r + quote(dem) + " --size 1x1 --set objects.0.max_vertices=3000", out, "", imageIsFinite(1, 1));
+  runCase("render", "a flat DEM", r + quote(dir / "flat.png") + " --size 64x48", out, "flat.png",
+          imageIsFinite(64, 48));
+  runCase("render", "1x1 picture", r + quote(dem) + " --size 1x1 --set objects.0.max_vertices=3000", out, "",
+          imageIsFinite(1, 1));
   struct Set {
     const char* name;
     const char* sets;
   };
   const Set sets[] = {
-      {"curve factor 100 (the maximum), threshold 1", "objects.0.lines.curve_factor=100 --set objects.0.lines.threshold=1"},
+      {"curve factor 100 (the maximum), threshold 1",
+       "objects.0.lines.curve_factor=100 --set objects.0.lines.threshold=1"},
       {"Gaussian steps of sigma 0", "objects.0.shading.sigma=0"},
       {"all tones 0", "objects.0.shading.tones=[0,0,0,0,0]"},
       {"z-scale 1e-3", "objects.0.z_scale=0.001"},
@@ -310,17 +328,19 @@ TEST(Stability, RendererOnStiffScenesAndParameters) {
       {"canvas silk, N' 1024, grain 0.5", "canvas.type=silk --set canvas.impulses=1024 --set canvas.grain=0.5"},
       {"canvas rice paper, N' 1, grain 256", "canvas.type=rice_paper --set canvas.impulses=1 --set canvas.grain=256"},
       {"canvas contrast 1", "canvas.contrast=1"},
-      {"diffusion d 256, n 100, f 1", "diffusion.ring_steps=256 --set diffusion.iterations=100 --set diffusion.attenuation=1"},
-      {"diffusion absorb 1000, residual 0", "diffusion.iterations=10 --set diffusion.absorb=1000 --set diffusion.residual=0"},
+      {"diffusion d 256, n 100, f 1",
+       "diffusion.ring_steps=256 --set diffusion.iterations=100 --set diffusion.attenuation=1"},
+      {"diffusion absorb 1000, residual 0",
+       "diffusion.iterations=10 --set diffusion.absorb=1000 --set diffusion.residual=0"},
       {"diffusion with the canvas's absorbency at 0", "diffusion.iterations=5 --set canvas.absorbency=0"},
   };
   for (const Set& s : sets) {
     runCase("render", s.name, r + quote(dem) + small + " --set " + s.sets, out, "", imageIsFinite(64, 48));
   }
-  runCase("render", "curve factor -1", r + quote(dem) + small + " --set objects.0.lines.curve_factor=-1", out, "curve_factor",
-          imageIsFinite(64, 48));
-  runCase("render", "canvas impulses NaN", r + quote(dem) + small + " --set canvas.impulses=nan", out, "canvas.impulses",
-          imageIsFinite(64, 48));
+  runCase("render", "curve factor -1", r + quote(dem) + small + " --set objects.0.lines.curve_factor=-1", out,
+          "curve_factor", imageIsFinite(64, 48));
+  runCase("render", "canvas impulses NaN", r + quote(dem) + small + " --set canvas.impulses=nan", out,
+          "canvas.impulses", imageIsFinite(64, 48));
 }
 
 // Library stages: `stage` runs the case and returns a description of its finite result
@@ -353,8 +373,8 @@ TEST(Stability, CurvatureOnStiffMeshes) {
       std::snprintf(text, sizeof text, "%s%.3g", sizes.empty() ? "" : " / ", size);
       sizes += text;
     }
-    return std::to_string(m.positions.size()) + " vertices, both estimators finite; feature size (cotangent / quadric, 0 = flat) " +
-           sizes;
+    return std::to_string(m.positions.size()) +
+           " vertices, both estimators finite; feature size (cotangent / quadric, 0 = flat) " + sizes;
   };
   mesh::Mesh one;
   one.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
@@ -487,7 +507,8 @@ TEST(Stability, BatchManifestsOnStiffInput) {
       if (line.find(want) != std::string::npos) last = line;
     for (char& c : last)
       if (c == '|') c = ' ';
-    table().push_back({"batch", name, (r.exit_code == 0 ? "finished: " : "exit " + std::to_string(r.exit_code) + ": ") + last});
+    table().push_back(
+        {"batch", name, (r.exit_code == 0 ? "finished: " : "exit " + std::to_string(r.exit_code) + ": ") + last});
   };
   record("no items (comments only)", "empty.txt", "# nothing\n\n   \n", 1, "empty.txt: the manifest has no items");
   std::filesystem::create_directories(dir / "a_dir.txt");
@@ -496,10 +517,11 @@ TEST(Stability, BatchManifestsOnStiffInput) {
          "batch of 2: 1 done, 1 failed");
   record("CRLF line endings", "crlf.txt", "ramp.png -o c1.png\r\nramp.png -o c2.png\r\n", 0,
          "batch of 2: 2 done, 0 failed");
-  record("a 100 000-character argument", "long.txt", "ramp.png -o " + std::string(100000, 'x') + ".png\nramp.png -o l.png\n",
-         1, "batch of 2: 1 done, 1 failed");
+  record("a 100 000-character argument", "long.txt",
+         "ramp.png -o " + std::string(100000, 'x') + ".png\nramp.png -o l.png\n", 1, "batch of 2: 1 done, 1 failed");
   std::string many;
-  for (int i = 0; i < 40; ++i) many += (i % 2 ? "flat.png" : "ramp.png") + std::string(" -o m") + std::to_string(i) + ".png\n";
+  for (int i = 0; i < 40; ++i)
+    many += (i % 2 ? "flat.png" : "ramp.png") + std::string(" -o m") + std::to_string(i) + ".png\n";
   record("40 items, every other one a flat image (refused)", "many.txt", many, 1, "batch of 40: 20 done, 20 failed");
   // The manifest is read whole before any item runs: item 1 replacing it with a picture
   // does not change what item 2 is.

@@ -3,9 +3,9 @@
 // (KHR_debug), in every build type.
 #pragma once
 
-#include <gtest/gtest.h>
-
 #include <memory>
+
+#include <gtest/gtest.h>
 
 #include "shanshui/render/gl_context.h"
 

@@ -1,12 +1,12 @@
 // Independent checks of mesh validity (no CGAL): the oracle the repair tests use.
 #pragma once
 
-#include <gtest/gtest.h>
-
 #include <cmath>
 #include <map>
 #include <string>
 #include <utility>
+
+#include <gtest/gtest.h>
 
 #include "shanshui/mesh/mesh.h"
 
@@ -17,10 +17,10 @@ struct MeshFacts {
   bool finite = true;
   std::size_t repeated_vertex_faces = 0;  //!< triangles using a vertex twice
   std::size_t zero_area_faces = 0;
-  std::size_t non_manifold_edges = 0;     //!< used by more than two faces
-  std::size_t inconsistent_edges = 0;     //!< the same directed edge in two faces
+  std::size_t non_manifold_edges = 0;  //!< used by more than two faces
+  std::size_t inconsistent_edges = 0;  //!< the same directed edge in two faces
   std::size_t boundary_edges = 0;
-  double signed_volume = 0.0;             //!< > 0 for an outward closed surface
+  double signed_volume = 0.0;  //!< > 0 for an outward closed surface
 };
 
 inline MeshFacts meshFacts(const mesh::Mesh& m) {

@@ -2,7 +2,6 @@
 // running a program, and meshes with known geometry.
 #pragma once
 
-#include <gtest/gtest.h>
 #include <sys/wait.h>
 
 #include <algorithm>
@@ -15,15 +14,24 @@
 #include <string>
 #include <vector>
 
+#include <gtest/gtest.h>
 
 namespace shanshui::test {
 
 namespace fs = std::filesystem;
 
-inline fs::path sourceDir() { return SHANSHUI_SOURCE_DIR; }
-inline fs::path binDir() { return SHANSHUI_BIN_DIR; }
-inline fs::path sharedData() { return SHANSHUI_DATA_DIR; }
-inline fs::path cgalMeshes() { return SHANSHUI_TEST_MESH_DIR; }
+inline fs::path sourceDir() {
+  return SHANSHUI_SOURCE_DIR;
+}
+inline fs::path binDir() {
+  return SHANSHUI_BIN_DIR;
+}
+inline fs::path sharedData() {
+  return SHANSHUI_DATA_DIR;
+}
+inline fs::path cgalMeshes() {
+  return SHANSHUI_TEST_MESH_DIR;
+}
 
 //! Every texture scan in the shared data (sorted); empty when the data is absent.
 inline std::vector<fs::path> sharedTextures() {
@@ -37,8 +45,8 @@ inline std::vector<fs::path> sharedTextures() {
 }
 
 //! Skips the calling test when an input is missing, saying which.
-#define SHANSHUI_REQUIRE_FILE(path)                                               \
-  do {                                                                            \
+#define SHANSHUI_REQUIRE_FILE(path)                                                 \
+  do {                                                                              \
     if (!std::filesystem::exists(path)) GTEST_SKIP() << "missing input " << (path); \
   } while (false)
 
@@ -47,9 +55,8 @@ class TempDir {
  public:
   TempDir() {
     const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    path_ = fs::temp_directory_path() /
-            ("shanshui_" + std::string(info ? info->test_suite_name() : "t") + "_" +
-             std::string(info ? info->name() : "t") + "_" + std::to_string(::getpid()));
+    path_ = fs::temp_directory_path() / ("shanshui_" + std::string(info ? info->test_suite_name() : "t") + "_" +
+                                         std::string(info ? info->name() : "t") + "_" + std::to_string(::getpid()));
     fs::remove_all(path_);
     fs::create_directories(path_);
   }
@@ -79,7 +86,9 @@ inline CommandResult run(const std::string& command) {
   return r;
 }
 
-inline std::string quote(const fs::path& p) { return "'" + p.string() + "'"; }
+inline std::string quote(const fs::path& p) {
+  return "'" + p.string() + "'";
+}
 
 //! Expects `call` to throw an exception whose one-line message contains both `file` and
 //! `what`.

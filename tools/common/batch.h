@@ -7,7 +7,6 @@
 // item by manifest line with its error. Exit code 0 when all items succeed, 1 otherwise.
 #pragma once
 
-#include <CLI/CLI.hpp>
 #include <unistd.h>
 
 #include <cstdio>
@@ -17,6 +16,8 @@
 #include <optional>
 #include <string>
 #include <vector>
+
+#include <CLI/CLI.hpp>
 
 #include "shanshui/core/error.h"
 #include "subprocess.h"
@@ -86,7 +87,8 @@ inline std::vector<std::string> splitManifestLine(const std::string& line, std::
 inline std::vector<ManifestItem> readManifest(const std::string& path) {
   std::ifstream file;
   if (path != "-") {
-    if (std::filesystem::is_directory(path)) throw makeError(path, ": --manifest names a directory, expected a text file");
+    if (std::filesystem::is_directory(path))
+      throw makeError(path, ": --manifest names a directory, expected a text file");
     file.open(path);
     if (!file) throw makeError(path, ": cannot read the manifest");
   }
@@ -133,8 +135,8 @@ inline std::optional<int> runManifest(const CLI::App& app, int argc, char** argv
     if (given > 1) throw makeError("--manifest given ", given, " times; expected one manifest per call");
     const std::vector<ManifestItem> items = readManifest(manifest);
     const std::filesystem::path self = std::filesystem::canonical("/proc/self/exe");
-    const std::filesystem::path log = std::filesystem::temp_directory_path() /
-                                      (name + "-batch-" + std::to_string(::getpid()) + ".log");
+    const std::filesystem::path log =
+        std::filesystem::temp_directory_path() / (name + "-batch-" + std::to_string(::getpid()) + ".log");
     struct RemoveLog {
       std::filesystem::path path;
       ~RemoveLog() {
@@ -163,12 +165,13 @@ inline std::optional<int> runManifest(const CLI::App& app, int argc, char** argv
                        error.c_str());
         }
       } else {
-        std::fprintf(stderr, "%s%s: error: manifest line %d: %s\n", prefix.c_str(), name.c_str(), item.line, error.c_str());
+        std::fprintf(stderr, "%s%s: error: manifest line %d: %s\n", prefix.c_str(), name.c_str(), item.line,
+                     error.c_str());
       }
       if (!error.empty()) failures.push_back("line " + std::to_string(item.line) + ": " + error);
     }
-    std::fprintf(stderr, "%s: batch of %d: %d done, %zu failed\n", name.c_str(), n, n - static_cast<int>(failures.size()),
-                 failures.size());
+    std::fprintf(stderr, "%s: batch of %d: %d done, %zu failed\n", name.c_str(), n,
+                 n - static_cast<int>(failures.size()), failures.size());
     for (const std::string& f : failures) std::fprintf(stderr, "  %s\n", f.c_str());
     return failures.empty() ? 0 : 1;
   } catch (const std::exception& e) {

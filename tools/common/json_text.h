@@ -1,8 +1,9 @@
 // JSON reports of the tools as text: never fails on a file name that is not UTF-8.
 #pragma once
 
-#include <nlohmann/json.hpp>
 #include <string>
+
+#include <nlohmann/json.hpp>
 
 namespace shanshui::tools {
 

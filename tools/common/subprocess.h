@@ -8,9 +8,8 @@
 #include <unistd.h>
 
 #include <cerrno>
-#include <cstring>
-
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -28,9 +27,9 @@ inline std::string shellQuote(const std::string& s) {
 }
 
 struct ProgramRun {
-  bool ok = false;       //!< exited normally with status 0
-  int status = 0;        //!< the raw wait status
-  std::string last_line; //!< the last non-empty line it printed
+  bool ok = false;        //!< exited normally with status 0
+  int status = 0;         //!< the raw wait status
+  std::string last_line;  //!< the last non-empty line it printed
 };
 
 //! Longest single argument and all arguments together that runProgram() passes (Linux
@@ -88,8 +87,10 @@ inline ProgramRun runProgram(const std::filesystem::path& program, const std::ve
     line.clear();
   };
   for (int c; (c = std::fgetc(pipe)) != EOF;) {
-    if (c == '\n' || c == '\r') finish();
-    else line += static_cast<char>(c);
+    if (c == '\n' || c == '\r')
+      finish();
+    else
+      line += static_cast<char>(c);
   }
   if (!line.empty()) finish();
   std::fclose(pipe);

@@ -2,13 +2,13 @@
 // any error into one line on stderr and a non-zero exit code.
 #pragma once
 
-#include <CLI/CLI.hpp>
-
 #include <charconv>
 #include <cstdio>
-#include <string>
 #include <exception>
 #include <functional>
+#include <string>
+
+#include <CLI/CLI.hpp>
 
 #include "batch.h"
 #include "shanshui/core/atomic_output.h"
@@ -32,7 +32,8 @@ inline CLI::Validator integerIn(long long min, unsigned long long max = ~0ULL) {
         }
         unsigned long long v = 0;
         const auto [p, ec] = std::from_chars(b, e, v);
-        if (ec == std::errc::result_out_of_range) return text + " is out of range; expected at most " + std::to_string(max);
+        if (ec == std::errc::result_out_of_range)
+          return text + " is out of range; expected at most " + std::to_string(max);
         if (ec != std::errc() || p != e) return "'" + text + "' is not a whole number";
         if (min > 0 && v < static_cast<unsigned long long>(min)) {
           return text + " is out of range; expected at least " + std::to_string(min);

@@ -9,10 +9,11 @@
 
 int main(int argc, char** argv) {
   using namespace shanshui;
-  CLI::App app{"Contrast-enhances a texture sample with the piecewise linear grey-level transform\n"
-               "(SPEC.md section 2): values at or below A map to C, at or above B to D, linear between.\n"
-               "By default A and B are the 1st and 99th percentiles and the output is grey.",
-               "shanshui-enhance"};
+  CLI::App app{
+      "Contrast-enhances a texture sample with the piecewise linear grey-level transform\n"
+      "(SPEC.md section 2): values at or below A map to C, at or above B to D, linear between.\n"
+      "By default A and B are the 1st and 99th percentiles and the output is grey.",
+      "shanshui-enhance"};
   app.footer("Example:\n  shanshui-enhance scan.jpg -o sample.png --auto 2:98 --depth 16");
   std::string input, output, range, autoRange = "1:99", to = "0:1", depth;
   bool colour = false;
@@ -20,10 +21,12 @@ int main(int argc, char** argv) {
   app.add_option("-o,--output", output, "enhanced image; the extension picks the format")->required();
   auto* rangeOpt = app.add_option("--range", range, "input range A:B in [0,1] mapped to C:D");
   app.add_option("--auto", autoRange, "input range from these histogram percentiles, PLO:PHI")
-      ->default_val("1:99")->excludes(rangeOpt);
+      ->default_val("1:99")
+      ->excludes(rangeOpt);
   app.add_option("--to", to, "output range C:D in [0,1]")->default_val("0:1");
   app.add_flag("--color,--colour", colour, "map every colour channel instead of converting to grey");
-  app.add_option("--depth", depth, "output sample depth: 8, 16 or float (default: the input's, or the nearest the format stores)");
+  app.add_option("--depth", depth,
+                 "output sample depth: 8, 16 or float (default: the input's, or the nearest the format stores)");
   bool smallest = false;
   app.add_flag("--smallest", smallest, "compress PNG/TIFF/EXR output hardest (slower); default: fast compression");
   return tools::runBatchableTool(app, argc, argv, [&] {
@@ -42,7 +45,8 @@ int main(int argc, char** argv) {
     OutputSet outputs({input});
     outputs.declare(output, "-o", image::writableImageExtensions());
     if (outDepth && image::closestDepth(output, *outDepth) != *outDepth) {
-      throw makeError(output, ": --depth ", depth, ": the format of '", std::filesystem::path(output).extension().string(),
+      throw makeError(output, ": --depth ", depth, ": the format of '",
+                      std::filesystem::path(output).extension().string(),
                       "' cannot store it; use .png or .tif for 16, .tif or .exr for float");
     }
 
@@ -58,9 +62,8 @@ int main(int argc, char** argv) {
     }
     outputs.stage(output, image::encodeImage(result, output, *outDepth, {.smallest = smallest}));
     outputs.commit();
-    std::fprintf(stderr, "%s: mapped %g:%g to %g:%g%s; %.2f%% of values at or below A, %.2f%% above B\n",
-                 input.c_str(), report.input_range.low, report.input_range.high, c, d,
-                 options.input_range ? "" : " (percentiles)", 100.0 * report.clipped_low,
-                 100.0 * report.clipped_high);
+    std::fprintf(stderr, "%s: mapped %g:%g to %g:%g%s; %.2f%% of values at or below A, %.2f%% above B\n", input.c_str(),
+                 report.input_range.low, report.input_range.high, c, d, options.input_range ? "" : " (percentiles)",
+                 100.0 * report.clipped_low, 100.0 * report.clipped_high);
   });
 }

@@ -1,8 +1,10 @@
 // shanshui-param: UVs for a mountain mesh so the wrinkle texture maps without stretch.
 #include <cstdio>
 #include <fstream>
+
 #include <nlohmann/json.hpp>
 
+#include "json_text.h"
 #include "shanshui/core/atomic_output.h"
 #include "shanshui/image/image_io.h"
 #include "shanshui/mesh/mesh_io.h"
@@ -11,7 +13,6 @@
 #include "shanshui/param/uv_adjust.h"
 #include "shanshui/render/gl_context.h"
 #include "shanshui/render/mesh_preview.h"
-#include "json_text.h"
 #include "tool_main.h"
 
 namespace {
@@ -19,22 +20,28 @@ namespace {
 using namespace shanshui;
 
 nlohmann::json distortionJson(const param::Distortion& d) {
-  return {{"l2_stretch", d.l2_stretch},         {"linf_stretch", d.linf_stretch},
-          {"angle_distortion", d.angle_distortion}, {"area_distortion", d.area_distortion},
-          {"faces", d.faces},                   {"flipped", d.flipped},
-          {"degenerate", d.degenerate},         {"non_finite", d.non_finite},
+  return {{"l2_stretch", d.l2_stretch},
+          {"linf_stretch", d.linf_stretch},
+          {"angle_distortion", d.angle_distortion},
+          {"area_distortion", d.area_distortion},
+          {"faces", d.faces},
+          {"flipped", d.flipped},
+          {"degenerate", d.degenerate},
+          {"non_finite", d.non_finite},
           {"valid", d.valid()}};
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"Computes UVs for a mesh (SPEC.md section 5) after repairing it: planar projection or\n"
-               "one of CGAL's parameterizers, validated (finite, no flipped or zero-area UV faces)\n"
-               "and measured (Sander L2/Linf stretch, angle and area distortion).",
-               "shanshui-param"};
-  app.footer("Example:\n  shanshui-param out/mountain.obj -o out/mountain_uv.obj --texel-size 200 "
-             "--report out/param.json --checker out/checker.png");
+  CLI::App app{
+      "Computes UVs for a mesh (SPEC.md section 5) after repairing it: planar projection or\n"
+      "one of CGAL's parameterizers, validated (finite, no flipped or zero-area UV faces)\n"
+      "and measured (Sander L2/Linf stretch, angle and area distortion).",
+      "shanshui-param"};
+  app.footer(
+      "Example:\n  shanshui-param out/mountain.obj -o out/mountain_uv.obj --texel-size 200 "
+      "--report out/param.json --checker out/checker.png");
   std::string input, output, methodName = "auto", borderName = "circle", reportPath, checkerPath,
                              components = "keep-largest";
   double texelSize = 0.0;
@@ -47,7 +54,8 @@ int main(int argc, char** argv) {
   app.add_flag("--normalize", normalize, "scale UVs into [0,1] (the default when --texel-size is absent)")
       ->excludes(texel);
   app.add_option("--components", components, "extra connected components: keep-largest (with a warning) or fail")
-      ->check(CLI::IsMember({"keep-largest", "fail"}))->default_val("keep-largest");
+      ->check(CLI::IsMember({"keep-largest", "fail"}))
+      ->default_val("keep-largest");
   app.add_option("--report", reportPath, "write distortion, timings and repairs as JSON");
   app.add_option("--checker", checkerPath, "render a checkerboard-textured view of the result (PNG)");
   return tools::runBatchableTool(app, argc, argv, [&] {
@@ -75,7 +83,8 @@ int main(int argc, char** argv) {
     param::ParamReport report;
     m = param::parameterize(m, options, &report, input);
     if (report.seam_vertices > 0) {
-      std::fprintf(stderr, "%s: closed mesh cut open along a seam of %d vertices\n", input.c_str(), report.seam_vertices);
+      std::fprintf(stderr, "%s: closed mesh cut open along a seam of %d vertices\n", input.c_str(),
+                   report.seam_vertices);
     }
     if (texel->count() > 0) {
       param::scaleToTexelSize(m, texelSize);

@@ -2,14 +2,15 @@
 #include <chrono>
 #include <cstdio>
 #include <fstream>
+
 #include <nlohmann/json.hpp>
 
+#include "json_text.h"
 #include "shanshui/core/atomic_output.h"
 #include "shanshui/core/parse.h"
 #include "shanshui/image/image_io.h"
 #include "shanshui/texsynth/quilt_metrics.h"
 #include "shanshui/texsynth/quilting.h"
-#include "json_text.h"
 #include "tool_main.h"
 
 namespace {
@@ -21,12 +22,17 @@ nlohmann::json reportJson(const std::string& input, const std::string& output, c
   nlohmann::json j;
   j["input"] = input;
   j["output"] = output;
-  j["options"] = {{"width", o.width},         {"height", o.height},
-                  {"block", o.block},         {"overlap", o.resolvedOverlap()},
-                  {"tolerance", o.tolerance}, {"error_floor", o.error_floor},
-                  {"seed", o.seed},           {"seam", texsynth::seamModeName(o.seam)},
+  j["options"] = {{"width", o.width},
+                  {"height", o.height},
+                  {"block", o.block},
+                  {"overlap", o.resolvedOverlap()},
+                  {"tolerance", o.tolerance},
+                  {"error_floor", o.error_floor},
+                  {"seed", o.seed},
+                  {"seam", texsynth::seamModeName(o.seam)},
                   {"search", texsynth::searchModeName(o.search)},
-                  {"tileable", o.tileable},   {"threads", s.threads}};
+                  {"tileable", o.tileable},
+                  {"threads", s.threads}};
   j["seconds"] = s.seconds;
   j["blocks"] = s.blocks;
   j["blocks_x"] = s.blocks_x;
@@ -39,9 +45,8 @@ nlohmann::json reportJson(const std::string& input, const std::string& output, c
   j["seam_error_per_edge"] = m.seam_error_per_edge;
   j["mean_seam_error_per_overlap_pixel"] = m.seam_error_per_overlap_pixel;
   j["coherence"] = {{"mean", m.coherence_mean}, {"max", m.coherence_max}};
-  j["source_usage"] = {{"sample_coverage", m.sample_coverage},
-                       {"cv", m.usage_cv},
-                       {"max_over_mean", m.usage_max_ratio}};
+  j["source_usage"] = {
+      {"sample_coverage", m.sample_coverage}, {"cv", m.usage_cv}, {"max_over_mean", m.usage_max_ratio}};
   j["verbatim_copy_ratio"] = m.verbatim_copy_ratio;
   j["largest_copy_blocks"] = m.largest_copy_blocks;
   j["mean_region_pixels"] = m.mean_region_pixels;
@@ -53,12 +58,14 @@ nlohmann::json reportJson(const std::string& input, const std::string& output, c
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"Synthesises a texture of any size from a sample by image quilting (Efros & Freeman\n"
-               "2001; SPEC.md section 3): blocks chosen by FFT overlap search, pasted along the\n"
-               "minimum error boundary cut or a graph cut; optionally tileable.",
-               "shanshui-quilt"};
-  app.footer("Example:\n  shanshui-quilt sample.png -o wrinkle.png --size 1024x1024 --block 48 --tileable "
-             "--report quilt.json");
+  CLI::App app{
+      "Synthesises a texture of any size from a sample by image quilting (Efros & Freeman\n"
+      "2001; SPEC.md section 3): blocks chosen by FFT overlap search, pasted along the\n"
+      "minimum error boundary cut or a graph cut; optionally tileable.",
+      "shanshui-quilt"};
+  app.footer(
+      "Example:\n  shanshui-quilt sample.png -o wrinkle.png --size 1024x1024 --block 48 --tileable "
+      "--report quilt.json");
   std::string input, output, size, reportPath, seam = "cut", search = "fft";
   texsynth::QuiltOptions options;
   app.add_option("input", input, "sample image (PNG, JPEG, TIFF, EXR, ...)")->required();
@@ -70,14 +77,18 @@ int main(int argc, char** argv) {
   app.add_option("--tolerance", options.tolerance, "accept blocks within (1 + T) of the best overlap error")
       ->default_val(0.1);
   app.add_option("--seed", options.seed, "random seed; the same seed gives the same output")
-      ->check(tools::integerIn(0))->default_val(1);
+      ->check(tools::integerIn(0))
+      ->default_val(1);
   app.add_option("--seam", seam, "how blocks are joined")
-      ->check(CLI::IsMember({"cut", "graphcut", "none"}))->default_val("cut");
+      ->check(CLI::IsMember({"cut", "graphcut", "none"}))
+      ->default_val("cut");
   app.add_flag("--tileable", options.tileable, "make the output tile seamlessly");
   app.add_option("--search", search, "overlap search: fft (fast, exact), exhaustive (reference), random (baseline)")
-      ->check(CLI::IsMember({"fft", "exhaustive", "random"}))->default_val("fft");
+      ->check(CLI::IsMember({"fft", "exhaustive", "random"}))
+      ->default_val("fft");
   app.add_option("--threads", options.threads, "worker threads (0 = all cores); the output does not depend on it")
-      ->check(tools::integerIn(0, 1024))->default_val(0);
+      ->check(tools::integerIn(0, 1024))
+      ->default_val(0);
   app.add_option("--report", reportPath, "write timings and quality metrics as JSON");
   bool smallest = false;
   app.add_flag("--smallest", smallest, "compress PNG/TIFF/EXR output hardest (slower); default: fast compression");

@@ -1,20 +1,22 @@
 // shanshui-repair: clean a mesh for rendering and parameterization, and say what changed.
 #include <cstdio>
 #include <fstream>
+
 #include <nlohmann/json.hpp>
 
+#include "json_text.h"
 #include "shanshui/core/atomic_output.h"
 #include "shanshui/mesh/mesh_io.h"
 #include "shanshui/mesh/repair.h"
-#include "json_text.h"
 #include "tool_main.h"
 
 int main(int argc, char** argv) {
   using namespace shanshui;
-  CLI::App app{"Repairs a mesh (SPEC.md section 4): drops NaN vertices and invalid faces, merges\n"
-               "duplicates, orients, splits non-manifold vertices, triangulates, removes degenerate\n"
-               "faces and extra components, fills holes; reports what it changed.",
-               "shanshui-repair"};
+  CLI::App app{
+      "Repairs a mesh (SPEC.md section 4): drops NaN vertices and invalid faces, merges\n"
+      "duplicates, orients, splits non-manifold vertices, triangulates, removes degenerate\n"
+      "faces and extra components, fills holes; reports what it changed.",
+      "shanshui-repair"};
   app.footer("Example:\n  shanshui-repair broken.off -o fixed.obj --report repair.json");
   std::string input, output, reportPath, components = "keep-largest";
   mesh::RepairOptions options;
@@ -22,10 +24,12 @@ int main(int argc, char** argv) {
   app.add_option("input", input, "mesh to repair (.obj, .ply, .off)")->required();
   app.add_option("-o,--output", output, "repaired mesh (.obj, .ply, .off)")->required();
   app.add_option("--components", components, "extra connected components")
-      ->check(CLI::IsMember({"keep-largest", "fail", "keep-all"}))->default_val("keep-largest");
+      ->check(CLI::IsMember({"keep-largest", "fail", "keep-all"}))
+      ->default_val("keep-largest");
   app.add_flag("--no-fill-holes", noFill, "leave holes open");
   app.add_option("--max-hole-edges", options.max_hole_edges, "larger holes stay open")
-      ->check(tools::integerIn(0, 2000000000))->default_val(1000);
+      ->check(tools::integerIn(0, 2000000000))
+      ->default_val(1000);
   app.add_option("--report", reportPath, "write what was changed as JSON");
   return tools::runBatchableTool(app, argc, argv, [&] {
     options.fill_holes = !noFill;

@@ -8,22 +8,26 @@
 
 int main(int argc, char** argv) {
   using namespace shanshui;
-  CLI::App app{"Turns a DEM or height map into a triangle mesh (x east, y north, z up, metres).\n"
-               "Inputs: 8/16-bit PNG or TIFF height maps, USGS ASCII DEM (.dem), ESRI ASCII grid (.asc).",
-               "shanshui-terrain"};
-  app.footer("Example:\n  shanshui-terrain samples/terrain/mount_st_helens.dem -o out/st_helens.obj --max-vertices 100000");
+  CLI::App app{
+      "Turns a DEM or height map into a triangle mesh (x east, y north, z up, metres).\n"
+      "Inputs: 8/16-bit PNG or TIFF height maps, USGS ASCII DEM (.dem), ESRI ASCII grid (.asc).",
+      "shanshui-terrain"};
+  app.footer(
+      "Example:\n  shanshui-terrain samples/terrain/mount_st_helens.dem -o out/st_helens.obj --max-vertices 100000");
   std::string input, output;
   terrain::HeightfieldOptions field;
   terrain::TerrainMeshOptions meshOptions;
   app.add_option("input", input, "height map or DEM")->required();
   app.add_option("-o,--output", output, "mesh to write (.obj, .ply or .off)")->required();
-  app.add_option("--cell-size", field.cell_size,
-                 "metres between samples; default: from the file (1 m for images)");
+  app.add_option("--cell-size", field.cell_size, "metres between samples; default: from the file (1 m for images)");
   app.add_option("--z-scale", meshOptions.z_scale, "vertical exaggeration")->default_val(1.0);
-  app.add_option("--step", meshOptions.step, "keep every N-th sample")->check(tools::integerIn(1, 1000000))->default_val(1);
+  app.add_option("--step", meshOptions.step, "keep every N-th sample")
+      ->check(tools::integerIn(1, 1000000))
+      ->default_val(1);
   app.add_option("--max-vertices", meshOptions.max_vertices,
                  "raise the step until the grid has at most K vertices (0: no limit)")
-      ->check(tools::integerIn(0, 2000000000))->default_val(0);
+      ->check(tools::integerIn(0, 2000000000))
+      ->default_val(0);
   return tools::runBatchableTool(app, argc, argv, [&] {
     if (field.cell_size < 0 || (app.count("--cell-size") && field.cell_size == 0)) {
       throw makeError("--cell-size: ", field.cell_size, " is out of range; expected (0, 1e6] metres");

@@ -66,7 +66,9 @@ std::string lower(std::string s) {
   return s;
 }
 
-std::string reason(int err) { return std::strerror(err); }
+std::string reason(int err) {
+  return std::strerror(err);
+}
 
 fs::path directoryOf(const fs::path& target) {
   return target.has_parent_path() ? target.parent_path() : fs::path(".");
@@ -136,8 +138,8 @@ void renameOver(const fs::path& tmp, const fs::path& target) {
 }  // namespace
 
 fs::path temporaryPath(const fs::path& target, long pid, unsigned n) {
-  return directoryOf(target) / ("." + target.stem().string() + ".tmp" + std::to_string(pid) + "_" +
-                                std::to_string(n) + target.extension().string());
+  return directoryOf(target) / ("." + target.stem().string() + ".tmp" + std::to_string(pid) + "_" + std::to_string(n) +
+                                target.extension().string());
 }
 
 void sweepStaleTemporaries(const fs::path& target) {
@@ -176,8 +178,8 @@ void sweepStaleTemporaries(const fs::path& target) {
   for (auto f = list.begin(); f != list.end();) {
     const std::string name = f->filename().string();
     const std::size_t tail = name.rfind(".tmp");
-    if (name.compare(0, prefix.size(), prefix) == 0 && tail + 4 == prefix.size() &&
-        name.size() >= ext.size() && name.compare(name.size() - ext.size(), ext.size(), ext) == 0) {
+    if (name.compare(0, prefix.size(), prefix) == 0 && tail + 4 == prefix.size() && name.size() >= ext.size() &&
+        name.compare(name.size() - ext.size(), ext.size(), ext) == 0) {
       std::error_code ec;
       fs::remove(*f, ec);
       f = list.erase(f);
@@ -319,8 +321,8 @@ void OutputSet::declare(const fs::path& target, std::string_view what, const std
     if (std::find(extensions.begin(), extensions.end(), ext) == extensions.end()) {
       std::string list;
       for (const std::string& e : extensions) list += (list.empty() ? "" : ", ") + e;
-      throw makeError(target.string(), ": ", what, ": unknown extension '", target.extension().string(),
-                      "'; expected ", list);
+      throw makeError(target.string(), ": ", what, ": unknown extension '", target.extension().string(), "'; expected ",
+                      list);
     }
   }
   const fs::path key = comparable(target);
@@ -342,7 +344,8 @@ void OutputSet::declare(const fs::path& target, std::string_view what, const std
     clash = jt->second;
   }
   if (clash < entries_.size()) {
-    throw makeError(target.string(), ": ", what, " and ", entries_[clash].what, " name the same file; give each its own");
+    throw makeError(target.string(), ": ", what, " and ", entries_[clash].what,
+                    " name the same file; give each its own");
   }
   checkOutputPath(target);
   byKey_[key] = entries_.size();

@@ -99,8 +99,11 @@ TEST(OutputSet, RefusesSamePathsInputsUnknownExtensionsAndReadOnlyTargets) {
   test::expectErrorNaming([&] { out.declare(dir / "in.png", "-o"); }, "in.png", "names an input file");
   std::filesystem::create_symlink(dir / "in.png", dir / "link.png");
   test::expectErrorNaming([&] { out.declare(dir / "link.png", "-o"); }, "link.png", "input");
-  test::expectErrorNaming([&] { out.declare(dir / "c.xyz", "--checker", {".png", ".jpg"}); }, "c.xyz",
-                          "unknown extension '.xyz'; expected .png, .jpg");
+  test::expectErrorNaming(
+      [&] {
+        out.declare(dir / "c.xyz", "--checker", {".png", ".jpg"});
+      },
+      "c.xyz", "unknown extension '.xyz'; expected .png, .jpg");
   std::ofstream(dir / "ro.json") << "keep";
   std::filesystem::permissions(dir / "ro.json", std::filesystem::perms::owner_read);
   test::expectErrorNaming([&] { out.declare(dir / "ro.json", "--report"); }, "ro.json", "read-only");
@@ -138,7 +141,7 @@ TEST(AtomicOutput, TemporariesOfDeadProcessesAreSweptOthersKept) {
   if (dead == 0) ::_exit(0);
   ::waitpid(dead, nullptr, 0);
   const auto stale = temporaryPath(target, dead, 3);
-  const auto live = temporaryPath(target, ::getppid(), 4);   // our parent is running
+  const auto live = temporaryPath(target, ::getppid(), 4);       // our parent is running
   const auto other = temporaryPath(dir / "other.png", dead, 5);  // another output's
   for (const auto& p : {stale, live, other}) std::ofstream(p) << "x";
   writeFileAtomically(target, "new");
@@ -197,7 +200,8 @@ TEST(ParallelFor, VisitsEveryIndexOnceForAnyThreadCount) {
     for (int count : {0, 1, 7, 1000}) {
       std::vector<std::atomic<int>> visits(static_cast<std::size_t>(count));
       parallelFor(count, threads, [&](int i) { ++visits[static_cast<std::size_t>(i)]; });
-      for (int i = 0; i < count; ++i) ASSERT_EQ(visits[static_cast<std::size_t>(i)], 1) << threads << " threads, index " << i;
+      for (int i = 0; i < count; ++i)
+        ASSERT_EQ(visits[static_cast<std::size_t>(i)], 1) << threads << " threads, index " << i;
     }
   }
   EXPECT_GE(resolveThreads(0), 1);

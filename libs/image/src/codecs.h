@@ -54,8 +54,7 @@ inline unsigned sampleCode(float v, unsigned max_code) {
 struct OiioCodec {
   int abi_version;
   std::string (*load)(const std::string& path, Decoded* out);
-  std::string (*encode)(const Image& img, const std::string& path, PixelDepth depth, bool smallest,
-                        std::string* bytes);
+  std::string (*encode)(const Image& img, const std::string& path, PixelDepth depth, bool smallest, std::string* bytes);
 };
 constexpr int kOiioCodecAbi = 1;
 

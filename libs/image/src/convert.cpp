@@ -45,9 +45,18 @@ Image toRgba(const Image& img) {
     const float* s = &img.pixels[p * img.channels];
     float* d = &out.pixels[p * 4];
     switch (img.channels) {
-      case 1: d[0] = d[1] = d[2] = s[0]; break;
-      case 2: d[0] = d[1] = d[2] = s[0]; d[3] = s[1]; break;
-      default: d[0] = s[0]; d[1] = s[1]; d[2] = s[2]; break;
+      case 1:
+        d[0] = d[1] = d[2] = s[0];
+        break;
+      case 2:
+        d[0] = d[1] = d[2] = s[0];
+        d[3] = s[1];
+        break;
+      default:
+        d[0] = s[0];
+        d[1] = s[1];
+        d[2] = s[2];
+        break;
     }
   }
   return out;

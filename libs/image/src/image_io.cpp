@@ -18,12 +18,18 @@ namespace fs = std::filesystem;
 
 double normalisationScale(PixelDepth depth) {
   switch (depth) {
-    case PixelDepth::UInt8: return 255.0;
-    case PixelDepth::UInt16: return 65535.0;
-    case PixelDepth::Int16: return 32767.0;
-    case PixelDepth::UInt32: return 4294967295.0;
-    case PixelDepth::Int32: return 2147483647.0;
-    default: return 1.0;
+    case PixelDepth::UInt8:
+      return 255.0;
+    case PixelDepth::UInt16:
+      return 65535.0;
+    case PixelDepth::Int16:
+      return 32767.0;
+    case PixelDepth::UInt32:
+      return 4294967295.0;
+    case PixelDepth::Int32:
+      return 2147483647.0;
+    default:
+      return 1.0;
   }
 }
 
@@ -36,14 +42,22 @@ PixelDepth parseDepth(const std::string& text) {
 
 const char* depthName(PixelDepth depth) {
   switch (depth) {
-    case PixelDepth::UInt8: return "8";
-    case PixelDepth::UInt16: return "16";
-    case PixelDepth::Int16: return "int16";
-    case PixelDepth::UInt32: return "uint32";
-    case PixelDepth::Int32: return "int32";
-    case PixelDepth::Half: return "half";
-    case PixelDepth::Float: return "float";
-    case PixelDepth::Double: return "double";
+    case PixelDepth::UInt8:
+      return "8";
+    case PixelDepth::UInt16:
+      return "16";
+    case PixelDepth::Int16:
+      return "int16";
+    case PixelDepth::UInt32:
+      return "uint32";
+    case PixelDepth::Int32:
+      return "int32";
+    case PixelDepth::Half:
+      return "half";
+    case PixelDepth::Float:
+      return "float";
+    case PixelDepth::Double:
+      return "double";
   }
   return "?";
 }
@@ -130,10 +144,18 @@ std::string lowerExtension(const fs::path& path) {
 
 // OpenImageIO's name of the format written for `path`'s extension; empty when unknown.
 std::string formatOf(const fs::path& path) {
-  static const std::array<std::pair<const char*, const char*>, 12> kFormats = {{
-      {".png", "png"}, {".jpg", "jpeg"}, {".jpeg", "jpeg"}, {".tif", "tiff"}, {".tiff", "tiff"},
-      {".exr", "openexr"}, {".pgm", "pnm"}, {".ppm", "pnm"}, {".pnm", "pnm"}, {".bmp", "bmp"},
-      {".tga", "targa"}, {".hdr", "hdr"}}};
+  static const std::array<std::pair<const char*, const char*>, 12> kFormats = {{{".png", "png"},
+                                                                                {".jpg", "jpeg"},
+                                                                                {".jpeg", "jpeg"},
+                                                                                {".tif", "tiff"},
+                                                                                {".tiff", "tiff"},
+                                                                                {".exr", "openexr"},
+                                                                                {".pgm", "pnm"},
+                                                                                {".ppm", "pnm"},
+                                                                                {".pnm", "pnm"},
+                                                                                {".bmp", "bmp"},
+                                                                                {".tga", "targa"},
+                                                                                {".hdr", "hdr"}}};
   const std::string ext = lowerExtension(path);
   for (const auto& [e, format] : kFormats) {
     if (ext == e) return format;
@@ -156,9 +178,15 @@ Image loadImage(const fs::path& path, ImageInfo* info) {
   checkInputFile(path, "an image");
   detail::Decoded decoded;
   switch (sniff(path)) {
-    case Codec::Png: decoded = detail::readPng(path); break;
-    case Codec::Jpeg: decoded = detail::readJpeg(path); break;
-    case Codec::Pnm: decoded = detail::readBinaryPnm(path); break;
+    case Codec::Png:
+      decoded = detail::readPng(path);
+      break;
+    case Codec::Jpeg:
+      decoded = detail::readJpeg(path);
+      break;
+    case Codec::Pnm:
+      decoded = detail::readBinaryPnm(path);
+      break;
     case Codec::Module: {
       const std::string error = detail::oiioCodec(name, "reading this format").load(name, &decoded);
       if (!error.empty()) throw Error(error);
@@ -175,7 +203,7 @@ Image loadImage(const fs::path& path, ImageInfo* info) {
 
 const std::vector<std::string>& writableImageExtensions() {
   static const std::vector<std::string> list = {".png", ".jpg", ".jpeg", ".tif", ".tiff", ".exr",
-                                                ".pgm", ".ppm", ".pnm", ".bmp", ".tga", ".hdr"};
+                                                ".pgm", ".ppm", ".pnm",  ".bmp", ".tga",  ".hdr"};
   return list;
 }
 

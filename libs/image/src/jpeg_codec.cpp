@@ -1,17 +1,16 @@
 // JPEG with libjpeg (libjpeg-turbo). As for PNG, errors arrive by longjmp: each call that
 // can fail runs in a small function of its own holding the setjmp.
-#include <cstdio>  // before jpeglib.h, which uses FILE
-
-#include <jerror.h>
-#include <jpeglib.h>
-
 #include <algorithm>
 #include <array>
 #include <cerrno>
 #include <csetjmp>
+#include <cstdio>  // before jpeglib.h, which uses FILE
 #include <cstdlib>
 #include <cstring>
 #include <vector>
+
+#include <jerror.h>
+#include <jpeglib.h>
 
 #include "codecs.h"
 #include "shanshui/core/error.h"

@@ -2,15 +2,15 @@
 // (TIFF, OpenEXR, GIF, BMP, Targa, HDR, ASCII PNM, CMYK JPEG, ...). Built as a module and
 // loaded by image_io.cpp on first use, so tools that never meet these formats do not pay
 // for OpenImageIO's ~260 shared libraries at start-up. Errors go back as messages.
-#include <OpenImageIO/filesystem.h>
-#include <OpenImageIO/imageio.h>
-
 #include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <new>
+
+#include <OpenImageIO/filesystem.h>
+#include <OpenImageIO/imageio.h>
 
 #include "codecs.h"
 
@@ -19,28 +19,45 @@ namespace {
 
 PixelDepth depthOf(OIIO::TypeDesc t) {
   switch (t.basetype) {
-    case OIIO::TypeDesc::UINT8: return PixelDepth::UInt8;
-    case OIIO::TypeDesc::INT8: return PixelDepth::UInt8;
-    case OIIO::TypeDesc::UINT16: return PixelDepth::UInt16;
-    case OIIO::TypeDesc::INT16: return PixelDepth::Int16;
-    case OIIO::TypeDesc::UINT32: return PixelDepth::UInt32;
-    case OIIO::TypeDesc::INT32: return PixelDepth::Int32;
-    case OIIO::TypeDesc::HALF: return PixelDepth::Half;
-    case OIIO::TypeDesc::DOUBLE: return PixelDepth::Double;
-    default: return PixelDepth::Float;
+    case OIIO::TypeDesc::UINT8:
+      return PixelDepth::UInt8;
+    case OIIO::TypeDesc::INT8:
+      return PixelDepth::UInt8;
+    case OIIO::TypeDesc::UINT16:
+      return PixelDepth::UInt16;
+    case OIIO::TypeDesc::INT16:
+      return PixelDepth::Int16;
+    case OIIO::TypeDesc::UINT32:
+      return PixelDepth::UInt32;
+    case OIIO::TypeDesc::INT32:
+      return PixelDepth::Int32;
+    case OIIO::TypeDesc::HALF:
+      return PixelDepth::Half;
+    case OIIO::TypeDesc::DOUBLE:
+      return PixelDepth::Double;
+    default:
+      return PixelDepth::Float;
   }
 }
 
 OIIO::TypeDesc typeOf(PixelDepth d) {
   switch (d) {
-    case PixelDepth::UInt8: return OIIO::TypeDesc::UINT8;
-    case PixelDepth::UInt16: return OIIO::TypeDesc::UINT16;
-    case PixelDepth::Int16: return OIIO::TypeDesc::INT16;
-    case PixelDepth::UInt32: return OIIO::TypeDesc::UINT32;
-    case PixelDepth::Int32: return OIIO::TypeDesc::INT32;
-    case PixelDepth::Half: return OIIO::TypeDesc::HALF;
-    case PixelDepth::Float: return OIIO::TypeDesc::FLOAT;
-    case PixelDepth::Double: return OIIO::TypeDesc::DOUBLE;
+    case PixelDepth::UInt8:
+      return OIIO::TypeDesc::UINT8;
+    case PixelDepth::UInt16:
+      return OIIO::TypeDesc::UINT16;
+    case PixelDepth::Int16:
+      return OIIO::TypeDesc::INT16;
+    case PixelDepth::UInt32:
+      return OIIO::TypeDesc::UINT32;
+    case PixelDepth::Int32:
+      return OIIO::TypeDesc::INT32;
+    case PixelDepth::Half:
+      return OIIO::TypeDesc::HALF;
+    case PixelDepth::Float:
+      return OIIO::TypeDesc::FLOAT;
+    case PixelDepth::Double:
+      return OIIO::TypeDesc::DOUBLE;
   }
   return OIIO::TypeDesc::FLOAT;
 }
@@ -105,8 +122,8 @@ void load(const std::string& name, Decoded* out) {
   if (!in->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, img.pixels.data())) {
     throw makeError(name, ": cannot read pixels (truncated or corrupt?): ", oneLine(in->geterror()));
   }
-  const bool associated = img.hasAlpha() && spec.alpha_channel == channels - 1 &&
-                          spec.get_int_attribute("oiio:UnassociatedAlpha", 0) == 0;
+  const bool associated =
+      img.hasAlpha() && spec.alpha_channel == channels - 1 && spec.get_int_attribute("oiio:UnassociatedAlpha", 0) == 0;
   if (associated) {  // EXR and friends store premultiplied colour: undo it.
     for (std::size_t p = 0; p < img.pixels.size(); p += channels) {
       const float a = img.pixels[p + channels - 1];
@@ -200,7 +217,6 @@ std::string encodeEntry(const Image& img, const std::string& path, PixelDepth de
 
 extern "C" __attribute__((visibility("default"))) const shanshui::image::detail::OiioCodec* shanshui_oiio_codec() {
   static const shanshui::image::detail::OiioCodec codec = {
-      shanshui::image::detail::kOiioCodecAbi, shanshui::image::detail::loadEntry,
-      shanshui::image::detail::encodeEntry};
+      shanshui::image::detail::kOiioCodecAbi, shanshui::image::detail::loadEntry, shanshui::image::detail::encodeEntry};
   return &codec;
 }

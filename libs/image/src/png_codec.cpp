@@ -2,9 +2,6 @@
 // libpng at its smallest (--smallest). libpng reports errors by longjmp: every call that can fail runs in a
 // small function of its own that holds the setjmp and no C++ object, and the message is
 // kept in the context so the caller throws one Error naming the file.
-#include <png.h>
-#include <zlib.h>
-
 #include <algorithm>
 #include <array>
 #include <atomic>
@@ -15,6 +12,9 @@
 #include <exception>
 #include <thread>
 #include <vector>
+
+#include <png.h>
+#include <zlib.h>
 
 #include "codecs.h"
 #include "shanshui/core/error.h"
@@ -214,8 +214,7 @@ void putChunk(std::string& out, const char* type, const char* data, std::size_t 
 }
 
 // Filters and deflates one band; throws Error (with `name`) if zlib fails.
-void deflateBand(const Image& img, int bits, int level, int strategy, bool last, Band& band,
-                 const std::string& name) {
+void deflateBand(const Image& img, int bits, int level, int strategy, bool last, Band& band, const std::string& name) {
   const std::size_t samples = static_cast<std::size_t>(img.width) * img.channels;
   const std::size_t bytes_per_sample = bits / 8;
   const std::size_t row_bytes = samples * bytes_per_sample;

@@ -1,13 +1,13 @@
 // The direct PNG, JPEG and PNM codecs (src/codecs.h) against OpenImageIO as the oracle:
 // files written by one are read by the other to the same values, including the PNG
 // layouts shanshui never writes (palette, 1-bit grey, tRNS, interlaced).
-#include <OpenImageIO/imageio.h>
-#include <png.h>
-
 #include <csetjmp>
 #include <cstdio>
 #include <fstream>
 #include <random>
+
+#include <OpenImageIO/imageio.h>
+#include <png.h>
 
 #include "shanshui/core/error.h"
 #include "shanshui/image/image_io.h"
@@ -130,15 +130,14 @@ bool writeRawPng(std::FILE* file, const PngLayout& layout, int w, int h, std::ve
 
 TEST(Codecs, PngReaderAgreesWithOpenImageIOOnEveryLayout) {
   test::TempDir dir;
-  const PngLayout layouts[] = {
-      {PNG_COLOR_TYPE_GRAY, 1, false, false},    {PNG_COLOR_TYPE_GRAY, 2, true, false},
-      {PNG_COLOR_TYPE_GRAY, 4, false, true},     {PNG_COLOR_TYPE_GRAY, 8, true, false},
-      {PNG_COLOR_TYPE_GRAY, 16, true, false},    {PNG_COLOR_TYPE_PALETTE, 4, false, false},
-      {PNG_COLOR_TYPE_PALETTE, 8, true, true},   {PNG_COLOR_TYPE_PALETTE, 8, false, true}};
+  const PngLayout layouts[] = {{PNG_COLOR_TYPE_GRAY, 1, false, false},  {PNG_COLOR_TYPE_GRAY, 2, true, false},
+                               {PNG_COLOR_TYPE_GRAY, 4, false, true},   {PNG_COLOR_TYPE_GRAY, 8, true, false},
+                               {PNG_COLOR_TYPE_GRAY, 16, true, false},  {PNG_COLOR_TYPE_PALETTE, 4, false, false},
+                               {PNG_COLOR_TYPE_PALETTE, 8, true, true}, {PNG_COLOR_TYPE_PALETTE, 8, false, true}};
   int n = 0;
   for (const PngLayout& layout : layouts) {
-    SCOPED_TRACE("colour type " + std::to_string(layout.colour_type) + ", " + std::to_string(layout.bits) +
-                 " bits" + (layout.interlaced ? ", interlaced" : "") + (layout.transparency ? ", tRNS" : ""));
+    SCOPED_TRACE("colour type " + std::to_string(layout.colour_type) + ", " + std::to_string(layout.bits) + " bits" +
+                 (layout.interlaced ? ", interlaced" : "") + (layout.transparency ? ", tRNS" : ""));
     const auto path = dir / ("layout" + std::to_string(n++) + ".png");
     std::vector<png_byte> data;
     std::FILE* file = std::fopen(path.c_str(), "wb");
@@ -187,7 +186,8 @@ TEST(Codecs, ParallelPngWriterJoinsItsBandsIntoOneValidStream) {
 
 TEST(Codecs, PngsWrittenByOpenImageIOLoadExactly) {
   test::TempDir dir;
-  for (const auto& [type, levels] : {std::pair{OIIO::TypeDesc::UINT8, 255.0}, std::pair{OIIO::TypeDesc::UINT16, 65535.0}}) {
+  for (const auto& [type, levels] :
+       {std::pair{OIIO::TypeDesc::UINT8, 255.0}, std::pair{OIIO::TypeDesc::UINT16, 65535.0}}) {
     for (int channels = 1; channels <= 4; ++channels) {
       const Image img = randomCodes(23, 31, channels, levels, 9u + channels);
       const auto path = dir / "theirs.png";

@@ -17,7 +17,9 @@ void checkRange(const char* name, T value, Range<T> range) {
   }
 }
 
-double luminance(const float* c) { return 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2]; }
+double luminance(const float* c) {
+  return 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2];
+}
 
 std::vector<bool> strokeMask(const InkField& in, double threshold) {
   std::vector<bool> s(in.ink.size());
@@ -128,8 +130,10 @@ InkField mainDiffusionDistance(const InkField& in, const DiffusionOptions& o, st
     const std::size_t base = static_cast<std::size_t>(y) * w;
     for (int x = 0; x < w; ++x) {
       const std::size_t i = base + x;
-      if (stroke[i]) row_d[i] = 0, row_v[i] = in.ink[i];
-      else if (x > 0 && row_d[i - 1] < kFar) row_d[i] = row_d[i - 1] + 1, row_v[i] = row_v[i - 1];
+      if (stroke[i])
+        row_d[i] = 0, row_v[i] = in.ink[i];
+      else if (x > 0 && row_d[i - 1] < kFar)
+        row_d[i] = row_d[i - 1] + 1, row_v[i] = row_v[i - 1];
     }
     for (int x = w - 2; x >= 0; --x) {
       const std::size_t i = base + x;

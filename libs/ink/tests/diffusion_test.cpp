@@ -1,13 +1,14 @@
 // The CPU reference of the ink diffusion against its invariants (SPEC.md section 9):
 // conservation, no negative ink or NaN on a grid of extreme parameters, symmetry, the
 // ring structure, and the distance transform against the plain iteration.
+#include "shanshui/ink/diffusion.h"
+
 #include <algorithm>
 #include <cmath>
 #include <random>
 
 #include "shanshui/core/error.h"
 #include "shanshui/image/image_io.h"
-#include "shanshui/ink/diffusion.h"
 #include "test_support.h"
 
 namespace shanshui::ink {
@@ -19,8 +20,10 @@ InkField randomStrokes(int w, int h, unsigned seed, double density = 0.05, bool 
   InkField f{w, h, std::vector<double>(static_cast<std::size_t>(w) * h, 0.0)};
   for (double& v : f.ink) {
     const double r = u(rng);
-    if (r < density) v = uniform ? 0.9 : 0.55 + 0.45 * u(rng);  // strokes
-    else if (r < 3 * density) v = 0.3 * u(rng);                 // light wash, below the threshold
+    if (r < density)
+      v = uniform ? 0.9 : 0.55 + 0.45 * u(rng);  // strokes
+    else if (r < 3 * density)
+      v = 0.3 * u(rng);  // light wash, below the threshold
   }
   return f;
 }
@@ -146,7 +149,8 @@ TEST(Diffusion, AbsorbencyGatesTheFlow) {
   const InkField in = randomStrokes(40, 40, 7, 0.1);
   const std::vector<float> none(in.ink.size(), 0.0f), half(in.ink.size(), 0.5f);
   EXPECT_EQ(diffuseInk(in, none, o).ink, in.ink) << "paper that absorbs nothing";
-  const double moved_half = maxDifference(in, diffuseInk(in, half, o)), moved_full = maxDifference(in, diffuseInk(in, {}, o));
+  const double moved_half = maxDifference(in, diffuseInk(in, half, o)),
+               moved_full = maxDifference(in, diffuseInk(in, {}, o));
   EXPECT_GT(moved_half, 0.0);
   EXPECT_GT(moved_full, moved_half);
 }
@@ -249,7 +253,8 @@ TEST(Diffusion, PictureRoundTripChangesOnlyWhereInkChanged) {
   for (int y = 0; y < 4; ++y)
     for (int x = 0; x < 8; ++x)
       for (int c = 0; c < 3; ++c) {
-        const float expected = (x == 3 && y == 0) ? static_cast<float>(rgb.at(x, y, c) - 0.25 * paper[c]) : rgb.at(x, y, c);
+        const float expected =
+            (x == 3 && y == 0) ? static_cast<float>(rgb.at(x, y, c) - 0.25 * paper[c]) : rgb.at(x, y, c);
         EXPECT_FLOAT_EQ(out.at(x, y, c), expected);
       }
 }

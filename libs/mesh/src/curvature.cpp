@@ -251,7 +251,8 @@ double curvatureFeatureSize(const Mesh& m, const VertexCurvature& c, double perc
   for (std::size_t i = 0; i < weighted.size(); ++i) weighted[i] = {c.magnitude[i], 0.0};
   double total = 0.0;
   for (const glm::uvec3& t : m.triangles) {
-    const double a = glm::length(glm::cross(m.positions[t.y] - m.positions[t.x], m.positions[t.z] - m.positions[t.x])) / 6.0;
+    const double a =
+        glm::length(glm::cross(m.positions[t.y] - m.positions[t.x], m.positions[t.z] - m.positions[t.x])) / 6.0;
     weighted[t.x].second += a;
     weighted[t.y].second += a;
     weighted[t.z].second += a;

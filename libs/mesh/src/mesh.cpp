@@ -91,8 +91,7 @@ ManifoldProblems manifoldProblems(const Mesh& m) {
 std::vector<glm::vec3> vertexNormals(const Mesh& m) {
   std::vector<glm::dvec3> sum(m.positions.size(), glm::dvec3(0.0));
   for (const glm::uvec3& t : m.triangles) {
-    const glm::dvec3 n =
-        glm::cross(m.positions[t.y] - m.positions[t.x], m.positions[t.z] - m.positions[t.x]);
+    const glm::dvec3 n = glm::cross(m.positions[t.y] - m.positions[t.x], m.positions[t.z] - m.positions[t.x]);
     sum[t.x] += n;  // |n| = 2 * area: area weighting for free
     sum[t.y] += n;
     sum[t.z] += n;

@@ -24,7 +24,9 @@ std::string lowerExtension(const fs::path& p) {
   return ext;
 }
 
-void checkReadable(const fs::path& path) { checkInputFile(path, "a mesh"); }
+void checkReadable(const fs::path& path) {
+  checkInputFile(path, "a mesh");
+}
 
 std::string firstLine(const std::string& s) {
   const auto end = s.find('\n');
@@ -43,20 +45,28 @@ std::string objText(const Mesh& m) {
   text.reserve(m.positions.size() * 64 + m.triangles.size() * 32);
   for (const auto& p : m.positions) {
     text += "v ";
-    appendNumber(text, p.x); text += ' ';
-    appendNumber(text, p.y); text += ' ';
-    appendNumber(text, p.z); text += '\n';
+    appendNumber(text, p.x);
+    text += ' ';
+    appendNumber(text, p.y);
+    text += ' ';
+    appendNumber(text, p.z);
+    text += '\n';
   }
   for (const auto& t : m.uvs) {
     text += "vt ";
-    appendNumber(text, t.x); text += ' ';
-    appendNumber(text, t.y); text += '\n';
+    appendNumber(text, t.x);
+    text += ' ';
+    appendNumber(text, t.y);
+    text += '\n';
   }
   for (const auto& n : m.normals) {
     text += "vn ";
-    appendNumber(text, n.x); text += ' ';
-    appendNumber(text, n.y); text += ' ';
-    appendNumber(text, n.z); text += '\n';
+    appendNumber(text, n.x);
+    text += ' ';
+    appendNumber(text, n.y);
+    text += ' ';
+    appendNumber(text, n.z);
+    text += '\n';
   }
   const bool uv = !m.uvs.empty(), nrm = !m.normals.empty();
   for (const auto& tri : m.triangles) {
@@ -67,7 +77,10 @@ std::string objText(const Mesh& m) {
       text += i;
       if (uv || nrm) text += '/';
       if (uv) text += i;
-      if (nrm) { text += '/'; text += i; }
+      if (nrm) {
+        text += '/';
+        text += i;
+      }
     }
     text += '\n';
   }
@@ -75,12 +88,14 @@ std::string objText(const Mesh& m) {
 }
 
 std::string offText(const Mesh& m) {
-  std::string text = "OFF\n" + std::to_string(m.positions.size()) + " " +
-                     std::to_string(m.triangles.size()) + " 0\n";
+  std::string text = "OFF\n" + std::to_string(m.positions.size()) + " " + std::to_string(m.triangles.size()) + " 0\n";
   for (const auto& p : m.positions) {
-    appendNumber(text, p.x); text += ' ';
-    appendNumber(text, p.y); text += ' ';
-    appendNumber(text, p.z); text += '\n';
+    appendNumber(text, p.x);
+    text += ' ';
+    appendNumber(text, p.y);
+    text += ' ';
+    appendNumber(text, p.z);
+    text += '\n';
   }
   for (const auto& t : m.triangles) {
     text += "3 " + std::to_string(t.x) + " " + std::to_string(t.y) + " " + std::to_string(t.z) + "\n";
@@ -190,7 +205,8 @@ PolygonSoup readObj(const fs::path& path) {
   for (std::size_t c : corners) cornerSum += c;
   if (faces != corners.size() || indices != cornerSum) {
     throw makeError(path.string(), ": cannot read OBJ: ", corners.size(), " face lines with ", cornerSum,
-                    " corners, but the reader found ", faces, " faces with ", indices, " corners (line continuations?)");
+                    " corners, but the reader found ", faces, " faces with ", indices,
+                    " corners (line continuations?)");
   }
   for (const auto& shape : reader.GetShapes()) {
     std::size_t offset = 0;
@@ -200,8 +216,8 @@ PolygonSoup readObj(const fs::path& path) {
       for (std::size_t k = 0; k < count; ++k) {
         const tinyobj::index_t idx = shape.mesh.indices[offset + k];
         if (idx.vertex_index < 0 || static_cast<std::size_t>(idx.vertex_index) >= nv) {
-          throw makeError(path.string(), ": face refers to vertex ", idx.vertex_index + 1,
-                          " but the file has ", nv, " vertices");
+          throw makeError(path.string(), ": face refers to vertex ", idx.vertex_index + 1, " but the file has ", nv,
+                          " vertices");
         }
         const int vt = anyUv ? idx.texcoord_index : -1;
         const int vn = anyNormal ? idx.normal_index : -1;
@@ -223,8 +239,8 @@ PolygonSoup readObj(const fs::path& path) {
           firstUse[v] = {vt, vn};
           setAttributes(v);
         } else if (firstUse[v] != std::make_pair(vt, vn)) {
-          auto [it, inserted] = copies.try_emplace({idx.vertex_index, vt, vn},
-                                                   static_cast<std::uint32_t>(soup.positions.size()));
+          auto [it, inserted] =
+              copies.try_emplace({idx.vertex_index, vt, vn}, static_cast<std::uint32_t>(soup.positions.size()));
           if (inserted) {
             soup.positions.push_back(soup.positions[v]);
             if (anyUv) soup.uvs.emplace_back(0.0f);
@@ -333,8 +349,8 @@ PolygonSoup readOff(const fs::path& path) {
     for (auto& i : face) {
       const double v = number("vertex index");
       if (v < 0 || v != std::floor(v) || v >= static_cast<double>(nv)) {
-        throw makeError(path.string(), ": line ", line, ": face ", f, " refers to vertex ", v,
-                        " but there are ", nv, " vertices");
+        throw makeError(path.string(), ": line ", line, ": face ", f, " refers to vertex ", v, " but there are ", nv,
+                        " vertices");
       }
       i = static_cast<std::uint32_t>(v);
     }
@@ -348,10 +364,14 @@ PolygonSoup readOff(const fs::path& path) {
 PolygonSoup readPolygonSoup(const fs::path& path) {
   const std::string ext = lowerExtension(path);
   PolygonSoup soup;
-  if (ext == ".obj") soup = readObj(path);
-  else if (ext == ".off") soup = readOff(path);
-  else if (ext == ".ply") soup = readPly(path);
-  else throw makeError(path.string(), ": unknown mesh format '", ext, "' (expected .obj, .ply or .off)");
+  if (ext == ".obj")
+    soup = readObj(path);
+  else if (ext == ".off")
+    soup = readOff(path);
+  else if (ext == ".ply")
+    soup = readPly(path);
+  else
+    throw makeError(path.string(), ": unknown mesh format '", ext, "' (expected .obj, .ply or .off)");
   // Finite but huge coordinates overflow the geometry (a cross product of 1e308 is inf):
   // refused here with the value, rather than later as "NaN or infinite".
   for (std::size_t v = 0; v < soup.positions.size(); ++v) {
@@ -376,8 +396,8 @@ std::string encodeMesh(const Mesh& mesh, const fs::path& path) {
     throw makeError(path.string(), ": mesh has ", mesh.uvs.size(), " UVs for ", mesh.positions.size(), " vertices");
   }
   if (!mesh.normals.empty() && mesh.normals.size() != mesh.positions.size()) {
-    throw makeError(path.string(), ": mesh has ", mesh.normals.size(), " normals for ",
-                    mesh.positions.size(), " vertices");
+    throw makeError(path.string(), ": mesh has ", mesh.normals.size(), " normals for ", mesh.positions.size(),
+                    " vertices");
   }
   if (ext == ".obj") return objText(mesh);
   if (ext == ".off") return offText(mesh);

@@ -20,11 +20,11 @@ enum class Scalar { Int8, UInt8, Int16, UInt16, Int32, UInt32, Float32, Float64 
 
 bool parseScalar(const std::string& t, Scalar& s) {
   static const std::pair<const char*, Scalar> names[] = {
-      {"char", Scalar::Int8},     {"int8", Scalar::Int8},       {"uchar", Scalar::UInt8},
-      {"uint8", Scalar::UInt8},   {"short", Scalar::Int16},     {"int16", Scalar::Int16},
-      {"ushort", Scalar::UInt16}, {"uint16", Scalar::UInt16},   {"int", Scalar::Int32},
-      {"int32", Scalar::Int32},   {"uint", Scalar::UInt32},     {"uint32", Scalar::UInt32},
-      {"float", Scalar::Float32}, {"float32", Scalar::Float32}, {"double", Scalar::Float64},
+      {"char", Scalar::Int8},      {"int8", Scalar::Int8},       {"uchar", Scalar::UInt8},
+      {"uint8", Scalar::UInt8},    {"short", Scalar::Int16},     {"int16", Scalar::Int16},
+      {"ushort", Scalar::UInt16},  {"uint16", Scalar::UInt16},   {"int", Scalar::Int32},
+      {"int32", Scalar::Int32},    {"uint", Scalar::UInt32},     {"uint32", Scalar::UInt32},
+      {"float", Scalar::Float32},  {"float32", Scalar::Float32}, {"double", Scalar::Float64},
       {"float64", Scalar::Float64}};
   for (const auto& [name, value] : names) {
     if (t == name) {
@@ -37,10 +37,18 @@ bool parseScalar(const std::string& t, Scalar& s) {
 
 int scalarSize(Scalar s) {
   switch (s) {
-    case Scalar::Int8: case Scalar::UInt8: return 1;
-    case Scalar::Int16: case Scalar::UInt16: return 2;
-    case Scalar::Int32: case Scalar::UInt32: case Scalar::Float32: return 4;
-    case Scalar::Float64: return 8;
+    case Scalar::Int8:
+    case Scalar::UInt8:
+      return 1;
+    case Scalar::Int16:
+    case Scalar::UInt16:
+      return 2;
+    case Scalar::Int32:
+    case Scalar::UInt32:
+    case Scalar::Float32:
+      return 4;
+    case Scalar::Float64:
+      return 8;
   }
   return 0;
 }
@@ -63,8 +71,7 @@ enum class Format { Ascii, BinaryLE, BinaryBE };
 // Reads scalars from the body in whichever encoding the header declared.
 class BodyReader {
  public:
-  BodyReader(std::istream& in, Format format, const fs::path& path)
-      : in_(in), format_(format), path_(path) {}
+  BodyReader(std::istream& in, Format format, const fs::path& path) : in_(in), format_(format), path_(path) {}
 
   double read(Scalar s) {
     if (format_ == Format::Ascii) {
@@ -85,22 +92,49 @@ class BodyReader {
     const bool swap = (format_ == Format::BinaryBE) != (std::endian::native == std::endian::big);
     if (swap) std::reverse(b, b + n);
     switch (s) {
-      case Scalar::Int8: { std::int8_t v; std::memcpy(&v, b, 1); return v; }
-      case Scalar::UInt8: return b[0];
-      case Scalar::Int16: { std::int16_t v; std::memcpy(&v, b, 2); return v; }
-      case Scalar::UInt16: { std::uint16_t v; std::memcpy(&v, b, 2); return v; }
-      case Scalar::Int32: { std::int32_t v; std::memcpy(&v, b, 4); return v; }
-      case Scalar::UInt32: { std::uint32_t v; std::memcpy(&v, b, 4); return v; }
-      case Scalar::Float32: { float v; std::memcpy(&v, b, 4); return v; }
-      case Scalar::Float64: { double v; std::memcpy(&v, b, 8); return v; }
+      case Scalar::Int8: {
+        std::int8_t v;
+        std::memcpy(&v, b, 1);
+        return v;
+      }
+      case Scalar::UInt8:
+        return b[0];
+      case Scalar::Int16: {
+        std::int16_t v;
+        std::memcpy(&v, b, 2);
+        return v;
+      }
+      case Scalar::UInt16: {
+        std::uint16_t v;
+        std::memcpy(&v, b, 2);
+        return v;
+      }
+      case Scalar::Int32: {
+        std::int32_t v;
+        std::memcpy(&v, b, 4);
+        return v;
+      }
+      case Scalar::UInt32: {
+        std::uint32_t v;
+        std::memcpy(&v, b, 4);
+        return v;
+      }
+      case Scalar::Float32: {
+        float v;
+        std::memcpy(&v, b, 4);
+        return v;
+      }
+      case Scalar::Float64: {
+        double v;
+        std::memcpy(&v, b, 8);
+        return v;
+      }
     }
     return 0;
   }
 
  private:
-  Error truncated() const {
-    return makeError(path_.string(), ": PLY body ends early (truncated file?)");
-  }
+  Error truncated() const { return makeError(path_.string(), ": PLY body ends early (truncated file?)"); }
   std::istream& in_;
   Format format_;
   const fs::path& path_;
@@ -130,10 +164,14 @@ PolygonSoup readPly(const fs::path& path) {
     if (key == "format") {
       std::string f;
       ls >> f;
-      if (f == "ascii") format = Format::Ascii;
-      else if (f == "binary_little_endian") format = Format::BinaryLE;
-      else if (f == "binary_big_endian") format = Format::BinaryBE;
-      else throw bad("unknown format '" + f + "'");
+      if (f == "ascii")
+        format = Format::Ascii;
+      else if (f == "binary_little_endian")
+        format = Format::BinaryLE;
+      else if (f == "binary_big_endian")
+        format = Format::BinaryBE;
+      else
+        throw bad("unknown format '" + f + "'");
       sawFormat = true;
     } else if (key == "element") {
       Element e;
@@ -173,11 +211,24 @@ PolygonSoup readPly(const fs::path& path) {
     int ix = -1, iy = -1, iz = -1, inx = -1, iny = -1, inz = -1, iu = -1, iv = -1, iface = -1;
     for (int k = 0; k < static_cast<int>(e.properties.size()); ++k) {
       const std::string& n = e.properties[k].name;
-      if (n == "x") ix = k; else if (n == "y") iy = k; else if (n == "z") iz = k;
-      else if (n == "nx") inx = k; else if (n == "ny") iny = k; else if (n == "nz") inz = k;
-      else if (n == "u" || n == "s" || n == "texture_u" || n == "texture_s") iu = k;
-      else if (n == "v" || n == "t" || n == "texture_v" || n == "texture_t") iv = k;
-      else if (n == "vertex_indices" || n == "vertex_index") iface = k;
+      if (n == "x")
+        ix = k;
+      else if (n == "y")
+        iy = k;
+      else if (n == "z")
+        iz = k;
+      else if (n == "nx")
+        inx = k;
+      else if (n == "ny")
+        iny = k;
+      else if (n == "nz")
+        inz = k;
+      else if (n == "u" || n == "s" || n == "texture_u" || n == "texture_s")
+        iu = k;
+      else if (n == "v" || n == "t" || n == "texture_v" || n == "texture_t")
+        iv = k;
+      else if (n == "vertex_indices" || n == "vertex_index")
+        iface = k;
     }
     if (isVertex && (ix < 0 || iy < 0 || iz < 0)) throw bad("vertex element lacks x, y or z");
     if (isFace && iface < 0) throw bad("face element lacks vertex_indices");
@@ -249,8 +300,10 @@ std::string plyBytes(const Mesh& m) {
   };
   for (std::size_t i = 0; i < m.positions.size(); ++i) {
     for (int k = 0; k < 3; ++k) put(m.positions[i][k]);
-    if (normals) for (int k = 0; k < 3; ++k) put(m.normals[i][k]);
-    if (uvs) for (int k = 0; k < 2; ++k) put(m.uvs[i][k]);
+    if (normals)
+      for (int k = 0; k < 3; ++k) put(m.normals[i][k]);
+    if (uvs)
+      for (int k = 0; k < 2; ++k) put(m.uvs[i][k]);
   }
   for (const glm::uvec3& t : m.triangles) {
     put(static_cast<std::uint8_t>(3));

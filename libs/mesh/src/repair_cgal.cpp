@@ -1,5 +1,10 @@
 // The mesh repair pipeline on CGAL's Polygon Mesh Processing. This is the only file of
 // libs/mesh that includes CGAL: the interface (repair.h) speaks shanshui types only.
+#include <cmath>
+#include <map>
+#include <sstream>
+#include <unordered_set>
+
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/connected_components.h>
 #include <CGAL/Polygon_mesh_processing/manifoldness.h>
@@ -12,11 +17,6 @@
 #include <CGAL/Polygon_mesh_processing/triangulate_faces.h>
 #include <CGAL/Polygon_mesh_processing/triangulate_hole.h>
 #include <CGAL/Surface_mesh.h>
-
-#include <cmath>
-#include <map>
-#include <sstream>
-#include <unordered_set>
 
 #include "shanshui/core/error.h"
 #include "shanshui/mesh/repair.h"
@@ -49,8 +49,10 @@ std::size_t simplifyPolygons(std::vector<Polygon>& polygons) {
   std::vector<Polygon> kept;
   kept.reserve(polygons.size());
   for (Polygon& p : polygons) {
-    if (simplifyPolygon(p)) kept.push_back(std::move(p));
-    else ++removed;
+    if (simplifyPolygon(p))
+      kept.push_back(std::move(p));
+    else
+      ++removed;
   }
   polygons = std::move(kept);
   return removed;
@@ -72,8 +74,7 @@ std::vector<BorderLoop> borderLoops(const SurfaceMesh& sm) {
     do {
       seen.insert(c.idx());
       ++loop.edges;
-      loop.length += std::sqrt(CGAL::to_double(
-          CGAL::squared_distance(sm.point(sm.source(c)), sm.point(sm.target(c)))));
+      loop.length += std::sqrt(CGAL::to_double(CGAL::squared_distance(sm.point(sm.source(c)), sm.point(sm.target(c)))));
       c = sm.next(c);
     } while (c != h);
     loops.push_back(loop);
@@ -112,8 +113,8 @@ std::vector<std::pair<std::string, double>> RepairReport::counters() const {
 
 std::string RepairReport::summary() const {
   std::ostringstream s;
-  s << input_vertices << " vertices / " << input_faces << " faces in, " << output_vertices
-    << " / " << output_faces << " out";
+  s << input_vertices << " vertices / " << input_faces << " faces in, " << output_vertices << " / " << output_faces
+    << " out";
   bool any = false;
   for (const auto& [name, value] : counters()) {
     if (value == 0.0 || name == "boundary_loops") continue;
@@ -121,8 +122,7 @@ std::string RepairReport::summary() const {
     any = true;
   }
   if (!any) s << "; nothing to repair";
-  s << "; " << (boundary_loops == 0 ? std::string("closed")
-                                    : std::to_string(boundary_loops) + " boundary loop(s)");
+  s << "; " << (boundary_loops == 0 ? std::string("closed") : std::to_string(boundary_loops) + " boundary loop(s)");
   if (attributes_dropped) s << "; UVs/normals dropped";
   return s.str();
 }
@@ -155,11 +155,16 @@ Mesh repairMesh(const PolygonSoup& soup, const RepairOptions& options, RepairRep
     Polygon p;
     bool ok = true;
     for (std::uint32_t i : f) {
-      if (i >= remap.size() || remap[i] == SIZE_MAX) { ok = false; break; }
+      if (i >= remap.size() || remap[i] == SIZE_MAX) {
+        ok = false;
+        break;
+      }
       p.push_back(remap[i]);
     }
-    if (ok) polygons.push_back(std::move(p));
-    else ++r.invalid_faces_removed;
+    if (ok)
+      polygons.push_back(std::move(p));
+    else
+      ++r.invalid_faces_removed;
   }
   r.invalid_faces_removed += simplifyPolygons(polygons);
 
@@ -169,13 +174,12 @@ Mesh repairMesh(const PolygonSoup& soup, const RepairOptions& options, RepairRep
   r.duplicate_faces_removed = PMP::merge_duplicate_polygons_in_polygon_soup(points, polygons);
   r.isolated_vertices_removed = PMP::remove_isolated_points_in_polygon_soup(points, polygons);
   if (polygons.empty()) {
-    throw makeError(name, ": no valid faces (", soup.faces.size(), " faces read, ",
-                    r.invalid_faces_removed, " invalid or degenerate, ", r.non_finite_vertices,
-                    " non-finite vertices)");
+    throw makeError(name, ": no valid faces (", soup.faces.size(), " faces read, ", r.invalid_faces_removed,
+                    " invalid or degenerate, ", r.non_finite_vertices, " non-finite vertices)");
   }
-  const bool attributesFollow =
-      r.non_finite_vertices == 0 && r.invalid_faces_removed == 0 && r.duplicate_points_merged == 0 &&
-      r.duplicate_faces_removed == 0 && r.isolated_vertices_removed == 0;
+  const bool attributesFollow = r.non_finite_vertices == 0 && r.invalid_faces_removed == 0 &&
+                                r.duplicate_points_merged == 0 && r.duplicate_faces_removed == 0 &&
+                                r.isolated_vertices_removed == 0;
 
   // 3. Consistent orientation; points shared by incompatible fans are duplicated.
   const std::vector<Polygon> before = polygons;
@@ -185,7 +189,10 @@ Mesh repairMesh(const PolygonSoup& soup, const RepairOptions& options, RepairRep
   for (std::size_t i = 0; i < polygons.size(); ++i) {
     // Duplicated points keep their coordinates, so compare positions, not indices.
     for (std::size_t k = 0; k < polygons[i].size(); ++k) {
-      if (points[polygons[i][k]] != points[before[i][k]]) { r.orientation_fixed = true; break; }
+      if (points[polygons[i][k]] != points[before[i][k]]) {
+        r.orientation_fixed = true;
+        break;
+      }
     }
   }
   if (!PMP::is_polygon_soup_a_polygon_mesh(polygons)) {
@@ -220,8 +227,7 @@ Mesh repairMesh(const PolygonSoup& soup, const RepairOptions& options, RepairRep
     if (options.components == ComponentPolicy::KeepLargest) {
       r.components_removed = PMP::keep_largest_connected_components(sm, 1);
       sm.collect_garbage();
-      r.warnings.push_back("dropped " + std::to_string(r.components_removed) +
-                           " smaller connected component(s)");
+      r.warnings.push_back("dropped " + std::to_string(r.components_removed) + " smaller connected component(s)");
     }
   }
   sm.remove_property_map(faceComponent);

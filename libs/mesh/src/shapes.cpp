@@ -35,7 +35,6 @@ Mesh uvSphere(double radius, int stacks, int slices, glm::dvec3 centre) {
   return m;
 }
 
-
 Mesh torus(double big, double small, int nu, int nv, std::vector<double>* cosV) {
   Mesh m;
   for (int i = 0; i < nu; ++i)
@@ -54,15 +53,14 @@ Mesh torus(double big, double small, int nu, int nv, std::vector<double>* cosV) 
   return m;
 }
 
-
 Mesh icosphere(int levels) {
   Mesh m;
   const double t = (1 + std::sqrt(5.0)) / 2;
-  m.positions = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0}, {0, -1, t}, {0, 1, t},
-                 {0, -1, -t}, {0, 1, -t}, {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
-  m.triangles = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
-                 {11, 10, 2}, {10, 7, 6}, {7, 1, 8},   {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
-                 {3, 8, 9},  {4, 9, 5},  {2, 4, 11},  {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
+  m.positions = {{-1, t, 0},  {1, t, 0},  {-1, -t, 0}, {1, -t, 0}, {0, -1, t},  {0, 1, t},
+                 {0, -1, -t}, {0, 1, -t}, {t, 0, -1},  {t, 0, 1},  {-t, 0, -1}, {-t, 0, 1}};
+  m.triangles = {{0, 11, 5},  {0, 5, 1},  {0, 1, 7},  {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
+                 {11, 10, 2}, {10, 7, 6}, {7, 1, 8},  {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
+                 {3, 8, 9},   {4, 9, 5},  {2, 4, 11}, {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
   for (auto& p : m.positions) p = glm::normalize(p);
   for (int level = 0; level < levels; ++level) {
     std::map<std::pair<unsigned, unsigned>, unsigned> midpoints;

@@ -1,10 +1,11 @@
 // Object-space curvature against analytic surfaces: spheres of several radii (regular and
 // jittered), a torus (K and H vary over it) and a paraboloid at its apex.
+#include "shanshui/mesh/curvature.h"
+
 #include <algorithm>
 #include <numbers>
 #include <random>
 
-#include "shanshui/mesh/curvature.h"
 #include "test_meshes.h"
 #include "test_support.h"
 
@@ -13,7 +14,8 @@ namespace {
 
 double relativeMedianError(const std::vector<float>& got, const std::vector<double>& expected) {
   std::vector<double> e;
-  for (std::size_t i = 0; i < got.size(); ++i) e.push_back(std::abs(got[i] - expected[i]) / std::max(std::abs(expected[i]), 1e-9));
+  for (std::size_t i = 0; i < got.size(); ++i)
+    e.push_back(std::abs(got[i] - expected[i]) / std::max(std::abs(expected[i]), 1e-9));
   std::nth_element(e.begin(), e.begin() + static_cast<long>(e.size() / 2), e.end());
   return e[e.size() / 2];
 }

@@ -1,7 +1,8 @@
+#include "shanshui/mesh/mesh_io.h"
+
 #include <fstream>
 
 #include "shanshui/core/error.h"
-#include "shanshui/mesh/mesh_io.h"
 #include "test_meshes.h"
 #include "test_support.h"
 
@@ -98,12 +99,17 @@ TEST(MeshIo, BadInputNamesTheFileAndTheProblem) {
   std::ofstream(dir / "nan.obj") << "v 0 0 0\nv 1 0 0\nv nan 1 0\nf 1 2 3\n";
   std::ofstream(dir / "inf.obj") << "# c\nv 0 0 0\nv 1 inf 0\nv 0 1 0\nf 1 2 3\n";
   std::ofstream(dir / "word.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 zero\nf 1 2 3\n";
-  const std::pair<const char*, const char*> cases[] = {
-      {"nan.obj", "line 3: vertex coordinate 'nan'"}, {"inf.obj", "line 3: vertex coordinate 'inf'"},
-      {"word.obj", "'zero'"},
-      {"missing.obj", "no such file"}, {"cut.ply", "truncated"},     {"cut.off", "truncated"},
-      {"nofaces.obj", "no faces"},     {"badindex.off", "vertex 7"}, {"garbage.off", "'zero'"},
-      {"empty.obj", "empty file"},     {"mesh.stl", "unknown mesh format"}};
+  const std::pair<const char*, const char*> cases[] = {{"nan.obj", "line 3: vertex coordinate 'nan'"},
+                                                       {"inf.obj", "line 3: vertex coordinate 'inf'"},
+                                                       {"word.obj", "'zero'"},
+                                                       {"missing.obj", "no such file"},
+                                                       {"cut.ply", "truncated"},
+                                                       {"cut.off", "truncated"},
+                                                       {"nofaces.obj", "no faces"},
+                                                       {"badindex.off", "vertex 7"},
+                                                       {"garbage.off", "'zero'"},
+                                                       {"empty.obj", "empty file"},
+                                                       {"mesh.stl", "unknown mesh format"}};
   for (const auto& [file, what] : cases) {
     test::expectErrorNaming([&] { readPolygonSoup(dir / file); }, file, what);
   }

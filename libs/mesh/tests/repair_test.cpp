@@ -1,9 +1,10 @@
+#include "shanshui/mesh/repair.h"
+
 #include <random>
 
 #include "mesh_checks.h"
 #include "shanshui/core/error.h"
 #include "shanshui/mesh/mesh_io.h"
-#include "shanshui/mesh/repair.h"
 #include "test_meshes.h"
 #include "test_support.h"
 

@@ -11,11 +11,14 @@ namespace {
 constexpr double kPi = std::numbers::pi;
 
 double gabor(double dx, double dy, double a, double F0, double omega) {
-  return std::exp(-kPi * a * a * (dx * dx + dy * dy)) * std::cos(2 * kPi * F0 * (dx * std::cos(omega) + dy * std::sin(omega)));
+  return std::exp(-kPi * a * a * (dx * dx + dy * dy)) *
+         std::cos(2 * kPi * F0 * (dx * std::cos(omega) + dy * std::sin(omega)));
 }
 }  // namespace
 
-double canvasBandwidth(const CanvasNoiseOptions& o) { return std::sqrt(-std::log(0.05) / kPi) / o.radius; }
+double canvasBandwidth(const CanvasNoiseOptions& o) {
+  return std::sqrt(-std::log(0.05) / kPi) / o.radius;
+}
 
 double canvasKernel(const CanvasNoiseOptions& o, double dx, double dy, double e0, double e1, double e2) {
   const double r = o.radius;

@@ -12,7 +12,9 @@ namespace {
 constexpr double kPi = std::numbers::pi;
 constexpr double kTruncation = 0.05;
 
-double unit(std::uint32_t v) { return static_cast<double>(v >> 8) * (1.0 / 16777216.0); }
+double unit(std::uint32_t v) {
+  return static_cast<double>(v >> 8) * (1.0 / 16777216.0);
+}
 
 template <typename T>
 void checkRange(const char* name, T v, T lo, T hi, bool lo_open) {
@@ -39,7 +41,8 @@ GaborNoise::GaborNoise(const GaborOptions& options) : o_(options) {
 }
 
 double GaborNoise::variance() const {
-  return density_ * (1.0 / 3.0) * o_.K * o_.K / (4 * o_.a * o_.a) * (1 + std::exp(-2 * kPi * o_.F0 * o_.F0 / (o_.a * o_.a)));
+  return density_ * (1.0 / 3.0) * o_.K * o_.K / (4 * o_.a * o_.a) *
+         (1 + std::exp(-2 * kPi * o_.F0 * o_.F0 / (o_.a * o_.a)));
 }
 
 double GaborNoise::spectrum(double fx, double fy) const {
@@ -70,7 +73,8 @@ double GaborNoise::operator()(double x, double y) const {
         const double omega = o_.isotropic ? 2 * kPi * unit(noiseStream(s, k++)) : o_.omega0;
         const double dx = x - px, dy = y - py, d2 = dx * dx + dy * dy;
         if (d2 >= r * r) continue;
-        sum += w * o_.K * std::exp(-kPi * a2 * d2) * std::cos(2 * kPi * o_.F0 * (dx * std::cos(omega) + dy * std::sin(omega)));
+        sum += w * o_.K * std::exp(-kPi * a2 * d2) *
+               std::cos(2 * kPi * o_.F0 * (dx * std::cos(omega) + dy * std::sin(omega)));
       }
     }
   }
@@ -91,7 +95,9 @@ std::uint32_t noiseCellSeed(std::int32_t i, std::int32_t j, std::uint32_t seed) 
   return noiseHash(noiseHash(seed + static_cast<std::uint32_t>(i)) + static_cast<std::uint32_t>(j));
 }
 
-std::uint32_t noiseStream(std::uint32_t s, std::uint32_t k) { return noiseHash(s + 0x9E3779B9u * k); }
+std::uint32_t noiseStream(std::uint32_t s, std::uint32_t k) {
+  return noiseHash(s + 0x9E3779B9u * k);
+}
 
 int impulseCount(double mean, double u) {
   const double whole = std::floor(mean);

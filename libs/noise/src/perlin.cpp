@@ -22,9 +22,13 @@ constexpr int kPermutation[256] = {
     181, 199, 106, 157, 184, 84,  204, 176, 115, 121, 50,  45,  127, 4,   150, 254, 138, 236, 205, 93,  222, 114,
     67,  29,  24,  72,  243, 141, 128, 195, 78,  66,  215, 61,  156, 180};
 
-int perm(int i) { return kPermutation[i & 255]; }
+int perm(int i) {
+  return kPermutation[i & 255];
+}
 
-double lerp(double t, double a, double b) { return a + t * (b - a); }
+double lerp(double t, double a, double b) {
+  return a + t * (b - a);
+}
 
 // Dot product with one of 12 edge directions of a cube (16 entries, four repeated).
 double gradient(int hash, double x, double y, double z) {
@@ -36,7 +40,9 @@ double gradient(int hash, double x, double y, double z) {
 
 }  // namespace
 
-double perlinFade(double t) { return t * t * t * (t * (t * 6 - 15) + 10); }
+double perlinFade(double t) {
+  return t * t * t * (t * (t * 6 - 15) + 10);
+}
 
 double perlin(double x, double y, double z) {
   const double fx = std::floor(x), fy = std::floor(y), fz = std::floor(z);

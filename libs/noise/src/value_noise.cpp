@@ -19,7 +19,8 @@ image::Image erosionNoise(int size, std::uint64_t seed) {
       const float weight = 1.0f / static_cast<float>(1 << o);
       std::vector<float> lattice(static_cast<std::size_t>(cells) * cells);
       for (std::size_t i = 0; i < lattice.size(); ++i) {
-        lattice[i] = static_cast<float>(streamValue(seed ^ (0x9E37u * (ch + 1)) ^ (static_cast<std::uint64_t>(o) << 40), i) >> 11) *
+        lattice[i] = static_cast<float>(
+                         streamValue(seed ^ (0x9E37u * (ch + 1)) ^ (static_cast<std::uint64_t>(o) << 40), i) >> 11) *
                      (1.0f / 9007199254740992.0f);
       }
       for (int y = 0; y < size; ++y) {

@@ -135,14 +135,16 @@ TEST(Gabor, AveragedPowerSpectrumMatchesTheAnalyticOne) {
   double peak = 0;
   for (int y = 0; y < n; ++y)
     for (int x = 0; x < n; ++x) {
-      const double fx = (x < n / 2 ? x : x - n) / static_cast<double>(n), fy = (y < n / 2 ? y : y - n) / static_cast<double>(n);
+      const double fx = (x < n / 2 ? x : x - n) / static_cast<double>(n),
+                   fy = (y < n / 2 ? y : y - n) / static_cast<double>(n);
       peak = std::max(peak, g.spectrum(fx, fy));
     }
   double err2 = 0, ref2 = 0;
   int bins = 0;
   for (int y = 0; y < n; ++y)
     for (int x = 0; x < n; ++x) {
-      const double fx = (x < n / 2 ? x : x - n) / static_cast<double>(n), fy = (y < n / 2 ? y : y - n) / static_cast<double>(n);
+      const double fx = (x < n / 2 ? x : x - n) / static_cast<double>(n),
+                   fy = (y < n / 2 ? y : y - n) / static_cast<double>(n);
       const double s = g.spectrum(fx, fy);
       if (s < 0.01 * peak) continue;
       err2 += (average.at<double>(y, x) - s) * (average.at<double>(y, x) - s);

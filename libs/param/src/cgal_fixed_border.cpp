@@ -1,12 +1,4 @@
 // CGAL's fixed-border parameterizers (one translation unit: ~1 min and ~2 GB to compile).
-#include <CGAL/Surface_mesh_parameterization/Barycentric_mapping_parameterizer_3.h>
-#include <CGAL/Surface_mesh_parameterization/Circular_border_parameterizer_3.h>
-#include <CGAL/Surface_mesh_parameterization/Discrete_conformal_map_parameterizer_3.h>
-#include <CGAL/Surface_mesh_parameterization/Iterative_authalic_parameterizer_3.h>
-#include <CGAL/Surface_mesh_parameterization/Mean_value_coordinates_parameterizer_3.h>
-#include <CGAL/Surface_mesh_parameterization/Square_border_parameterizer_3.h>
-#include <CGAL/Surface_mesh_parameterization/parameterize.h>
-
 #include <algorithm>
 #include <array>
 #include <cstdlib>
@@ -16,6 +8,13 @@
 #include <sstream>
 #include <string>
 
+#include <CGAL/Surface_mesh_parameterization/Barycentric_mapping_parameterizer_3.h>
+#include <CGAL/Surface_mesh_parameterization/Circular_border_parameterizer_3.h>
+#include <CGAL/Surface_mesh_parameterization/Discrete_conformal_map_parameterizer_3.h>
+#include <CGAL/Surface_mesh_parameterization/Iterative_authalic_parameterizer_3.h>
+#include <CGAL/Surface_mesh_parameterization/Mean_value_coordinates_parameterizer_3.h>
+#include <CGAL/Surface_mesh_parameterization/Square_border_parameterizer_3.h>
+#include <CGAL/Surface_mesh_parameterization/parameterize.h>
 #include <Eigen/Eigenvalues>
 
 #include "cgal_methods.h"
@@ -94,7 +93,8 @@ Square squareBorder(const SurfaceMesh& sm, HalfedgeIndex border) {
   for (int k = 0; k < 4; ++k) {
     double best = -std::numeric_limits<double>::infinity();
     for (std::size_t i = 0; i < loop.size(); ++i) {
-      const Eigen::Vector3d d = Eigen::Vector3d(sm.point(loop[i]).x(), sm.point(loop[i]).y(), sm.point(loop[i]).z()) - mean;
+      const Eigen::Vector3d d =
+          Eigen::Vector3d(sm.point(loop[i]).x(), sm.point(loop[i]).y(), sm.point(loop[i]).z()) - mean;
       const double score = signs[k][0] * d.dot(a) + signs[k][1] * d.dot(b);
       if (score > best) {
         best = score;
@@ -113,15 +113,22 @@ template <typename BorderParameterizer>
 SMP::Error_code run(SurfaceMesh& sm, HalfedgeIndex border, UvMap uv, Method method, const BorderParameterizer& bp,
                     int authalicIterations) {
   switch (method) {
-    case Method::Mvc: return SMP::parameterize(sm, SMP::Mean_value_coordinates_parameterizer_3<SurfaceMesh, BorderParameterizer>(bp), border, uv);
-    case Method::Dcm: return SMP::parameterize(sm, SMP::Discrete_conformal_map_parameterizer_3<SurfaceMesh, BorderParameterizer>(bp), border, uv);
-    case Method::Tutte: return SMP::parameterize(sm, SMP::Barycentric_mapping_parameterizer_3<SurfaceMesh, BorderParameterizer>(bp), border, uv);
+    case Method::Mvc:
+      return SMP::parameterize(sm, SMP::Mean_value_coordinates_parameterizer_3<SurfaceMesh, BorderParameterizer>(bp),
+                               border, uv);
+    case Method::Dcm:
+      return SMP::parameterize(sm, SMP::Discrete_conformal_map_parameterizer_3<SurfaceMesh, BorderParameterizer>(bp),
+                               border, uv);
+    case Method::Tutte:
+      return SMP::parameterize(sm, SMP::Barycentric_mapping_parameterizer_3<SurfaceMesh, BorderParameterizer>(bp),
+                               border, uv);
     case Method::Authalic: {
       const QuietCgalDebugOutput quiet;
       SMP::Iterative_authalic_parameterizer_3<SurfaceMesh, BorderParameterizer> p(bp);
       return p.parameterize(sm, border, uv, static_cast<unsigned>(authalicIterations));
     }
-    default: break;
+    default:
+      break;
   }
   throw makeError("method '", methodName(method), "' is not a fixed-border method");
 }

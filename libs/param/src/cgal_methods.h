@@ -11,8 +11,7 @@
 namespace shanshui::param::detail {
 
 //! mvc, dcm, tutte, authalic on a circle or square border (cgal_fixed_border.cpp).
-std::vector<glm::dvec2> fixedBorderUvs(const mesh::Mesh& mesh, Method method, Border border,
-                                       int authalicIterations);
+std::vector<glm::dvec2> fixedBorderUvs(const mesh::Mesh& mesh, Method method, Border border, int authalicIterations);
 
 //! lscm, arap with CGAL's default two-vertex border (cgal_free_border.cpp).
 std::vector<glm::dvec2> freeBorderUvs(const mesh::Mesh& mesh, Method method);

@@ -2,13 +2,13 @@
 // and the status names (CGAL 5.5's own message table is off by one, SPEC.md section 5).
 #pragma once
 
+#include <vector>
+
 #include <CGAL/Polygon_mesh_processing/border.h>
 #include <CGAL/Polygon_mesh_processing/measure.h>
 #include <CGAL/Simple_cartesian.h>
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/Surface_mesh_parameterization/Error_code.h>
-
-#include <vector>
 
 #include "shanshui/core/error.h"
 #include "shanshui/mesh/mesh.h"
@@ -24,16 +24,26 @@ using UvMap = SurfaceMesh::Property_map<VertexIndex, Kernel::Point_2>;
 inline const char* statusName(CGAL::Surface_mesh_parameterization::Error_code code) {
   namespace SMP = CGAL::Surface_mesh_parameterization;
   switch (code) {
-    case SMP::OK: return "ok";
-    case SMP::ERROR_EMPTY_MESH: return "empty mesh";
-    case SMP::ERROR_NON_TRIANGULAR_MESH: return "not a triangle mesh";
-    case SMP::ERROR_NO_TOPOLOGICAL_DISC: return "not a topological disc";
-    case SMP::ERROR_NO_TOPOLOGICAL_BALL: return "not a topological ball";
-    case SMP::ERROR_BORDER_TOO_SHORT: return "border too short";
-    case SMP::ERROR_NON_CONVEX_BORDER: return "border not convex";
-    case SMP::ERROR_CANNOT_SOLVE_LINEAR_SYSTEM: return "cannot solve the linear system";
-    case SMP::ERROR_NO_1_TO_1_MAPPING: return "no one-to-one mapping";
-    case SMP::ERROR_WRONG_PARAMETER: return "wrong parameter";
+    case SMP::OK:
+      return "ok";
+    case SMP::ERROR_EMPTY_MESH:
+      return "empty mesh";
+    case SMP::ERROR_NON_TRIANGULAR_MESH:
+      return "not a triangle mesh";
+    case SMP::ERROR_NO_TOPOLOGICAL_DISC:
+      return "not a topological disc";
+    case SMP::ERROR_NO_TOPOLOGICAL_BALL:
+      return "not a topological ball";
+    case SMP::ERROR_BORDER_TOO_SHORT:
+      return "border too short";
+    case SMP::ERROR_NON_CONVEX_BORDER:
+      return "border not convex";
+    case SMP::ERROR_CANNOT_SOLVE_LINEAR_SYSTEM:
+      return "cannot solve the linear system";
+    case SMP::ERROR_NO_1_TO_1_MAPPING:
+      return "no one-to-one mapping";
+    case SMP::ERROR_WRONG_PARAMETER:
+      return "wrong parameter";
   }
   return "unknown status";
 }

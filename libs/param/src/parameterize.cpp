@@ -16,7 +16,7 @@ namespace {
 using Clock = std::chrono::steady_clock;
 
 const std::pair<Method, const char*> kMethodNames[] = {
-    {Method::Auto, "auto"}, {Method::Xy, "xy"},       {Method::Mvc, "mvc"},   {Method::Dcm, "dcm"},
+    {Method::Auto, "auto"},   {Method::Xy, "xy"},     {Method::Mvc, "mvc"},   {Method::Dcm, "dcm"},
     {Method::Tutte, "tutte"}, {Method::Lscm, "lscm"}, {Method::Arap, "arap"}, {Method::Authalic, "authalic"},
 };
 
@@ -76,10 +76,13 @@ std::vector<glm::dvec2> runMethod(const mesh::Mesh& m, Method method, const Para
     case Method::Mvc:
     case Method::Dcm:
     case Method::Tutte:
-    case Method::Authalic: return detail::fixedBorderUvs(m, method, opts.border, opts.authalic_iterations);
+    case Method::Authalic:
+      return detail::fixedBorderUvs(m, method, opts.border, opts.authalic_iterations);
     case Method::Lscm:
-    case Method::Arap: return detail::freeBorderUvs(m, method);
-    case Method::Auto: break;
+    case Method::Arap:
+      return detail::freeBorderUvs(m, method);
+    case Method::Auto:
+      break;
   }
   SHANSHUI_CHECK(false);
   return {};
@@ -135,7 +138,9 @@ Method parseMethod(const std::string& text) {
   throw makeError("--method: unknown method '", text, "'; expected auto, xy, mvc, dcm, tutte, lscm, arap or authalic");
 }
 
-const char* borderName(Border b) { return b == Border::Square ? "square" : "circle"; }
+const char* borderName(Border b) {
+  return b == Border::Square ? "square" : "circle";
+}
 
 Border parseBorder(const std::string& text) {
   if (text == "circle") return Border::Circle;
@@ -143,9 +148,12 @@ Border parseBorder(const std::string& text) {
   throw makeError("--border: unknown border '", text, "'; expected circle or square");
 }
 
-int borderLoops(const mesh::Mesh& m) { return topology(m).border_loops; }
+int borderLoops(const mesh::Mesh& m) {
+  return topology(m).border_loops;
+}
 
-mesh::Mesh parameterize(const mesh::Mesh& input, const ParamOptions& opts, ParamReport* report, const std::string& what) {
+mesh::Mesh parameterize(const mesh::Mesh& input, const ParamOptions& opts, ParamReport* report,
+                        const std::string& what) {
   if (opts.authalic_iterations < 1 || opts.authalic_iterations > 1000) {
     throw makeError("authalic iterations ", opts.authalic_iterations, "; expected [1, 1000]");
   }
@@ -154,7 +162,8 @@ mesh::Mesh parameterize(const mesh::Mesh& input, const ParamOptions& opts, Param
   }
   if (input.triangles.empty()) throw makeError(what, ": no triangles to parameterize");
   for (const glm::dvec3& p : input.positions) {
-    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) throw makeError(what, ": NaN or infinite vertex coordinates; repair the mesh first");
+    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+      throw makeError(what, ": NaN or infinite vertex coordinates; repair the mesh first");
   }
   // A closed sphere-like mesh is cut open along one seam first.
   mesh::Mesh disc;
@@ -169,8 +178,9 @@ mesh::Mesh parameterize(const mesh::Mesh& input, const ParamOptions& opts, Param
     disc = input;
   }
   if (top.border_loops > 1) {
-    throw makeError(what, ": ", top.border_loops, " border loops (holes or several components); fill the holes "
-                          "and keep one component first (shanshui-repair)");
+    throw makeError(what, ": ", top.border_loops,
+                    " border loops (holes or several components); fill the holes "
+                    "and keep one component first (shanshui-repair)");
   }
   const long long euler = static_cast<long long>(disc.positions.size()) - static_cast<long long>(top.edges) +
                           static_cast<long long>(disc.triangles.size());
@@ -197,8 +207,8 @@ mesh::Mesh parameterize(const mesh::Mesh& input, const ParamOptions& opts, Param
   auto consider = [&](Method method) {
     mesh::Mesh result;
     MethodTrial trial = tryMethod(m, method, opts, &result);
-    const bool better = trial.ran && trial.distortion.valid() &&
-                        (!haveBest || trial.distortion.l2_stretch < r.distortion.l2_stretch);
+    const bool better =
+        trial.ran && trial.distortion.valid() && (!haveBest || trial.distortion.l2_stretch < r.distortion.l2_stretch);
     if (better) {
       best = std::move(result);
       haveBest = true;
@@ -213,8 +223,8 @@ mesh::Mesh parameterize(const mesh::Mesh& input, const ParamOptions& opts, Param
     const MethodTrial& t = r.trials.back();
     if (!t.ran) throw makeError(what, ": ", t.note);
     if (!haveBest) {
-      throw makeError(what, ": ", methodName(opts.method), " gives ", describe(t.distortion),
-                      " of ", t.distortion.faces, "; try --method auto");
+      throw makeError(what, ": ", methodName(opts.method), " gives ", describe(t.distortion), " of ",
+                      t.distortion.faces, "; try --method auto");
     }
   } else {
     consider(Method::Xy);
@@ -230,7 +240,8 @@ mesh::Mesh parameterize(const mesh::Mesh& input, const ParamOptions& opts, Param
         skipped.method = method;
         std::ostringstream why;
         if (good) {
-          why << "skipped: " << methodName(r.method) << " is already valid with L2 stretch <= " << opts.auto_accept_stretch;
+          why << "skipped: " << methodName(r.method)
+              << " is already valid with L2 stretch <= " << opts.auto_accept_stretch;
         } else {
           why << "skipped: " << vertices << " vertices > " << limit;
         }

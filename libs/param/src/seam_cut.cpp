@@ -11,7 +11,9 @@
 namespace shanshui::param {
 namespace {
 
-std::uint64_t directed(std::uint32_t a, std::uint32_t b) { return (static_cast<std::uint64_t>(a) << 32) | b; }
+std::uint64_t directed(std::uint32_t a, std::uint32_t b) {
+  return (static_cast<std::uint64_t>(a) << 32) | b;
+}
 
 }  // namespace
 

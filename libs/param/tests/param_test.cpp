@@ -24,13 +24,15 @@ mesh::Mesh flatGrid(int n = 12) {
 mesh::Mesh mountain() {
   return test::heightGrid(40, 40, 25.0, [](double x, double y) {
     const double dx = x - 500, dy = y - 450;
-    return 350.0 * std::exp(-(dx * dx + dy * dy) / (2 * 220.0 * 220.0)) + 60.0 * std::sin(x / 90.0) * std::cos(y / 130.0);
+    return 350.0 * std::exp(-(dx * dx + dy * dy) / (2 * 220.0 * 220.0)) +
+           60.0 * std::sin(x / 90.0) * std::cos(y / 130.0);
   });
 }
 
 void setUvs(mesh::Mesh& m, double su, double sv) {
   m.uvs.clear();
-  for (const glm::dvec3& p : m.positions) m.uvs.emplace_back(static_cast<float>(su * p.x), static_cast<float>(sv * p.y));
+  for (const glm::dvec3& p : m.positions)
+    m.uvs.emplace_back(static_cast<float>(su * p.x), static_cast<float>(sv * p.y));
 }
 
 TEST(Distortion, IsometricMapIsIdealAtAnyScale) {
@@ -108,8 +110,8 @@ TEST(UvAdjust, TexelSizeAndNormalize) {
 
 TEST(Parameterize, EveryMethodGivesAOneToOneMapOnAMountain) {
   const mesh::Mesh m = mountain();
-  for (Method method : {Method::Xy, Method::Mvc, Method::Dcm, Method::Tutte, Method::Lscm, Method::Arap,
-                        Method::Authalic}) {
+  for (Method method :
+       {Method::Xy, Method::Mvc, Method::Dcm, Method::Tutte, Method::Lscm, Method::Arap, Method::Authalic}) {
     for (Border border : {Border::Circle, Border::Square}) {
       ParamOptions o;
       o.method = method;
@@ -192,10 +194,14 @@ TEST(Parameterize, AutoOnEveryRealDemIsNearIsometricWithoutFlips) {
 
 TEST(Parameterize, HugeUtmCoordinatesKeepTheirPrecision) {
   const mesh::Mesh near = mountain();
-  const mesh::Mesh far = test::heightGrid(40, 40, 25.0, [](double x, double y) {
-    const double dx = x - 500, dy = y - 450;
-    return 350.0 * std::exp(-(dx * dx + dy * dy) / (2 * 220.0 * 220.0)) + 60.0 * std::sin(x / 90.0) * std::cos(y / 130.0);
-  }, glm::dvec3(562710.0, 5114985.0, 1200.0));
+  const mesh::Mesh far = test::heightGrid(
+      40, 40, 25.0,
+      [](double x, double y) {
+        const double dx = x - 500, dy = y - 450;
+        return 350.0 * std::exp(-(dx * dx + dy * dy) / (2 * 220.0 * 220.0)) +
+               60.0 * std::sin(x / 90.0) * std::cos(y / 130.0);
+      },
+      glm::dvec3(562710.0, 5114985.0, 1200.0));
   for (Method method : {Method::Xy, Method::Mvc, Method::Arap}) {
     ParamOptions o;
     o.method = method;
@@ -209,13 +215,15 @@ TEST(Parameterize, HugeUtmCoordinatesKeepTheirPrecision) {
 
 TEST(Parameterize, AutoSkipsSlowMethodsOnLargeMeshes) {
   // A steep, folded heightfield where xy is not good enough; ARAP is skipped by size.
-  const mesh::Mesh m = test::heightGrid(60, 60, 1.0, [](double x, double y) { return 8.0 * std::sin(x / 3.0) * std::sin(y / 4.0); });
+  const mesh::Mesh m =
+      test::heightGrid(60, 60, 1.0, [](double x, double y) { return 8.0 * std::sin(x / 3.0) * std::sin(y / 4.0); });
   ParamOptions o;
   o.auto_max_vertices_arap = 1000;
   ParamReport r;
   parameterize(m, o, &r);
   bool arapSkipped = false;
-  for (const MethodTrial& t : r.trials) arapSkipped |= t.method == Method::Arap && !t.ran && t.note.find("3600 vertices") != std::string::npos;
+  for (const MethodTrial& t : r.trials)
+    arapSkipped |= t.method == Method::Arap && !t.ran && t.note.find("3600 vertices") != std::string::npos;
   EXPECT_TRUE(arapSkipped);
   EXPECT_TRUE(r.distortion.valid());
   EXPECT_NE(r.method, Method::Arap);
@@ -245,7 +253,8 @@ TEST(Parameterize, RefusesWhatIsNotADisc) {
   holed.triangles.erase(holed.triangles.begin() + 48, holed.triangles.begin() + 50);  // an interior hole
   test::expectErrorNaming([&] { parameterize(holed, {}, nullptr, "holed.obj"); }, "holed.obj", "2 border loops");
   mesh::Mesh two = flatGrid(4);
-  const mesh::Mesh other = test::heightGrid(4, 4, 1.0, [](double, double) { return 0.0; }, glm::dvec3(10, 0, 0));
+  const mesh::Mesh other = test::heightGrid(
+      4, 4, 1.0, [](double, double) { return 0.0; }, glm::dvec3(10, 0, 0));
   const auto n = static_cast<unsigned>(two.positions.size());
   two.positions.insert(two.positions.end(), other.positions.begin(), other.positions.end());
   for (glm::uvec3 t : other.triangles) two.triangles.push_back(t + glm::uvec3(n));
@@ -260,8 +269,9 @@ TEST(Parameterize, RefusesWhatIsNotADisc) {
 // Every CGAL test mesh (libcgal-demo): after the repair the tool runs, a valid
 // parameterization (closed ones cut open) or a clear refusal, never a crash or NaN.
 TEST(Parameterize, CgalTestMeshesGiveAValidMapOrAClearError) {
-  const char* names[] = {"three_peaks", "elephant-with-holes", "holes", "lion", "blobby_3cc", "triceratops",
-                         "anchor", "degtri_sliding", "oblong-shuffled", "cube-ouvert", "bear", "cube_quad", "cross_quad"};
+  const char* names[] = {
+      "three_peaks",    "elephant-with-holes", "holes",       "lion", "blobby_3cc", "triceratops", "anchor",
+      "degtri_sliding", "oblong-shuffled",     "cube-ouvert", "bear", "cube_quad",  "cross_quad"};
   int parameterized = 0;
   for (const char* name : names) {
     const std::filesystem::path f = test::cgalMeshes() / (std::string(name) + ".off");
@@ -282,8 +292,7 @@ TEST(Parameterize, CgalTestMeshesGiveAValidMapOrAClearError) {
     } catch (const Error& e) {
       const std::string msg = e.what();
       EXPECT_NE(msg.find(f.string()), std::string::npos) << msg;
-      EXPECT_TRUE(msg.find("genus") != std::string::npos || msg.find("topological disc") != std::string::npos)
-          << msg;
+      EXPECT_TRUE(msg.find("genus") != std::string::npos || msg.find("topological disc") != std::string::npos) << msg;
     }
   }
   EXPECT_GE(parameterized, 10);  // all but the meshes with handles (anchor, elephant)

@@ -9,7 +9,9 @@
 namespace shanshui::render {
 
 namespace {
-double radians(double deg) { return deg * std::numbers::pi / 180.0; }
+double radians(double deg) {
+  return deg * std::numbers::pi / 180.0;
+}
 }  // namespace
 
 glm::dvec3 OrbitCamera::eye() const {

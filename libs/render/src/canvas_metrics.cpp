@@ -67,7 +67,8 @@ WarpError warpingError(const WarpView& previous, const WarpView& current) {
       // Occlusion: the previous view must have seen (about) this point there.
       const int nu = static_cast<int>(std::lround(u)), nv = static_cast<int>(std::lround(v));
       if (previous.positions.at(nu, nv, 3) <= 0) continue;
-      const glm::dvec3 q(previous.positions.at(nu, nv, 0), previous.positions.at(nu, nv, 1), previous.positions.at(nu, nv, 2));
+      const glm::dvec3 q(previous.positions.at(nu, nv, 0), previous.positions.at(nu, nv, 1),
+                         previous.positions.at(nu, nv, 2));
       const double dp = glm::dot(p - prev_eye, forward), dq = glm::dot(q - prev_eye, forward);
       if (std::abs(dp - dq) > 0.02 * dp) continue;
       auto at = [&](int i, int j) { return static_cast<double>(previous.values.at(i, j, 0)); };
@@ -108,7 +109,8 @@ std::vector<double> radialPowerSpectrum(const image::Image& img) {
   std::vector<double> power(bins, 0.0), count(bins, 0.0);
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
-      const double fx = (x <= w / 2 ? x : x - w) / static_cast<double>(w), fy = (y <= h / 2 ? y : y - h) / static_cast<double>(h);
+      const double fx = (x <= w / 2 ? x : x - w) / static_cast<double>(w),
+                   fy = (y <= h / 2 ? y : y - h) / static_cast<double>(h);
       const auto b = static_cast<std::size_t>(std::hypot(fx, fy) * std::min(w, h));
       if (b == 0 || b >= bins) continue;  // the mean and beyond Nyquist
       const cv::Vec2d c = f.at<cv::Vec2d>(y, x);
@@ -137,7 +139,9 @@ double halfMaximumCentroid(const std::vector<double>& profile) {
 
 }  // namespace
 
-SpectrumPeak spectrumPeak(const image::Image& img) { return spectrumPeak(std::vector<image::Image>{img}); }
+SpectrumPeak spectrumPeak(const image::Image& img) {
+  return spectrumPeak(std::vector<image::Image>{img});
+}
 
 SpectrumPeak spectrumPeak(const std::vector<image::Image>& realisations) {
   SHANSHUI_CHECK(!realisations.empty());
@@ -152,7 +156,8 @@ SpectrumPeak spectrumPeak(const std::vector<image::Image>& realisations) {
       sum2 += static_cast<double>(v) * v;
     }
     const double mean = sum / (static_cast<double>(w) * h);
-    contrast += std::sqrt(std::max(sum2 / (static_cast<double>(w) * h) - mean * mean, 0.0)) / static_cast<double>(realisations.size());
+    contrast += std::sqrt(std::max(sum2 / (static_cast<double>(w) * h) - mean * mean, 0.0)) /
+                static_cast<double>(realisations.size());
     const std::vector<double> power = radialPowerSpectrum(img);
     mean_power.resize(power.size(), 0.0);
     for (std::size_t b = 0; b < power.size(); ++b) mean_power[b] += power[b] / static_cast<double>(realisations.size());

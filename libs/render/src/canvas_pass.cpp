@@ -34,7 +34,9 @@ int maxQuadsPerInvocation() {
 
 }  // namespace
 
-std::uint32_t canvasSeed(std::uint64_t scene_seed) { return noise::noiseSeed32(scene_seed ^ 0xCA57A5ull); }
+std::uint32_t canvasSeed(std::uint64_t scene_seed) {
+  return noise::noiseSeed32(scene_seed ^ 0xCA57A5ull);
+}
 
 double maxTriangleArea(const mesh::Mesh& m) {
   double best = 0;
@@ -64,8 +66,8 @@ CanvasPass::CanvasPass(const scene::Canvas& canvas, std::uint64_t seed, const me
     glCreateBuffers(2, dome_buffers_);
     glNamedBufferStorage(dome_buffers_[0], static_cast<GLsizeiptr>(dome_positions_.size() * sizeof(glm::vec3)),
                          dome_positions_.data(), 0);
-    glNamedBufferStorage(dome_buffers_[1], static_cast<GLsizeiptr>(dome_triangles_.size() * sizeof(glm::uvec3)), nullptr,
-                         GL_DYNAMIC_STORAGE_BIT);
+    glNamedBufferStorage(dome_buffers_[1], static_cast<GLsizeiptr>(dome_triangles_.size() * sizeof(glm::uvec3)),
+                         nullptr, GL_DYNAMIC_STORAGE_BIT);
     glVertexArrayVertexBuffer(dome_vao_, 0, dome_buffers_[0], 0, sizeof(glm::vec3));
     glEnableVertexArrayAttrib(dome_vao_, 0);
     glVertexArrayAttribFormat(dome_vao_, 0, 3, GL_FLOAT, GL_FALSE, 0);
@@ -129,7 +131,8 @@ GLsizei CanvasPass::uploadVisibleDome(const glm::dmat4& model_view_projection) {
     if (outside(0, 1) || outside(0, -1) || outside(1, 1) || outside(1, -1)) continue;
     visible.push_back(f);
   }
-  glNamedBufferSubData(dome_buffers_[1], 0, static_cast<GLsizeiptr>(visible.size() * sizeof(glm::uvec3)), visible.data());
+  glNamedBufferSubData(dome_buffers_[1], 0, static_cast<GLsizeiptr>(visible.size() * sizeof(glm::uvec3)),
+                       visible.data());
   return static_cast<GLsizei>(visible.size() * 3);
 }
 
@@ -165,7 +168,8 @@ void CanvasPass::setKernel(const Program& p, const noise::CanvasNoiseOptions& o)
   auto it = sigmas.find(key.str());
   if (it == sigmas.end()) it = sigmas.emplace(key.str(), noise::canvasSigma(o)).first;
   p.set("u_kernel", glm::vec4(o.radius, noise::canvasBandwidth(o), o.F0, o.omega0));
-  p.set("u_kernel_misc", glm::vec4(o.mix, o.perlin_frequency / o.radius, o.isotropic ? 1.0f : 0.0f, 1.0 / std::max(it->second, 1e-30)));
+  p.set("u_kernel_misc",
+        glm::vec4(o.mix, o.perlin_frequency / o.radius, o.isotropic ? 1.0f : 0.0f, 1.0 / std::max(it->second, 1e-30)));
   p.set("u_density", static_cast<float>(o.impulses / (std::numbers::pi * o.radius * o.radius)));
   p.set("u_seed", seed_);
 }
@@ -283,7 +287,9 @@ std::string canvasStructure(const scene::Scene& s) {
   return std::to_string(static_cast<int>(s.canvas.type)) + std::to_string(static_cast<int>(s.canvas.pattern()));
 }
 
-std::unique_ptr<RenderPass> makeCanvasPass(const PassSetup& setup) { return std::make_unique<CanvasStage>(setup); }
+std::unique_ptr<RenderPass> makeCanvasPass(const PassSetup& setup) {
+  return std::make_unique<CanvasStage>(setup);
+}
 
 const CanvasPass* canvasOf(const RenderPass& pass) {
   const auto* stage = dynamic_cast<const CanvasStage*>(&pass);

@@ -17,7 +17,9 @@ namespace shanshui::render {
 
 namespace {
 
-bool wrinkled(const scene::Object& o) { return !o.wrinkle.texture.empty() && o.shading.enabled; }
+bool wrinkled(const scene::Object& o) {
+  return !o.wrinkle.texture.empty() && o.shading.enabled;
+}
 
 std::vector<std::string> objectDefines(const scene::Scene& s, const scene::Object& o) {
   std::vector<std::string> d;
@@ -29,10 +31,12 @@ std::vector<std::string> objectDefines(const scene::Scene& s, const scene::Objec
 
 class GbufferPass final : public RenderPass {
  public:
-  explicit GbufferPass(const PassSetup& setup) : shading_(setup.scene.usesShading()), animated_(setup.scene.hasAnimation()) {
+  explicit GbufferPass(const PassSetup& setup)
+      : shading_(setup.scene.usesShading()), animated_(setup.scene.hasAnimation()) {
     for (const scene::Object& o : setup.scene.objects) {
       const std::vector<std::string> defines = objectDefines(setup.scene, o);
-      const auto it = std::find_if(programs_.begin(), programs_.end(), [&](const Variant& v) { return v.defines == defines; });
+      const auto it =
+          std::find_if(programs_.begin(), programs_.end(), [&](const Variant& v) { return v.defines == defines; });
       program_of_.push_back(static_cast<int>(it - programs_.begin()));
       if (it == programs_.end()) programs_.push_back({defines, Program()});
     }
@@ -43,7 +47,8 @@ class GbufferPass final : public RenderPass {
 
   void buildPrograms() override {
     std::vector<Program> built;  // all first, so a failure keeps the old ones
-    for (const Variant& v : programs_) built.emplace_back(std::vector<std::string>{"ink_gbuffer.vert", "ink_gbuffer.frag"}, v.defines);
+    for (const Variant& v : programs_)
+      built.emplace_back(std::vector<std::string>{"ink_gbuffer.vert", "ink_gbuffer.frag"}, v.defines);
     for (std::size_t i = 0; i < built.size(); ++i) programs_[i].program = std::move(built[i]);
   }
 
@@ -103,7 +108,8 @@ class GbufferPass final : public RenderPass {
   enum class Which { All, Static, Animated };
 
   static void copy(const Texture2D& from, const Texture2D& to, const FrameInputs& in) {
-    glCopyImageSubData(from.id(), GL_TEXTURE_2D, 0, 0, 0, 0, to.id(), GL_TEXTURE_2D, 0, 0, 0, 0, in.width, in.height, 1);
+    glCopyImageSubData(from.id(), GL_TEXTURE_2D, 0, 0, 0, 0, to.id(), GL_TEXTURE_2D, 0, 0, 0, 0, in.width, in.height,
+                       1);
   }
 
   void draw(const FrameInputs& in, const Framebuffer& target, bool clear, Which which) const {
@@ -168,6 +174,8 @@ std::string gbufferStructure(const scene::Scene& s) {
   return k;
 }
 
-std::unique_ptr<RenderPass> makeGbufferPass(const PassSetup& setup) { return std::make_unique<GbufferPass>(setup); }
+std::unique_ptr<RenderPass> makeGbufferPass(const PassSetup& setup) {
+  return std::make_unique<GbufferPass>(setup);
+}
 
 }  // namespace shanshui::render

@@ -1,13 +1,13 @@
 #include "shanshui/render/gl_context.h"
 
-#include <epoxy/egl.h>
-#include <epoxy/gl.h>
-#include <GLFW/glfw3.h>
-
 #include <mutex>
 #include <string>
 #include <utility>
 #include <vector>
+
+#include <GLFW/glfw3.h>
+#include <epoxy/egl.h>
+#include <epoxy/gl.h>
 
 #include "shanshui/core/error.h"
 #include "shanshui/render/gl_check.h"
@@ -70,15 +70,18 @@ class EglContext final : public GlContext {
       }
       config = EGL_NO_CONFIG_KHR;
     }
-    const EGLint contextAttribs[] = {EGL_CONTEXT_MAJOR_VERSION, 4,
-                                     EGL_CONTEXT_MINOR_VERSION, 5,
-                                     EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
-                                     EGL_CONTEXT_OPENGL_DEBUG, options.debug ? EGL_TRUE : EGL_FALSE,
+    const EGLint contextAttribs[] = {EGL_CONTEXT_MAJOR_VERSION,
+                                     4,
+                                     EGL_CONTEXT_MINOR_VERSION,
+                                     5,
+                                     EGL_CONTEXT_OPENGL_PROFILE_MASK,
+                                     EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
+                                     EGL_CONTEXT_OPENGL_DEBUG,
+                                     options.debug ? EGL_TRUE : EGL_FALSE,
                                      EGL_NONE};
     context_ = eglCreateContext(display_, config, EGL_NO_CONTEXT, contextAttribs);
     if (context_ == EGL_NO_CONTEXT) {
-      throw makeError("EGL: cannot create an OpenGL 4.5 core context (error 0x", std::hex,
-                      eglGetError(), ")");
+      throw makeError("EGL: cannot create an OpenGL 4.5 core context (error 0x", std::hex, eglGetError(), ")");
     }
     makeCurrent();
     requireVersion("EGL");
@@ -97,8 +100,7 @@ class EglContext final : public GlContext {
 
   void makeCurrent() override {
     if (!eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, context_)) {
-      throw makeError("EGL: cannot make the context current without a surface (error 0x", std::hex,
-                      eglGetError(), ")");
+      throw makeError("EGL: cannot make the context current without a surface (error 0x", std::hex, eglGetError(), ")");
     }
   }
 
@@ -171,14 +173,22 @@ class GlfwContext final : public GlContext {
 
 const char* glErrorName(GLenum e) {
   switch (e) {
-    case GL_INVALID_ENUM: return "GL_INVALID_ENUM";
-    case GL_INVALID_VALUE: return "GL_INVALID_VALUE";
-    case GL_INVALID_OPERATION: return "GL_INVALID_OPERATION";
-    case GL_INVALID_FRAMEBUFFER_OPERATION: return "GL_INVALID_FRAMEBUFFER_OPERATION";
-    case GL_OUT_OF_MEMORY: return "GL_OUT_OF_MEMORY";
-    case GL_STACK_OVERFLOW: return "GL_STACK_OVERFLOW";
-    case GL_STACK_UNDERFLOW: return "GL_STACK_UNDERFLOW";
-    default: return "unknown GL error";
+    case GL_INVALID_ENUM:
+      return "GL_INVALID_ENUM";
+    case GL_INVALID_VALUE:
+      return "GL_INVALID_VALUE";
+    case GL_INVALID_OPERATION:
+      return "GL_INVALID_OPERATION";
+    case GL_INVALID_FRAMEBUFFER_OPERATION:
+      return "GL_INVALID_FRAMEBUFFER_OPERATION";
+    case GL_OUT_OF_MEMORY:
+      return "GL_OUT_OF_MEMORY";
+    case GL_STACK_OVERFLOW:
+      return "GL_STACK_OVERFLOW";
+    case GL_STACK_UNDERFLOW:
+      return "GL_STACK_UNDERFLOW";
+    default:
+      return "unknown GL error";
   }
 }
 
@@ -203,8 +213,8 @@ std::string GlContext::description() const {
     const auto* s = reinterpret_cast<const char*>(glGetString(e));
     return std::string(s ? s : "?");
   };
-  return std::string(kind() == ContextKind::Headless ? "EGL headless" : "GLFW window") + ", " +
-         str(GL_VENDOR) + ", " + str(GL_RENDERER) + ", OpenGL " + str(GL_VERSION);
+  return std::string(kind() == ContextKind::Headless ? "EGL headless" : "GLFW window") + ", " + str(GL_VENDOR) + ", " +
+         str(GL_RENDERER) + ", OpenGL " + str(GL_VERSION);
 }
 
 std::vector<std::string> GlContext::takeDebugMessages() {

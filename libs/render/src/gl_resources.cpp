@@ -78,7 +78,8 @@ image::Image Texture2D::download(int channels) const {
   if (channels < 1 || channels > 4) throw makeError("download: ", channels, " channels (expected 1-4)");
   image::Image img(width_, height_, channels);
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
-  const bool depth = format_ == GL_DEPTH_COMPONENT32F || format_ == GL_DEPTH_COMPONENT24 || format_ == GL_DEPTH_COMPONENT16;
+  const bool depth =
+      format_ == GL_DEPTH_COMPONENT32F || format_ == GL_DEPTH_COMPONENT24 || format_ == GL_DEPTH_COMPONENT16;
   if (depth && channels != 1) throw makeError("download: a depth texture has 1 channel, not ", channels);
   glGetTextureImage(id_, 0, depth ? GL_DEPTH_COMPONENT : formats[channels - 1], GL_FLOAT,
                     static_cast<GLsizei>(img.pixels.size() * sizeof(float)), img.pixels.data());

@@ -17,14 +17,12 @@ constexpr std::size_t kChunkTriangles = 1024;
 
 }  // namespace
 
-GpuMesh::GpuMesh(const mesh::Mesh& m, const glm::dvec3& centre, const std::vector<float>* scalar,
-                 bool sorted_orders)
+GpuMesh::GpuMesh(const mesh::Mesh& m, const glm::dvec3& centre, const std::vector<float>* scalar, bool sorted_orders)
     : sorted_(sorted_orders) {
   if (m.triangles.empty()) throw makeError("cannot draw a mesh without triangles");
   std::vector<glm::vec3> positions(m.positions.size());
   for (std::size_t i = 0; i < positions.size(); ++i) positions[i] = glm::vec3(m.positions[i] - centre);
-  const std::vector<glm::vec3> normals =
-      m.normals.size() == m.positions.size() ? m.normals : mesh::vertexNormals(m);
+  const std::vector<glm::vec3> normals = m.normals.size() == m.positions.size() ? m.normals : mesh::vertexNormals(m);
   glCreateBuffers(5, buffers_);
   glNamedBufferStorage(buffers_[0], static_cast<GLsizeiptr>(positions.size() * sizeof(glm::vec3)), positions.data(), 0);
   glNamedBufferStorage(buffers_[1], static_cast<GLsizeiptr>(normals.size() * sizeof(glm::vec3)), normals.data(), 0);
@@ -80,7 +78,8 @@ GpuMesh::GpuMesh(const mesh::Mesh& m, const glm::dvec3& centre, const std::vecto
     glEnableVertexArrayAttrib(vao_, 2);
   }
   if (scalar) {
-    if (scalar->size() != m.positions.size()) throw makeError("GpuMesh: ", scalar->size(), " scalars for ", m.positions.size(), " vertices");
+    if (scalar->size() != m.positions.size())
+      throw makeError("GpuMesh: ", scalar->size(), " scalars for ", m.positions.size(), " vertices");
     glNamedBufferStorage(buffers_[4], static_cast<GLsizeiptr>(scalar->size() * sizeof(float)), scalar->data(), 0);
     glVertexArrayVertexBuffer(vao_, 3, buffers_[4], 0, sizeof(float));
     glVertexArrayAttribFormat(vao_, 3, 1, GL_FLOAT, GL_FALSE, 0);
@@ -99,7 +98,9 @@ void GpuMesh::release() {
   for (GLuint& b : buffers_) b = 0;
 }
 
-GpuMesh::~GpuMesh() { release(); }
+GpuMesh::~GpuMesh() {
+  release();
+}
 
 GpuMesh::GpuMesh(GpuMesh&& o) noexcept
     : vao_(std::exchange(o.vao_, 0)), indexCount_(std::exchange(o.indexCount_, 0)), sorted_(o.sorted_) {
@@ -129,7 +130,8 @@ void GpuMesh::drawFrontToBack(const glm::vec3& view_dir) const {
     if (glm::dot(axis, d) > best_dot) best_dot = glm::dot(axis, d), best = k;
   }
   glBindVertexArray(vao_);
-  const std::size_t offset = static_cast<std::size_t>(indexCount_) * sizeof(std::uint32_t) * static_cast<std::size_t>(1 + best);
+  const std::size_t offset =
+      static_cast<std::size_t>(indexCount_) * sizeof(std::uint32_t) * static_cast<std::size_t>(1 + best);
   glDrawElements(GL_TRIANGLES, indexCount_, GL_UNSIGNED_INT, reinterpret_cast<const void*>(offset));
 }
 

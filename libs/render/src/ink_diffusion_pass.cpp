@@ -1,9 +1,9 @@
 #include "shanshui/render/ink_diffusion_pass.h"
 
 #include <algorithm>
+#include <cmath>
 #include <memory>
 #include <optional>
-#include <cmath>
 #include <string>
 #include <utility>
 #include <vector>
@@ -25,13 +25,17 @@ void barrier() {
   glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
 }
 
-GLuint groups(int n, int size) { return static_cast<GLuint>((n + size - 1) / size); }
+GLuint groups(int n, int size) {
+  return static_cast<GLuint>((n + size - 1) / size);
+}
 
 // The ink and the capacity are packed two pixels to an RG32F texel, pixel x in channel
 // x & 1 of texel x / 2: on llvmpipe a two-channel image load costs what a one-channel one
 // does, so the boundary iterations read half the texels. The unused half of the last
 // texel of an odd width holds 0 (no ink, no capacity: absent).
-int packedWidth(int width) { return (width + 1) / 2; }
+int packedWidth(int width) {
+  return (width + 1) / 2;
+}
 
 // The boundary iterations' work groups (shaders/ink_diffusion_boundary.comp): 8
 // invocations of kBlock columns each, walking kStripRows rows — an area of 64 × 16 pixels.
@@ -68,7 +72,9 @@ std::vector<std::string> defines(std::vector<std::string> extra = {}) {
 
 }  // namespace
 
-glm::ivec2 InkDiffusionPass::workGroupArea() { return {kAreaWidth, kStripRows}; }
+glm::ivec2 InkDiffusionPass::workGroupArea() {
+  return {kAreaWidth, kStripRows};
+}
 
 InkDiffusionPass::InkDiffusionPass()
     : extract_({"ink_diffusion_extract.comp"}, defines()),
@@ -167,7 +173,8 @@ void InkDiffusionPass::run(const Texture2D& colour, const PaperTexture& texture,
   reach(seeds_, active_tex_, glm::ivec2(kAreaWidth, kStripRows), o.iterations + o.ring_steps);
   if (o.iterations > 0) {
     // Both ping-pong images start as the main region, so areas left out hold it throughout.
-    glCopyImageSubData(main_.id(), GL_TEXTURE_2D, 0, 0, 0, 0, next_.id(), GL_TEXTURE_2D, 0, 0, 0, 0, packedWidth(w), h, 1);
+    glCopyImageSubData(main_.id(), GL_TEXTURE_2D, 0, 0, 0, 0, next_.id(), GL_TEXTURE_2D, 0, 0, 0, 0, packedWidth(w), h,
+                       1);
     barrier();
   }
 
@@ -237,7 +244,8 @@ double InkDiffusionPass::lastActiveFraction() const {
   if (last_iterations_ == 0) return 0.0;
   std::vector<GLubyte> flags(static_cast<std::size_t>(active_tex_.width()) * active_tex_.height());
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
-  glGetTextureImage(active_tex_.id(), 0, GL_RED_INTEGER, GL_UNSIGNED_BYTE, static_cast<GLsizei>(flags.size()), flags.data());
+  glGetTextureImage(active_tex_.id(), 0, GL_RED_INTEGER, GL_UNSIGNED_BYTE, static_cast<GLsizei>(flags.size()),
+                    flags.data());
   SHANSHUI_GL_CHECK("diffusion active areas");
   return static_cast<double>(std::count(flags.begin(), flags.end(), GLubyte{1})) / static_cast<double>(flags.size());
 }
@@ -275,7 +283,8 @@ class DiffusionStage final : public RenderPass {
       paper = {images.canvas, glm::vec2(0.25 * in.scene.canvas.absorbency, 0.75), images.canvas,
                static_cast<float>(in.scene.canvas.contrast)};
     }
-    pass_->run(*images.picture, paper, in.scene.diffusion, glm::vec3(in.scene.output.paper), target_.colour(0), in.timer);
+    pass_->run(*images.picture, paper, in.scene.diffusion, glm::vec3(in.scene.output.paper), target_.colour(0),
+               in.timer);
     images.picture = &target_.colour(0);
   }
   const Framebuffer* target() const override { return &target_; }
@@ -291,7 +300,9 @@ class DiffusionStage final : public RenderPass {
 
 }  // namespace
 
-std::unique_ptr<RenderPass> makeDiffusionPass(const PassSetup& setup) { return std::make_unique<DiffusionStage>(setup); }
+std::unique_ptr<RenderPass> makeDiffusionPass(const PassSetup& setup) {
+  return std::make_unique<DiffusionStage>(setup);
+}
 
 const Texture2D* absorbencyOf(const RenderPass& pass) {
   const auto* stage = dynamic_cast<const DiffusionStage*>(&pass);

@@ -14,10 +14,14 @@ namespace shanshui::render {
 
 namespace {
 
-bool wrinkled(const scene::Object& o) { return !o.wrinkle.texture.empty() && o.shading.enabled; }
+bool wrinkled(const scene::Object& o) {
+  return !o.wrinkle.texture.empty() && o.shading.enabled;
+}
 
 // The paper grain goes on last: here, or after the diffusion when there is one.
-bool grainHere(const scene::Scene& s) { return s.canvas.type != scene::CanvasType::None && !s.diffusion.enabled(); }
+bool grainHere(const scene::Scene& s) {
+  return s.canvas.type != scene::CanvasType::None && !s.diffusion.enabled();
+}
 
 std::vector<std::string> inkDefines(const scene::Scene& s, bool debug_outputs) {
   std::vector<std::string> d;
@@ -86,7 +90,8 @@ class InkPass final : public RenderPass {
     ink.set("u_fade", static_cast<float>(in.scene.output.fade));
     const double to_centre = glm::length(camera.eye() - in.world_bounds.centre());
     const double radius = 0.5 * glm::length(in.world_bounds.size());
-    ink.set("u_fade_range", glm::vec2(static_cast<float>(to_centre - 0.5 * radius), static_cast<float>(to_centre + radius)));
+    ink.set("u_fade_range",
+            glm::vec2(static_cast<float>(to_centre - 0.5 * radius), static_cast<float>(to_centre + radius)));
     if (grainHere(in.scene)) {
       glBindImageTexture(2, images.canvas->id(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_R32F);
       ink.set("u_canvas_contrast", static_cast<float>(in.scene.canvas.contrast));
@@ -140,8 +145,10 @@ class InkPass final : public RenderPass {
     }
     glNamedBufferSubData(params_.id(), 0, static_cast<GLsizeiptr>(bytes), params.data());
     // One object: a uniform block (see shaders/ink_objects.glsl); more: a storage buffer.
-    if (in.objects.size() == 1) glBindBufferBase(GL_UNIFORM_BUFFER, 0, params_.id());
-    else glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, params_.id());
+    if (in.objects.size() == 1)
+      glBindBufferBase(GL_UNIFORM_BUFFER, 0, params_.id());
+    else
+      glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, params_.id());
   }
 
   scene::Scene scene_;
@@ -156,8 +163,12 @@ class InkPass final : public RenderPass {
 
 }  // namespace
 
-std::string inkStructure(const scene::Scene& s) { return joined(inkDefines(s, false)); }
+std::string inkStructure(const scene::Scene& s) {
+  return joined(inkDefines(s, false));
+}
 
-std::unique_ptr<RenderPass> makeInkPass(const PassSetup& setup) { return std::make_unique<InkPass>(setup); }
+std::unique_ptr<RenderPass> makeInkPass(const PassSetup& setup) {
+  return std::make_unique<InkPass>(setup);
+}
 
 }  // namespace shanshui::render

@@ -14,16 +14,21 @@ namespace shanshui::render {
 
 namespace {
 
-bool wrinkled(const scene::Object& o) { return !o.wrinkle.texture.empty() && o.shading.enabled; }
+bool wrinkled(const scene::Object& o) {
+  return !o.wrinkle.texture.empty() && o.shading.enabled;
+}
 
 // The wrinkle texture's minification filter. Nearest is the default: on llvmpipe bilinear
 // filtering cost ~5 ms a frame at 1024² on the sample scene, and a texel of the right mip
 // level is about a pixel (bench/ink_tradeoff.cpp measures both against trilinear).
 GLenum minFilter(scene::TextureFilter f) {
   switch (f) {
-    case scene::TextureFilter::Nearest: return GL_NEAREST_MIPMAP_NEAREST;
-    case scene::TextureFilter::Bilinear: return GL_LINEAR_MIPMAP_NEAREST;
-    case scene::TextureFilter::Trilinear: return GL_LINEAR_MIPMAP_LINEAR;
+    case scene::TextureFilter::Nearest:
+      return GL_NEAREST_MIPMAP_NEAREST;
+    case scene::TextureFilter::Bilinear:
+      return GL_LINEAR_MIPMAP_NEAREST;
+    case scene::TextureFilter::Trilinear:
+      return GL_LINEAR_MIPMAP_LINEAR;
   }
   return GL_NEAREST_MIPMAP_NEAREST;
 }
@@ -57,8 +62,8 @@ scene::CameraKey frameKey(const scene::Scene& s, int index, int count, double or
     const std::size_t i = std::min(static_cast<std::size_t>(x), c.path.size() - 2);
     const double t = x - static_cast<double>(i);
     const scene::CameraKey &a = c.path[i], &b = c.path[i + 1];
-    return {a.azimuth_deg + t * (b.azimuth_deg - a.azimuth_deg), a.elevation_deg + t * (b.elevation_deg - a.elevation_deg),
-            a.zoom * std::pow(b.zoom / a.zoom, t)};
+    return {a.azimuth_deg + t * (b.azimuth_deg - a.azimuth_deg),
+            a.elevation_deg + t * (b.elevation_deg - a.elevation_deg), a.zoom * std::pow(b.zoom / a.zoom, t)};
   }
   key.azimuth_deg += orbit_deg * index / count;
   return key;
@@ -194,8 +199,8 @@ std::string InkRenderer::requestKey(const OrbitCamera& c, int width, int height)
   return k.str();
 }
 
-const Framebuffer& InkRenderer::render(const OrbitCamera& camera, int width, int height, FrameStats* stats,
-                                       bool timing, double time) {
+const Framebuffer& InkRenderer::render(const OrbitCamera& camera, int width, int height, FrameStats* stats, bool timing,
+                                       double time) {
   const auto start = std::chrono::steady_clock::now();
   if (width != width_ || height != height_) {
     for (Built& b : passes_) b.pass->resize(width, height);
@@ -207,10 +212,13 @@ const Framebuffer& InkRenderer::render(const OrbitCamera& camera, int width, int
   std::string key = static_key;
   if (scene_.hasAnimation()) key += "|t=" + std::to_string(time);
   if (key == last_key_) {
-    if (stats) *stats = FrameStats{true, std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count(), {}};
+    if (stats)
+      *stats = FrameStats{
+          true, std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count(), {}};
     return *last_output_;
   }
-  const FrameInputs in{scene_, objects_, world_bounds_, camera, width, height, time, static_key, timing ? &timer_ : nullptr};
+  const FrameInputs in{
+      scene_, objects_, world_bounds_, camera, width, height, time, static_key, timing ? &timer_ : nullptr};
   FrameImages images;
   for (Built& b : passes_) {
     const Texture2D* before = images.picture;
@@ -221,8 +229,10 @@ const Framebuffer& InkRenderer::render(const OrbitCamera& camera, int width, int
   last_inverse_view_projection_ = glm::inverse(glm::dmat4(camera.projection(aspect)) * glm::dmat4(camera.view()));
 
   FrameStats out;
-  if (timing) out.passes = timer_.collect();
-  else glFlush();
+  if (timing)
+    out.passes = timer_.collect();
+  else
+    glFlush();
   out.frame_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   if (stats) *stats = std::move(out);
   last_key_ = std::move(key);

@@ -30,8 +30,8 @@ void validate(const PreviewOptions& o) {
 MeshPreview::MeshPreview(const mesh::Mesh& m, bool checker)
     : bounds_(mesh::bounds(m)),
       checker_(checker),
-      program_({"mesh_preview.vert", "mesh_preview.frag"}, checker ? std::vector<std::string>{"CHECKER"}
-                                                                    : std::vector<std::string>{}),
+      program_({"mesh_preview.vert", "mesh_preview.frag"},
+               checker ? std::vector<std::string>{"CHECKER"} : std::vector<std::string>{}),
       gpu_(m, bounds_.centre()) {
   if (checker && m.uvs.size() != m.positions.size()) throw makeError("checker view: the mesh has no UVs");
 }

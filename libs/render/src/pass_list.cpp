@@ -1,15 +1,23 @@
 // The renderer's passes, in execution order: the one place a pass is added.
-#include "shanshui/render/render_pass.h"
-
 #include <glm/gtc/matrix_transform.hpp>
+
+#include "shanshui/render/render_pass.h"
 
 namespace shanshui::render {
 
 namespace {
-bool always(const scene::Scene&) { return true; }
-bool hasCanvas(const scene::Scene& s) { return s.canvas.type != scene::CanvasType::None; }
-bool diffuses(const scene::Scene& s) { return s.diffusion.enabled(); }
-std::string nothing(const scene::Scene&) { return ""; }
+bool always(const scene::Scene&) {
+  return true;
+}
+bool hasCanvas(const scene::Scene& s) {
+  return s.canvas.type != scene::CanvasType::None;
+}
+bool diffuses(const scene::Scene& s) {
+  return s.diffusion.enabled();
+}
+std::string nothing(const scene::Scene&) {
+  return "";
+}
 }  // namespace
 
 const std::vector<PassEntry>& passList() {

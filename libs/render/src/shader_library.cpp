@@ -15,7 +15,9 @@ std::filesystem::path& shaderDirectory() {
 }
 }  // namespace
 
-void setShaderDirectory(const std::filesystem::path& dir) { shaderDirectory() = dir; }
+void setShaderDirectory(const std::filesystem::path& dir) {
+  shaderDirectory() = dir;
+}
 
 std::string_view shaderSource(std::string_view name) {
   if (!shaderDirectory().empty()) {

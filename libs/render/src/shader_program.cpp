@@ -1,8 +1,9 @@
 #include "shanshui/render/shader_program.h"
 
-#include <glm/gtc/type_ptr.hpp>
 #include <regex>
 #include <sstream>
+
+#include <glm/gtc/type_ptr.hpp>
 
 #include "shanshui/core/error.h"
 #include "shanshui/render/shader_library.h"
@@ -133,7 +134,9 @@ Program::~Program() {
   if (id_) glDeleteProgram(id_);
 }
 
-Program::Program(Program&& other) noexcept : id_(other.id_) { other.id_ = 0; }
+Program::Program(Program&& other) noexcept : id_(other.id_) {
+  other.id_ = 0;
+}
 
 Program& Program::operator=(Program&& other) noexcept {
   if (this != &other) {
@@ -144,13 +147,27 @@ Program& Program::operator=(Program&& other) noexcept {
   return *this;
 }
 
-void Program::use() const { glUseProgram(id_); }
-GLint Program::location(const char* name) const { return glGetUniformLocation(id_, name); }
-void Program::set(const char* name, int v) const { glProgramUniform1i(id_, location(name), v); }
-void Program::set(const char* name, unsigned v) const { glProgramUniform1ui(id_, location(name), v); }
-void Program::set(const char* name, float v) const { glProgramUniform1f(id_, location(name), v); }
-void Program::set(const char* name, const glm::vec2& v) const { glProgramUniform2fv(id_, location(name), 1, &v.x); }
-void Program::set(const char* name, const glm::ivec2& v) const { glProgramUniform2iv(id_, location(name), 1, &v.x); }
+void Program::use() const {
+  glUseProgram(id_);
+}
+GLint Program::location(const char* name) const {
+  return glGetUniformLocation(id_, name);
+}
+void Program::set(const char* name, int v) const {
+  glProgramUniform1i(id_, location(name), v);
+}
+void Program::set(const char* name, unsigned v) const {
+  glProgramUniform1ui(id_, location(name), v);
+}
+void Program::set(const char* name, float v) const {
+  glProgramUniform1f(id_, location(name), v);
+}
+void Program::set(const char* name, const glm::vec2& v) const {
+  glProgramUniform2fv(id_, location(name), 1, &v.x);
+}
+void Program::set(const char* name, const glm::ivec2& v) const {
+  glProgramUniform2iv(id_, location(name), 1, &v.x);
+}
 void Program::set(const char* name, const glm::vec3& v) const {
   glProgramUniform3fv(id_, location(name), 1, glm::value_ptr(v));
 }

@@ -2,6 +2,8 @@
 // kernels, unit variance and the analytic peak frequency of the dynamic canvas, its
 // steadiness through a dolly and at the geometry shader's cap, its coherence under a
 // camera move against the static baseline, and what the renderer builds and caches.
+#include "shanshui/noise/canvas.h"
+
 #include <algorithm>
 #include <cmath>
 #include <memory>
@@ -11,13 +13,12 @@
 
 #include <nlohmann/json.hpp>
 
-#include "shanshui/noise/canvas.h"
+#include "gl_test.h"
 #include "shanshui/noise/gabor.h"
 #include "shanshui/render/canvas_metrics.h"
 #include "shanshui/render/ink_renderer.h"
 #include "shanshui/scene/scene.h"
 #include "shanshui/scene/scene_assets.h"
-#include "gl_test.h"
 #include "test_meshes.h"
 #include "test_support.h"
 
@@ -36,17 +37,18 @@ struct PlaneScene {
   std::unique_ptr<InkRenderer> renderer;
 
   explicit PlaneScene(const json& canvas, std::uint64_t seed = 1, int cells = 64) {
-    json j = {{"seed", seed},
-              {"objects", json::array({{{"mesh", "memory.obj"},
-                                        {"lines", {{"enabled", false}}},
-                                        {"shading", {{"enabled", false}}}}})},
-              {"camera", {{"elevation", 89.0}, {"azimuth", 0.0}, {"zoom", 1.6}}},
-              {"canvas", canvas},
-              {"output", {{"width", kSize}, {"height", kSize}, {"fade", 0.0}}}};
+    json j = {
+        {"seed", seed},
+        {"objects",
+         json::array({{{"mesh", "memory.obj"}, {"lines", {{"enabled", false}}}, {"shading", {{"enabled", false}}}}})},
+        {"camera", {{"elevation", 89.0}, {"azimuth", 0.0}, {"zoom", 1.6}}},
+        {"canvas", canvas},
+        {"output", {{"width", kSize}, {"height", kSize}, {"fade", 0.0}}}};
     s = scene::parseScene(j, "test", ".");
     const mesh::Mesh m = test::heightGrid(cells + 1, cells + 1, 1.0 / cells, [](double, double) { return 0.0; });
     renderer = std::make_unique<InkRenderer>(
-        s, std::vector<scene::LoadedObject>{{std::make_shared<const scene::ObjectAsset>(scene::prepareAsset(m, s.objects[0])), nullptr}});
+        s, std::vector<scene::LoadedObject>{
+               {std::make_shared<const scene::ObjectAsset>(scene::prepareAsset(m, s.objects[0])), nullptr}});
   }
   OrbitCamera camera(double zoom = 1.6, double azimuth = 0.0) const {
     return sceneCamera(s, renderer->worldBounds(), 1.0, {azimuth, 89.0, zoom});
@@ -91,7 +93,8 @@ double staticCanvas(const noise::CanvasNoiseOptions& o, std::uint32_t seed, doub
 TEST_F(CanvasGl, StaticCanvasMatchesACpuSumOfTheSameKernels) {
   for (const char* pattern : {"silk", "rice_paper"}) {
     SCOPED_TRACE(pattern);
-    PlaneScene p({{"type", "static"}, {"static_pattern", pattern}, {"grain", 24}, {"frequency", 0.03}, {"impulses", 16}});
+    PlaneScene p(
+        {{"type", "static"}, {"static_pattern", pattern}, {"grain", 24}, {"frequency", 0.03}, {"impulses", 16}});
     const image::Image gpu = p.canvasAt(p.camera());
     const noise::CanvasNoiseOptions o = p.renderer->canvas()->noiseOptions(kSize);
     const std::uint32_t seed = canvasSeed(p.s.seed);
@@ -146,7 +149,8 @@ image::Image blurredNoise(int size, double sigma, std::mt19937& rng) {
       for (int x = 0; x < size; ++x) {
         double sum = 0;
         for (int i = -8; i <= 8; ++i)
-          sum += kernel[i + 8] * (pass == 0 ? img.at((x + i + size) % size, y, 0) : img.at(x, (y + i + size) % size, 0));
+          sum +=
+              kernel[i + 8] * (pass == 0 ? img.at((x + i + size) % size, y, 0) : img.at(x, (y + i + size) % size, 0));
         tmp.at(x, y, 0) = static_cast<float>(sum);
       }
     std::swap(img, tmp);
@@ -159,7 +163,9 @@ TEST(SpectrumPeak, EnergyPeakOfBlurredNoiseAndItsSpreadOverRealisations) {
   // f = 0 like the rice paper's; its energy per unit |f| is f times that. Oracle: the
   // centroid of that energy where it is above half its maximum, integrated numerically.
   const double sigma = 1.5;
-  auto energy = [&](double f) { return f * std::exp(-4.0 * std::numbers::pi * std::numbers::pi * sigma * sigma * f * f); };
+  auto energy = [&](double f) {
+    return f * std::exp(-4.0 * std::numbers::pi * std::numbers::pi * sigma * sigma * f * f);
+  };
   const double top = energy(1.0 / (2.0 * std::sqrt(2.0) * std::numbers::pi * sigma));
   double weighted = 0, total = 0;
   for (double f = 0.0; f < 0.5; f += 1e-5)
@@ -186,7 +192,8 @@ TEST(SpectrumPeak, EnergyPeakOfBlurredNoiseAndItsSpreadOverRealisations) {
   EXPECT_LT(spread(averaged), 0.6 * spread(single));
   // One realisation repeated is that realisation.
   const image::Image one = blurredNoise(128, sigma, rng);
-  EXPECT_DOUBLE_EQ(spectrumPeak(std::vector<image::Image>{one, one}).energy_frequency, spectrumPeak(one).energy_frequency);
+  EXPECT_DOUBLE_EQ(spectrumPeak(std::vector<image::Image>{one, one}).energy_frequency,
+                   spectrumPeak(one).energy_frequency);
 }
 
 // Every view's peak `frequency` within `tolerance` of their mean, and contrast within 10 %.
@@ -332,7 +339,8 @@ TEST_F(CanvasGl, TheCanvasSetsTheInkAbsorbency) {
   };
   const image::Image flat = diffused(0.0), varied = diffused(1.0);
   double diff = 0;
-  for (std::size_t i = 0; i < flat.pixels.size(); ++i) diff = std::max(diff, static_cast<double>(std::abs(flat.pixels[i] - varied.pixels[i])));
+  for (std::size_t i = 0; i < flat.pixels.size(); ++i)
+    diff = std::max(diff, static_cast<double>(std::abs(flat.pixels[i] - varied.pixels[i])));
   EXPECT_GT(diff, 2.0 / 255);
 }
 

@@ -4,9 +4,9 @@
 #include <cmath>
 #include <random>
 
+#include "gl_test.h"
 #include "shanshui/ink/diffusion.h"
 #include "shanshui/render/ink_diffusion_pass.h"
-#include "gl_test.h"
 #include "test_support.h"
 
 namespace shanshui::render {
@@ -81,7 +81,7 @@ TEST_F(InkGpu, MatchesTheCpuReferenceOnTheExtremeGrid) {
                 total_gpu += gpu.pixels[i];
               }
               // Float on the GPU against double on the CPU, n iterations of rounding.
-              EXPECT_LT(max_diff, 2e-5);  // measured worst: 5.6e-6
+              EXPECT_LT(max_diff, 2e-5);                                        // measured worst: 5.6e-6
               EXPECT_LT(sum_diff / static_cast<double>(cpu.ink.size()), 5e-6);  // measured worst: 1.3e-6
               // The boundary stage conserves ink: compare with the main-region total.
               const ink::InkField main = ink::mainDiffusionDistance(before, o);
@@ -228,12 +228,14 @@ TEST_F(InkGpu, OneByOneEmptyAndFullPicturesStayFinite) {
   ink::DiffusionOptions o;
   o.iterations = 100;
   o.absorb = 1000;
-  for (const auto& [w, h, t] : {std::tuple{1, 1, 0.0f}, std::tuple{1, 1, 1.0f}, std::tuple{16, 9, 0.0f}, std::tuple{16, 9, 1.0f}}) {
+  for (const auto& [w, h, t] :
+       {std::tuple{1, 1, 0.0f}, std::tuple{1, 1, 1.0f}, std::tuple{16, 9, 0.0f}, std::tuple{16, 9, 1.0f}}) {
     image::Image img(w, h, 3);
     for (int y = 0; y < h; ++y)
       for (int x = 0; x < w; ++x)
         for (int c = 0; c < 3; ++c) img.at(x, y, c) = static_cast<float>(kPaper[c]) * t;
-    const Texture2D colour = Texture2D::fromImage(img, GL_RGBA8), absorbency = Texture2D::fromImage(image::Image(1, 1, 1, 1.0f), GL_R8);
+    const Texture2D colour = Texture2D::fromImage(img, GL_RGBA8),
+                    absorbency = Texture2D::fromImage(image::Image(1, 1, 1, 1.0f), GL_R8);
     const image::Image out = pass.run(colour, absorbency, o, paper).download(3);
     for (float v : out.pixels) ASSERT_TRUE(std::isfinite(v) && v >= 0.0f && v <= 1.0f);
     // Nothing to diffuse into or from: the picture is unchanged.

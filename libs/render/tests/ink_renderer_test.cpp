@@ -1,26 +1,27 @@
 // The ink renderer against analytic answers: curvature of spheres, Eq. 2/3 tones from the
 // G-buffer normals, wrinkles only off the lines, pruning and the frame cache; and a golden
 // image of the sample scene.
+#include "shanshui/render/ink_renderer.h"
+
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
-#include <array>
 #include <memory>
 #include <set>
 
 #include <nlohmann/json.hpp>
 
+#include "gl_test.h"
 #include "shanshui/core/error.h"
 #include "shanshui/image/image_io.h"
 #include "shanshui/ink/diffusion.h"
 #include "shanshui/render/gl_context.h"
 #include "shanshui/render/ink_object_params.h"
-#include "shanshui/render/ink_renderer.h"
 #include "shanshui/render/shader_library.h"
 #include "shanshui/scene/scene.h"
 #include "shanshui/scene/scene_assets.h"
-#include "gl_test.h"
 #include "test_meshes.h"
 #include "test_support.h"
 
@@ -90,12 +91,13 @@ TEST_F(Ink, TonesFollowEquationsTwoAndThreeFromTheNormals) {
   // std::erf. σ = 0 gives Eq. 2 exactly (away from the thresholds).
   for (double sigma : {0.0, 0.05}) {
     SCOPED_TRACE(sigma);
-    const scene::Scene s = sceneWith({{"lines", {{"enabled", false}}},
-                                      {"shading", {{"erosion", 0.0}, {"noise", 0.0}, {"sigma", sigma}}}});
+    const scene::Scene s =
+        sceneWith({{"lines", {{"enabled", false}}}, {"shading", {{"erosion", 0.0}, {"noise", 0.0}, {"sigma", sigma}}}});
     InkRenderer r(s, prepare(s, test::uvSphere(2.0, 64, 128)));
     r.setDebugOutputs(true);
     ASSERT_EQ(r.passesBuilt(), (std::vector<std::string>{"gbuffer", "ink"}));
-    ASSERT_EQ(r.variants().at("ink"), std::vector<std::string>{"SHADING SINGLE_OBJECT DEBUG_OUTPUTS"}) << "no line code";
+    ASSERT_EQ(r.variants().at("ink"), std::vector<std::string>{"SHADING SINGLE_OBJECT DEBUG_OUTPUTS"})
+        << "no line code";
     r.render(sceneCamera(s, r.worldBounds(), 1.0, {-40, 30, 1.0}), 200, 200);
     const image::Image nc = r.normalsAndCurvature();
     const image::Image pos = r.worldPositions();
@@ -196,8 +198,10 @@ TEST_F(Ink, WrinkleFilterAppliesLiveAndOnlyWhereTheTextureIsMinified) {
     ASSERT_GT(n.size(), 3000u);
     double differ = 0;
     for (std::size_t i = 0; i < n.size(); ++i) differ += std::abs(n[i] - t[i]) > 1e-3 ? 1 : 0;
-    if (repeat > 1) EXPECT_GT(differ / n.size(), 0.3) << "nearest and trilinear sample alike where minified";
-    else EXPECT_EQ(differ, 0) << "magnified, every filter is bilinear";
+    if (repeat > 1)
+      EXPECT_GT(differ / n.size(), 0.3) << "nearest and trilinear sample alike where minified";
+    else
+      EXPECT_EQ(differ, 0) << "magnified, every filter is bilinear";
     a.setScene(trilinear);  // no rebuild: the same renderer now samples trilinearly
     OrbitCamera moved = cam;
     moved.azimuth_deg += 1e-9;  // not the cached frame
@@ -263,8 +267,9 @@ std::vector<std::string> names(const FrameStats& st) {
 
 TEST_F(Ink, AnimatedObjectsAreDrawnOverACachedStaticLayer) {
   // A static sphere and a spinning square patch beside it (seed 002's states B/C).
-  json j = {{"objects", json::array({{{"mesh", "sphere"}},
-                                     {{"mesh", "patch"}, {"spin", 90.0}, {"transform", {{"translate", {2.5, 0, 0}}}}}})}};
+  json j = {
+      {"objects", json::array({{{"mesh", "sphere"}},
+                               {{"mesh", "patch"}, {"spin", 90.0}, {"transform", {{"translate", {2.5, 0, 0}}}}}})}};
   const scene::Scene s = scene::parseScene(j, "test", ".");
   const mesh::Mesh patch = test::heightGrid(12, 12, 0.15, [](double x, double y) { return 0.1 * std::sin(3 * x + y); });
   std::vector<scene::LoadedObject> loaded = {
@@ -314,7 +319,8 @@ TEST_F(Ink, DiffusionRunsOnlyWhenAskedAndMatchesTheCpuReference) {
   const image::Image tile = r.absorbency()->download(1);
   std::vector<float> a(96 * 80);
   for (int y = 0; y < 80; ++y)
-    for (int x = 0; x < 96; ++x) a[static_cast<std::size_t>(y) * 96 + x] = tile.at(x % tile.width, tile.height - 1 - ((79 - y) % tile.height));
+    for (int x = 0; x < 96; ++x)
+      a[static_cast<std::size_t>(y) * 96 + x] = tile.at(x % tile.width, tile.height - 1 - ((79 - y) % tile.height));
   const double paper[3] = {s.output.paper.x, s.output.paper.y, s.output.paper.z};
   const ink::InkField in = ink::inkFromImage(before, paper);
   const image::Image expected = ink::applyInk(before, in, ink::diffuseInk(in, a, s.diffusion), paper);
@@ -331,8 +337,9 @@ TEST_F(Ink, DiffusionRunsOnlyWhenAskedAndMatchesTheCpuReference) {
 TEST_F(Ink, SmallObjectsGetNormalLinesOnly) {
   // A sphere far away covers few pixels: curvature lines are off (curve_factor is huge, so
   // they would cover it), only the N·V rim is drawn.
-  const scene::Scene s = sceneWith({{"lines", {{"curve_factor", 100.0}, {"small_object_px", 5000.0}, {"depth_edges", 0.0}}},
-                                    {"shading", {{"enabled", false}}}});
+  const scene::Scene s =
+      sceneWith({{"lines", {{"curve_factor", 100.0}, {"small_object_px", 5000.0}, {"depth_edges", 0.0}}},
+                 {"shading", {{"enabled", false}}}});
   InkRenderer r(s, prepare(s, test::uvSphere(1.0)));
   r.setDebugOutputs(true);
   auto lineShare = [&](double zoom) {
@@ -393,7 +400,8 @@ TEST_F(Ink, ShadersReloadFromADirectoryAndABrokenOneKeepsTheOld) {
 
 TEST_F(Ink, ExtremeInputsGiveFinitePicturesOrClearErrors) {
   auto finite = [](const image::Image& img) {
-    return std::all_of(img.pixels.begin(), img.pixels.end(), [](float v) { return std::isfinite(v) && v >= 0 && v <= 1; });
+    return std::all_of(img.pixels.begin(), img.pixels.end(),
+                       [](float v) { return std::isfinite(v) && v >= 0 && v <= 1; });
   };
   const scene::Scene s = sceneWith({});
   // One triangle; a flat plane (feature size 0: no curvature lines, no NaN); a sphere
@@ -433,8 +441,8 @@ void expectGolden(const std::string& name, std::vector<std::string> sets) {
     image::saveImage(img, golden);
     GTEST_SKIP() << "golden image written: " << golden;
   }
-  ASSERT_TRUE(std::filesystem::exists(golden)) << "missing golden image " << golden
-                                               << " (write it with SHANSHUI_UPDATE_GOLDEN=1)";
+  ASSERT_TRUE(std::filesystem::exists(golden))
+      << "missing golden image " << golden << " (write it with SHANSHUI_UPDATE_GOLDEN=1)";
   const image::Image ref = image::loadImage(golden);
   ASSERT_EQ(ref.width, img.width);
   ASSERT_EQ(ref.height, img.height);
@@ -451,7 +459,9 @@ void expectGolden(const std::string& name, std::vector<std::string> sets) {
   EXPECT_LT(far_off, img.pixels.size() / 50);
 }
 
-TEST_F(Ink, SampleSceneMatchesItsGoldenImage) { expectGolden("default_scene_200x150.png", {}); }
+TEST_F(Ink, SampleSceneMatchesItsGoldenImage) {
+  expectGolden("default_scene_200x150.png", {});
+}
 
 TEST_F(Ink, SampleSceneWithCanvasAndDiffusionMatchesItsGoldenImage) {
   expectGolden("default_scene_silk_diffusion_200x150.png",
@@ -534,8 +544,9 @@ TEST_F(Variants, EveryCombinationTheSceneKeysCanProduceCompiles) {
                    {"shading", {{"enabled", shading}}}};
     if (wrinkled) object["wrinkle"] = {{"texture", "w.png"}, {"uv", "planar"}};
     json j = {{"objects", json::array({object})},
-              {"canvas", {{"type", std::array{"none", "rice_paper", "silk", "static"}[canvas]},
-                          {"static_pattern", silk_static ? "silk" : "rice_paper"}}}};
+              {"canvas",
+               {{"type", std::array{"none", "rice_paper", "silk", "static"}[canvas]},
+                {"static_pattern", silk_static ? "silk" : "rice_paper"}}}};
     if (two) j["objects"].push_back({{"mesh", "memory.obj"}});
     if (diffusion) j["diffusion"] = {{"ring_steps", 2}, {"iterations", 1}};
     const scene::Scene s = scene::parseScene(j, "variants", ".");

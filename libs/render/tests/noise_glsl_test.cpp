@@ -4,10 +4,10 @@
 #include <cmath>
 #include <random>
 
+#include "gl_test.h"
 #include "shanshui/noise/gabor.h"
 #include "shanshui/noise/perlin.h"
 #include "shanshui/render/shader_program.h"
-#include "gl_test.h"
 #include "test_support.h"
 
 namespace shanshui::render {

@@ -1,12 +1,12 @@
 #include <cmath>
 #include <memory>
 
+#include "gl_test.h"
 #include "shanshui/core/error.h"
 #include "shanshui/render/gl_context.h"
 #include "shanshui/render/mesh_preview.h"
 #include "shanshui/render/shader_library.h"
 #include "shanshui/render/shader_program.h"
-#include "gl_test.h"
 #include "test_meshes.h"
 #include "test_support.h"
 
@@ -48,7 +48,13 @@ TEST_F(Headless, SphereCoversItsAnalyticDiscAndIsLitFromAbove) {
         if (isPaper(img, x, y, o.paper)) continue;
         ++covered;
         const double l = img.at(x, y, 0) + img.at(x, y, 1) + img.at(x, y, 2);
-        if (y < img.height / 2) { top += l; ++nTop; } else { bottom += l; ++nBottom; }
+        if (y < img.height / 2) {
+          top += l;
+          ++nTop;
+        } else {
+          bottom += l;
+          ++nBottom;
+        }
       }
     }
     EXPECT_NEAR(covered / (pi * rPixels * rPixels), 1.0, 0.03);
@@ -78,8 +84,10 @@ TEST_F(Headless, FrontToBackOrdersDrawTheSameDepthAsTheFileOrder) {
     for (const Framebuffer* fb : {&a, &b}) {
       fb->bind();
       glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-      if (fb == &a) plain.draw();
-      else sorted.drawFrontToBack(view);
+      if (fb == &a)
+        plain.draw();
+      else
+        sorted.drawFrontToBack(view);
     }
     EXPECT_EQ(a.depth().download(1).pixels, b.depth().download(1).pixels);
     EXPECT_EQ(a.colour(0).download(3).pixels, b.colour(0).download(3).pixels);

@@ -82,8 +82,10 @@ int jsonDepth(std::string_view text) {
   for (std::size_t i = 0; i < text.size(); ++i) {
     const char c = text[i];
     if (inString) {
-      if (c == '\\') ++i;
-      else if (c == '"') inString = false;
+      if (c == '\\')
+        ++i;
+      else if (c == '"')
+        inString = false;
     } else if (c == '"') {
       inString = true;
     } else if (c == '[' || c == '{') {
@@ -165,7 +167,8 @@ Scene loadSceneInput(const std::filesystem::path& path, const std::vector<std::s
   const bool mesh = ext == ".obj" || ext == ".ply" || ext == ".off";
   const bool dem = ext == ".dem" || ext == ".asc" || ext == ".png" || ext == ".tif" || ext == ".tiff";
   if (!mesh && !dem) {
-    throw makeError(path.string(), ": expected a scene (.json), a mesh (.obj .ply .off) or a heightfield "
+    throw makeError(path.string(),
+                    ": expected a scene (.json), a mesh (.obj .ply .off) or a heightfield "
                     "(.dem .asc .png .tif)");
   }
   json j = {{"objects", json::array({{{mesh ? "mesh" : "dem", path.string()}, {"name", path.stem().string()}}})}};

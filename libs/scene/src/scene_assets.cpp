@@ -45,8 +45,8 @@ ObjectAsset prepareAsset(mesh::Mesh m, const Object& o, const std::string& where
   if (!wrinkled) m.uvs.clear();
   if (m.normals.size() != m.positions.size()) m.normals = mesh::vertexNormals(m);
   if (o.lines.enabled) {  // the feature size serves both curvature sources
-    const mesh::VertexCurvature c = o.lines.curvature == CurvatureSource::Quadric ? mesh::estimateCurvatureByFit(m)
-                                                                                  : mesh::estimateCurvature(m);
+    const mesh::VertexCurvature c =
+        o.lines.curvature == CurvatureSource::Quadric ? mesh::estimateCurvatureByFit(m) : mesh::estimateCurvature(m);
     asset.feature_size = mesh::curvatureFeatureSize(m, c);
     if (perVertex(o.lines.curvature)) {
       asset.curvature.resize(c.magnitude.size());
@@ -62,7 +62,9 @@ ObjectAsset prepareAsset(mesh::Mesh m, const Object& o, const std::string& where
 
 namespace {
 
-std::string where(std::size_t index, const char* key) { return "objects." + std::to_string(index) + "." + key; }
+std::string where(std::size_t index, const char* key) {
+  return "objects." + std::to_string(index) + "." + key;
+}
 
 }  // namespace
 

@@ -150,10 +150,11 @@ class Parser {
     }
     const long long n = static_cast<long long>(items.size());
     if (n < count.lo) {
-      throw fail(at, "needs at least " + std::to_string(count.lo) + (count.lo == 1 ? " entry" : " entries") + ", found " +
-                         std::to_string(n));
+      throw fail(at, "needs at least " + std::to_string(count.lo) + (count.lo == 1 ? " entry" : " entries") +
+                         ", found " + std::to_string(n));
     }
-    if (n > count.hi) throw fail(at, std::to_string(n) + " entries; at most " + std::to_string(count.hi) + " are allowed");
+    if (n > count.hi)
+      throw fail(at, std::to_string(n) + " entries; at most " + std::to_string(count.hi) + " are allowed");
   }
 
   template <typename F>
@@ -223,8 +224,10 @@ class Writer {
   }
   void vec3(const Key& k, const glm::dvec3& f, Range<double>, Vec) { out[k.name] = json::array({f.x, f.y, f.z}); }
   void optionalVec3(const Key& k, const std::optional<glm::dvec3>& f, Range<double> r) {
-    if (f) vec3(k, *f, r, Vec::Vector);
-    else out[k.name] = nullptr;
+    if (f)
+      vec3(k, *f, r, Vec::Vector);
+    else
+      out[k.name] = nullptr;
   }
   template <std::size_t N>
   void numbers(const Key& k, const std::array<double, N>& f, Range<double>) {
@@ -482,10 +485,13 @@ std::string spliceDescription(const std::string& doc, const std::string& origin)
   for (const std::string& t : tables()) {
     const std::string begin = beginMarker(t);
     const std::size_t at = out.find(begin);
-    if (at == std::string::npos) throw makeError(origin, ": has no table for ", t.empty() ? "(top level)" : docPath(t), " (a line '", begin.substr(0, begin.size() - 1), "')");
+    if (at == std::string::npos)
+      throw makeError(origin, ": has no table for ", t.empty() ? "(top level)" : docPath(t), " (a line '",
+                      begin.substr(0, begin.size() - 1), "')");
     const std::size_t body = at + begin.size();
     const std::size_t end = out.find(kEndMarker, body);
-    if (end == std::string::npos) throw makeError(origin, ": the table after '", begin.substr(0, begin.size() - 1), "' has no '", kEndMarker, "'");
+    if (end == std::string::npos)
+      throw makeError(origin, ": the table after '", begin.substr(0, begin.size() - 1), "' has no '", kEndMarker, "'");
     out.replace(body, end - body, tableBody(t));
   }
   return out;

@@ -50,18 +50,21 @@ inline constexpr Range<double> kAzimuth{-36000, 36000};
 inline constexpr Range<double> kElevation{-89.9, 89.9};
 inline constexpr Range<double> kZoom{0.001, 1000};
 
-inline constexpr Range<long long> wide(Range<int> r) { return {r.lo, r.hi, r.lo_open}; }
+inline constexpr Range<long long> wide(Range<int> r) {
+  return {r.lo, r.hi, r.lo_open};
+}
 
-inline constexpr std::array<Named<CurvatureSource>, 3> kCurvatureSources{{
-    {"quadric", CurvatureSource::Quadric}, {"cotangent", CurvatureSource::Cotangent}, {"screen", CurvatureSource::Screen}}};
+inline constexpr std::array<Named<CurvatureSource>, 3> kCurvatureSources{{{"quadric", CurvatureSource::Quadric},
+                                                                          {"cotangent", CurvatureSource::Cotangent},
+                                                                          {"screen", CurvatureSource::Screen}}};
 inline constexpr std::array<Named<UvSource>, 2> kUvSources{{{"mesh", UvSource::Mesh}, {"planar", UvSource::Planar}}};
 inline constexpr std::array<Named<TextureFilter>, 3> kTextureFilters{{{"nearest", TextureFilter::Nearest},
-                                                                       {"bilinear", TextureFilter::Bilinear},
-                                                                       {"trilinear", TextureFilter::Trilinear}}};
+                                                                      {"bilinear", TextureFilter::Bilinear},
+                                                                      {"trilinear", TextureFilter::Trilinear}}};
 inline constexpr std::array<Named<CanvasType>, 4> kCanvasTypes{{{"none", CanvasType::None},
-                                                                 {"rice_paper", CanvasType::RicePaper},
-                                                                 {"silk", CanvasType::Silk},
-                                                                 {"static", CanvasType::Static}}};
+                                                                {"rice_paper", CanvasType::RicePaper},
+                                                                {"silk", CanvasType::Silk},
+                                                                {"static", CanvasType::Static}}};
 inline constexpr std::array<Named<CanvasPattern>, 2> kCanvasPatterns{
     {{"rice_paper", CanvasPattern::RicePaper}, {"silk", CanvasPattern::Silk}}};
 
@@ -165,12 +168,12 @@ void describe(V& v, Object& o) {
     return "";
   });
   v.number({"z_scale", "dem only: vertical exaggeration", kRebuild}, o.z_scale, {0, 1000, true});
-  v.integer({"max_vertices", "dem only: the grid is decimated to at most this many vertices", kRebuild},
-            o.max_vertices, {4, 100000000});
-  v.boolean({"recentre",
-             "move the mesh so its bounding-box centre is the model origin (keeps UTM-sized coordinates precise)",
-             kRebuild},
-            o.recentre);
+  v.integer({"max_vertices", "dem only: the grid is decimated to at most this many vertices", kRebuild}, o.max_vertices,
+            {4, 100000000});
+  v.boolean(
+      {"recentre", "move the mesh so its bounding-box centre is the model origin (keeps UTM-sized coordinates precise)",
+       kRebuild},
+      o.recentre);
   v.group("transform", o.transform, Table::Inline);
   v.number({"spin",
             "turn about the vertical axis through the centre; a spinning object is drawn over a cached layer of "
@@ -202,14 +205,18 @@ template <typename V>
 void describe(V& v, Camera& c) {
   v.optionalVec3({"target", "point looked at; null: the centre of the scene's bounds", Effect::Uniform, "world units"},
                  c.target, kAnyCoordinate);
-  v.number({"distance", "from the target; 0 frames the scene", Effect::Uniform, "world units"}, c.distance,
-           {0, kBig});
+  v.number({"distance", "from the target; 0 frames the scene", Effect::Uniform, "world units"}, c.distance, {0, kBig});
   v.number({"azimuth", "around +Z; 0 looks from +X", Effect::Uniform, "degrees"}, c.azimuth_deg, kAzimuth);
   v.number({"elevation", "above the horizon", Effect::Uniform, "degrees"}, c.elevation_deg, kElevation);
   v.number({"fov", "vertical field of view", Effect::Uniform, "degrees"}, c.fov_y_deg, {1, 170});
   v.number({"zoom", "> 1 moves closer"}, c.zoom, kZoom);
-  v.list({"path", "keys for `--frames`: frames spread evenly over them, angles linear, zoom geometric"}, c.path,
-         {0, 100000}, [&] { return CameraKey{c.azimuth_deg, c.elevation_deg, c.zoom}; }, Table::Inline);
+  v.list(
+      {"path", "keys for `--frames`: frames spread evenly over them, angles linear, zoom geometric"}, c.path,
+      {0, 100000},
+      [&] {
+        return CameraKey{c.azimuth_deg, c.elevation_deg, c.zoom};
+      },
+      Table::Inline);
 }
 
 template <typename V>
@@ -228,9 +235,9 @@ void describe(V& v, Canvas& c) {
             "pixels at 1024 high"},
            c.grain, {0.5, 256});
   v.number({"frequency", "F0, the silk's thread frequency", Effect::Uniform, "cycles/pixel"}, c.frequency, {0, 2});
-  v.number({"orientation", "ω0, the thread direction; the second silk noise runs across it", Effect::Uniform,
-            "degrees"},
-           c.orientation_deg, {-360, 360});
+  v.number(
+      {"orientation", "ω0, the thread direction; the second silk noise runs across it", Effect::Uniform, "degrees"},
+      c.orientation_deg, {-360, 360});
   v.boolean({"isotropic", "each kernel gets a random direction (a felt rather than a weave)"}, c.isotropic);
   v.number({"mix", "silk: weight of the noise with swapped coordinates (0: threads one way only)"}, c.mix, kUnit);
   v.number({"perlin_frequency", "rice paper: Perlin cycles across one kernel radius"}, c.perlin_frequency, {0, 64});
@@ -266,7 +273,8 @@ template <typename V>
 void describe(V& v, Scene& s) {
   v.integer({"seed", "seed of every noise (erosion, canvas kernels, paper absorbency); same seed, same picture"},
             s.seed, {0, 1LL << 53});
-  v.list({"objects", "the objects, below", kRebuild}, s.objects, {1, 255}, [] { return Object{}; }, Table::Own);
+  v.list(
+      {"objects", "the objects, below", kRebuild}, s.objects, {1, 255}, [] { return Object{}; }, Table::Own);
   v.group("light", s.light, Table::Inline);
   v.group("camera", s.camera, Table::Own);
   v.group("canvas", s.canvas, Table::Own);

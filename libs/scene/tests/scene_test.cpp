@@ -1,4 +1,6 @@
 // Scene files: defaults, round trips, overrides, the schema against docs/scene.md, errors.
+#include "shanshui/scene/scene.h"
+
 #include <fstream>
 #include <set>
 #include <sstream>
@@ -6,7 +8,6 @@
 #include <nlohmann/json.hpp>
 
 #include "shanshui/core/error.h"
-#include "shanshui/scene/scene.h"
 #include "shanshui/scene/scene_assets.h"
 #include "test_support.h"
 
@@ -229,10 +230,19 @@ TEST(Scene, RebuildKeysAreTheOnesThatChangeVariantsOrFiles) {
   for (const SchemaEntry& e : sceneSchema()) {
     if (e.effect == Effect::Rebuild) rebuild.insert(e.path);
   }
-  const std::set<std::string> expected = {
-      "objects", "objects.*.mesh", "objects.*.dem", "objects.*.z_scale", "objects.*.max_vertices", "objects.*.recentre",
-      "objects.*.lines.enabled", "objects.*.lines.curvature", "objects.*.shading.enabled", "objects.*.wrinkle.texture",
-      "objects.*.wrinkle.uv", "canvas.type", "canvas.static_pattern"};
+  const std::set<std::string> expected = {"objects",
+                                          "objects.*.mesh",
+                                          "objects.*.dem",
+                                          "objects.*.z_scale",
+                                          "objects.*.max_vertices",
+                                          "objects.*.recentre",
+                                          "objects.*.lines.enabled",
+                                          "objects.*.lines.curvature",
+                                          "objects.*.shading.enabled",
+                                          "objects.*.wrinkle.texture",
+                                          "objects.*.wrinkle.uv",
+                                          "canvas.type",
+                                          "canvas.static_pattern"};
   EXPECT_EQ(rebuild, expected);
 }
 
@@ -280,7 +290,8 @@ TEST(Scene, SchemaRangesMatchTheParser) {
     SCOPED_TRACE(e.path);
     auto parses = [&](double v) {
       json j = kMinimal;
-      applyOverride(j, e.path + "=" + (e.kind == "integer" ? std::to_string(static_cast<long long>(v)) : std::to_string(v)));
+      applyOverride(
+          j, e.path + "=" + (e.kind == "integer" ? std::to_string(static_cast<long long>(v)) : std::to_string(v)));
       try {
         parseScene(j, "s", ".");
         return true;

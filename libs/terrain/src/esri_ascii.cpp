@@ -30,8 +30,7 @@ bool parseNumber(const std::string& t, double& v) {
 
 // Is the grid in degrees? A .prj beside it decides; without one, corners that are valid
 // longitudes/latitudes together with a cell size far below a metre are taken as degrees.
-bool looksGeographic(const fs::path& path, double xll, double yll, double cell, int rows,
-                     std::string& why) {
+bool looksGeographic(const fs::path& path, double xll, double yll, double cell, int rows, std::string& why) {
   fs::path prj = path;
   prj.replace_extension(".prj");
   std::ifstream p(prj);
@@ -41,10 +40,9 @@ bool looksGeographic(const fs::path& path, double xll, double yll, double cell, 
     why = prj.filename().string() + (projected ? " says projected" : " says geographic");
     return !projected && text.find("GEOGCS") != std::string::npos;
   }
-  const bool geographic = cell < 0.5 && xll >= -360 && xll <= 360 && yll >= -90 &&
-                          yll + rows * cell <= 90.0001;
-  why = "no .prj; corner (" + std::to_string(xll) + ", " + std::to_string(yll) +
-        ") and cell size " + std::to_string(cell) + " read as degrees";
+  const bool geographic = cell < 0.5 && xll >= -360 && xll <= 360 && yll >= -90 && yll + rows * cell <= 90.0001;
+  why = "no .prj; corner (" + std::to_string(xll) + ", " + std::to_string(yll) + ") and cell size " +
+        std::to_string(cell) + " read as degrees";
   return geographic;
 }
 
@@ -92,8 +90,12 @@ Heightfield loadEsriAscii(const fs::path& path, const HeightfieldOptions& option
   }
   const int cols = static_cast<int>(ncolsD), rows = static_cast<int>(nrowsD);
   double cellX = 0, cellY = 0;
-  if (header.count("cellsize")) cellX = cellY = header["cellsize"];
-  else { cellX = need("dx"); cellY = need("dy"); }
+  if (header.count("cellsize"))
+    cellX = cellY = header["cellsize"];
+  else {
+    cellX = need("dx");
+    cellY = need("dy");
+  }
   if (!(cellX > 0 && cellY > 0)) throw makeError(path.string(), ": cell size must be positive, is ", cellX);
   const bool centre = header.count("xllcenter") > 0;
   const double xll = centre ? header["xllcenter"] : need("xllcorner");
@@ -111,8 +113,8 @@ Heightfield loadEsriAscii(const fs::path& path, const HeightfieldOptions& option
       throw makeError(path.string(), ": line ", lineNo, ": '", t, "' is not a number");
     }
     if (h.elevation.size() == static_cast<std::size_t>(cols) * rows) {
-      throw makeError(path.string(), ": line ", lineNo, ": more values than ncols x nrows = ",
-                      static_cast<std::size_t>(cols) * rows);
+      throw makeError(path.string(), ": line ", lineNo,
+                      ": more values than ncols x nrows = ", static_cast<std::size_t>(cols) * rows);
     }
     h.elevation.push_back(v == noData || !std::isfinite(v) ? kNoData : v);
   };
@@ -124,8 +126,8 @@ Heightfield loadEsriAscii(const fs::path& path, const HeightfieldOptions& option
     while (ls >> t) take(t);
   }
   if (h.elevation.size() != static_cast<std::size_t>(cols) * rows) {
-    throw makeError(path.string(), ": expected ", static_cast<std::size_t>(cols) * rows,
-                    " values (", cols, " x ", rows, "), found ", h.elevation.size(), " (truncated?)");
+    throw makeError(path.string(), ": expected ", static_cast<std::size_t>(cols) * rows, " values (", cols, " x ", rows,
+                    "), found ", h.elevation.size(), " (truncated?)");
   }
 
   std::string why;
@@ -139,9 +141,9 @@ Heightfield loadEsriAscii(const fs::path& path, const HeightfieldOptions& option
     const double latMid = 0.5 * (latLo + latHi);
     const double error = eastWestScaleError(latLo, latHi);
     if (error > options.max_geographic_scale_error || std::abs(latMid) > 85) {
-      throw makeError(path.string(), ": cell size is in degrees (", why, ") and the grid spans latitudes ",
-                      latLo, " to ", latHi, "; a local projection would distort east-west distances by ",
-                      error * 100, " %; reproject to metres or give --cell-size");
+      throw makeError(path.string(), ": cell size is in degrees (", why, ") and the grid spans latitudes ", latLo,
+                      " to ", latHi, "; a local projection would distort east-west distances by ", error * 100,
+                      " %; reproject to metres or give --cell-size");
     }
     h.cell_x = cellX * metresPerDegreeLongitude(latMid);
     h.cell_y = cellY * metresPerDegreeLatitude(latMid);
@@ -159,8 +161,7 @@ Heightfield loadEsriAscii(const fs::path& path, const HeightfieldOptions& option
     h.origin_x = xll;
     h.origin_y = yllCorner + (rows - 0.5) * cellY;
   }
-  h.source = path.filename().string() + ": ESRI ASCII grid, " + std::to_string(cols) + " x " +
-             std::to_string(rows);
+  h.source = path.filename().string() + ": ESRI ASCII grid, " + std::to_string(cols) + " x " + std::to_string(rows);
   return h;
 }
 

@@ -64,8 +64,8 @@ Heightfield loadHeightmapImage(const fs::path& path, const HeightfieldOptions& o
       h.elevation[static_cast<std::size_t>(y) * h.columns + x] = valid ? z : kNoData;
     }
   }
-  h.source = path.filename().string() + ": " + std::to_string(h.columns) + "x" +
-             std::to_string(h.rows) + " " + image::depthName(info.depth) + "-bit height map";
+  h.source = path.filename().string() + ": " + std::to_string(h.columns) + "x" + std::to_string(h.rows) + " " +
+             image::depthName(info.depth) + "-bit height map";
   if (options.cell_size <= 0) {
     h.notes.push_back("image has no cell size; using 1 m per pixel (give --cell-size)");
   }
@@ -79,12 +79,14 @@ Heightfield loadHeightfield(const fs::path& path, const HeightfieldOptions& opti
   std::string ext = path.extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
   Heightfield h;
-  if (ext == ".dem") h = loadUsgsDem(path, options);
-  else if (ext == ".asc") h = loadEsriAscii(path, options);
-  else if (ext == ".png" || ext == ".tif" || ext == ".tiff") h = loadHeightmapImage(path, options);
+  if (ext == ".dem")
+    h = loadUsgsDem(path, options);
+  else if (ext == ".asc")
+    h = loadEsriAscii(path, options);
+  else if (ext == ".png" || ext == ".tif" || ext == ".tiff")
+    h = loadHeightmapImage(path, options);
   else {
-    throw makeError(path.string(), ": unknown terrain format '", ext,
-                    "' (expected .png, .tif, .tiff, .dem or .asc)");
+    throw makeError(path.string(), ": unknown terrain format '", ext, "' (expected .png, .tif, .tiff, .dem or .asc)");
   }
   if (h.validCount() == 0) throw makeError(path.string(), ": no valid elevations (every sample is NODATA)");
   return h;

@@ -19,8 +19,8 @@ void validate(const TerrainMeshOptions& options) {
   }
 }
 
-mesh::Mesh heightfieldToMesh(const Heightfield& field, const TerrainMeshOptions& options,
-                             TerrainMeshInfo* info, const std::string& name) {
+mesh::Mesh heightfieldToMesh(const Heightfield& field, const TerrainMeshOptions& options, TerrainMeshInfo* info,
+                             const std::string& name) {
   validate(options);
   int step = options.step;
   auto gridVertices = [&](int s) {
@@ -48,8 +48,8 @@ mesh::Mesh heightfieldToMesh(const Heightfield& field, const TerrainMeshOptions&
                         mesh::kMaxCoordinate, "; the mesh readers refuse such coordinates");
       }
       id[static_cast<std::size_t>(r) * cols + c] = static_cast<std::uint32_t>(m.positions.size());
-      m.positions.emplace_back(field.origin_x + c * step * field.cell_x,
-                               field.origin_y - r * step * field.cell_y, e * options.z_scale);
+      m.positions.emplace_back(field.origin_x + c * step * field.cell_x, field.origin_y - r * step * field.cell_y,
+                               e * options.z_scale);
     }
   }
   std::size_t skipped = 0;
@@ -74,10 +74,14 @@ mesh::Mesh heightfieldToMesh(const Heightfield& field, const TerrainMeshOptions&
       }
       ++skipped;
       if (missing == 1) {  // the three valid corners, counter-clockwise seen from above
-        if (nw == UINT32_MAX) m.triangles.emplace_back(sw, se, ne);
-        else if (ne == UINT32_MAX) m.triangles.emplace_back(sw, se, nw);
-        else if (sw == UINT32_MAX) m.triangles.emplace_back(se, ne, nw);
-        else m.triangles.emplace_back(sw, ne, nw);
+        if (nw == UINT32_MAX)
+          m.triangles.emplace_back(sw, se, ne);
+        else if (ne == UINT32_MAX)
+          m.triangles.emplace_back(sw, se, nw);
+        else if (sw == UINT32_MAX)
+          m.triangles.emplace_back(se, ne, nw);
+        else
+          m.triangles.emplace_back(sw, ne, nw);
       }
     }
   }

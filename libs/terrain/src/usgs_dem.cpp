@@ -26,8 +26,8 @@ class Records {
 
   std::string field(std::size_t offset, std::size_t width, const char* what) const {
     if (offset + width > data_.size()) {
-      throw makeError(path_.string(), ": file ends at byte ", data_.size(), " but ", what,
-                      " is at byte ", offset, " (truncated?)");
+      throw makeError(path_.string(), ": file ends at byte ", data_.size(), " but ", what, " is at byte ", offset,
+                      " (truncated?)");
     }
     return data_.substr(offset, width);
   }
@@ -103,8 +103,8 @@ Heightfield loadUsgsDem(const fs::path& path, const HeightfieldOptions& options)
                     " (not a USGS ASCII DEM?)");
   }
   if (!(dx > 0 && dy > 0 && dz > 0) || profiles <= 0 || profiles > 100000) {
-    throw makeError(path.string(), ": bad header: resolution ", dx, " x ", dy, " x ", dz, ", ",
-                    profiles, " profiles (not a USGS ASCII DEM?)");
+    throw makeError(path.string(), ": bad header: resolution ", dx, " x ", dy, " x ", dz, ", ", profiles,
+                    " profiles (not a USGS ASCII DEM?)");
   }
   if (elevUnits != 1 && elevUnits != 2) {
     throw makeError(path.string(), ": elevation units code ", elevUnits, " (expected 1 feet or 2 metres)");
@@ -112,10 +112,13 @@ Heightfield loadUsgsDem(const fs::path& path, const HeightfieldOptions& options)
   const double zUnit = elevUnits == 1 ? kFoot : 1.0;
   const bool geographic = refSystem == 0;
   double xyUnit = 1.0;
-  if (groundUnits == 1) xyUnit = kFoot;
-  else if (groundUnits == 3) xyUnit = 1.0 / 3600.0;  // arc-seconds to degrees
+  if (groundUnits == 1)
+    xyUnit = kFoot;
+  else if (groundUnits == 3)
+    xyUnit = 1.0 / 3600.0;  // arc-seconds to degrees
   else if (groundUnits != 2) {
-    throw makeError(path.string(), ": ground units code ", groundUnits, " is not supported (expected feet, metres or arc-seconds)");
+    throw makeError(path.string(), ": ground units code ", groundUnits,
+                    " is not supported (expected feet, metres or arc-seconds)");
   }
 
   struct Profile {
@@ -137,7 +140,8 @@ Heightfield loadUsgsDem(const fs::path& path, const HeightfieldOptions& options)
     for (long k = 0; k < m; ++k) {
       // 146 values fit the first block after the 144-byte profile header, 170 each block after.
       std::size_t at;
-      if (k < 146) at = offset + 144 + 6 * static_cast<std::size_t>(k);
+      if (k < 146)
+        at = offset + 144 + 6 * static_cast<std::size_t>(k);
       else {
         const auto j = static_cast<std::size_t>(k - 146);
         at = offset + kBlock * (1 + j / 170) + 6 * (j % 170);
@@ -157,8 +161,8 @@ Heightfield loadUsgsDem(const fs::path& path, const HeightfieldOptions& options)
   }
   for (std::size_t c = 1; c < cols.size(); ++c) {
     if (std::abs(cols[c].x - cols[c - 1].x - dx) > 0.01 * dx) {
-      throw makeError(path.string(), ": profile ", c + 1, " is at x = ", cols[c].x,
-                      ", not one column (", dx, ") east of the previous one");
+      throw makeError(path.string(), ": profile ", c + 1, " is at x = ", cols[c].x, ", not one column (", dx,
+                      ") east of the previous one");
     }
   }
   Heightfield h;
@@ -195,8 +199,8 @@ Heightfield loadUsgsDem(const fs::path& path, const HeightfieldOptions& options)
   }
   if (options.cell_size > 0) h.cell_x = h.cell_y = options.cell_size;
   if (elevUnits == 1) h.notes.push_back("elevations converted from feet to metres");
-  h.source = path.filename().string() + ": USGS ASCII DEM, " + std::to_string(h.columns) +
-             " profiles x " + std::to_string(h.rows) + " rows";
+  h.source = path.filename().string() + ": USGS ASCII DEM, " + std::to_string(h.columns) + " profiles x " +
+             std::to_string(h.rows) + " rows";
   return h;
 }
 

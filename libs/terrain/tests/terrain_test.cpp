@@ -11,7 +11,9 @@ namespace shanshui::terrain {
 namespace {
 
 const std::filesystem::path kStHelens = test::sourceDir() / "samples/terrain/mount_st_helens.dem";
-std::filesystem::path shared(const char* name) { return test::sharedData() / "terrain" / name; }
+std::filesystem::path shared(const char* name) {
+  return test::sharedData() / "terrain" / name;
+}
 
 // Great-circle distance on a sphere of mean Earth radius: an oracle independent of the
 // ellipsoid series the importer uses (they agree to about 0.5 %).
@@ -128,12 +130,15 @@ TEST(Terrain, BadInputIsNamedClearly) {
   }
   std::ofstream(dir / "text.dem") << std::string(2048, 'x');
   image::saveImage(image::Image(4, 4, 3, 0.5f), dir / "rgb.png");
-  const std::pair<const char*, const char*> cases[] = {
-      {"nodata.asc", "no valid elevations"}, {"short.asc", "expected 6 values"},
-      {"nohead.asc", "lacks 'ncols'"},       {"cut.dem", "truncated"},
-      {"header.dem", "shorter than a DEM header"}, {"text.dem", "not a number"},
-      {"rgb.png", "3 channels"},             {"missing.dem", "no such file"},
-      {"dem.xyz", "unknown terrain format"}};
+  const std::pair<const char*, const char*> cases[] = {{"nodata.asc", "no valid elevations"},
+                                                       {"short.asc", "expected 6 values"},
+                                                       {"nohead.asc", "lacks 'ncols'"},
+                                                       {"cut.dem", "truncated"},
+                                                       {"header.dem", "shorter than a DEM header"},
+                                                       {"text.dem", "not a number"},
+                                                       {"rgb.png", "3 channels"},
+                                                       {"missing.dem", "no such file"},
+                                                       {"dem.xyz", "unknown terrain format"}};
   for (const auto& [file, what] : cases) {
     test::expectErrorNaming([&] { loadHeightfield(dir / file); }, file, what);
   }

@@ -13,7 +13,9 @@ namespace {
 
 constexpr int kBins = 65536;  // one bin per 16-bit level; 8-bit levels land on bins exactly
 
-int colourChannels(const image::Image& img) { return img.hasAlpha() ? img.channels - 1 : img.channels; }
+int colourChannels(const image::Image& img) {
+  return img.hasAlpha() ? img.channels - 1 : img.channels;
+}
 
 // Counts values per 1/65535 bin; also rejects NaN and values outside [0, 1].
 std::vector<std::uint64_t> histogram(const image::Image& img, const std::string& what) {
@@ -66,8 +68,8 @@ ValueRange percentileRange(const image::Image& img, double low_percent, double h
   return {binPercentile(bins, total, low_percent), binPercentile(bins, total, high_percent)};
 }
 
-image::Image enhanceContrast(const image::Image& input, const EnhanceOptions& opts,
-                             EnhanceReport* report, const std::string& what) {
+image::Image enhanceContrast(const image::Image& input, const EnhanceOptions& opts, EnhanceReport* report,
+                             const std::string& what) {
   if (input.empty()) throw makeError(what, ": empty image");
   checkUnit(opts.output_range.low, "output range c");
   checkUnit(opts.output_range.high, "output range d");

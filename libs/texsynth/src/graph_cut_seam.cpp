@@ -7,7 +7,6 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc/detail/gcgraph.hpp>
 
-
 #include "shanshui/core/error.h"
 #include "shanshui/texsynth/seam.h"
 

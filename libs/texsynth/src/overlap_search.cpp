@@ -8,9 +8,12 @@ namespace shanshui::texsynth {
 
 const char* searchModeName(SearchMode mode) {
   switch (mode) {
-    case SearchMode::Fft: return "fft";
-    case SearchMode::Exhaustive: return "exhaustive";
-    case SearchMode::Random: return "random";
+    case SearchMode::Fft:
+      return "fft";
+    case SearchMode::Exhaustive:
+      return "exhaustive";
+    case SearchMode::Random:
+      return "random";
   }
   return "?";
 }
@@ -55,9 +58,12 @@ void OverlapSearch::errors(const image::Image& patch, const cv::Mat& mask, Searc
   SHANSHUI_CHECK_EQ(mask.rows, block_);
   SHANSHUI_CHECK_EQ(mask.cols, block_);
   switch (mode) {
-    case SearchMode::Fft: return fftErrors(patch, mask, out);
-    case SearchMode::Exhaustive: return exhaustiveErrors(patch, mask, out);
-    case SearchMode::Random: break;
+    case SearchMode::Fft:
+      return fftErrors(patch, mask, out);
+    case SearchMode::Exhaustive:
+      return exhaustiveErrors(patch, mask, out);
+    case SearchMode::Random:
+      break;
   }
   throw makeError("overlap search: mode '", searchModeName(mode), "' computes no errors");
 }

@@ -76,10 +76,10 @@ std::vector<std::vector<int>> waves(const Layout& L, int block) {
 }
 
 struct BlockRecord {
-  int candidates = 0;       // windows the block was drawn from (all of them without a search)
+  int candidates = 0;  // windows the block was drawn from (all of them without a search)
   long long overlapPixels = 0;
   double chosenError = 0.0;
-  double auditRatio = 0.0;  // chosen / floored exhaustive minimum
+  double auditRatio = 0.0;      // chosen / floored exhaustive minimum
   bool auditViolation = false;  // chosen error above the exhaustive search's threshold
   double auditSeconds = 0.0;
 };
@@ -87,7 +87,10 @@ struct BlockRecord {
 class Quilter {
  public:
   Quilter(const image::Image& sample, const QuiltOptions& opts, const Layout& layout)
-      : sample_(sample), opts_(opts), L_(layout), search_(sample, opts.block),
+      : sample_(sample),
+        opts_(opts),
+        L_(layout),
+        search_(sample, opts.block),
         canvas_(layout.canvasWidth, layout.canvasHeight, sample.channels),
         filled_(static_cast<std::size_t>(layout.canvasWidth) * layout.canvasHeight, 0),
         source_(filled_.size(), -1) {}

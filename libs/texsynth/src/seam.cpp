@@ -7,9 +7,12 @@ namespace shanshui::texsynth {
 
 const char* seamModeName(SeamMode mode) {
   switch (mode) {
-    case SeamMode::Cut: return "cut";
-    case SeamMode::GraphCut: return "graphcut";
-    case SeamMode::None: return "none";
+    case SeamMode::Cut:
+      return "cut";
+    case SeamMode::GraphCut:
+      return "graphcut";
+    case SeamMode::None:
+      return "none";
   }
   return "?";
 }
@@ -101,9 +104,15 @@ cv::Mat seamMask(const image::Image& old, const image::Image& patch, const cv::M
   SHANSHUI_CHECK_EQ(old.channels, patch.channels);
   cv::Mat isNew;
   switch (mode) {
-    case SeamMode::None: isNew = cv::Mat(b, b, CV_8U, cv::Scalar(1)); break;
-    case SeamMode::Cut: isNew = dpCutMask(overlapDifference(old, patch, filled), filled); break;
-    case SeamMode::GraphCut: isNew = graphCutMask(old, patch, filled); break;
+    case SeamMode::None:
+      isNew = cv::Mat(b, b, CV_8U, cv::Scalar(1));
+      break;
+    case SeamMode::Cut:
+      isNew = dpCutMask(overlapDifference(old, patch, filled), filled);
+      break;
+    case SeamMode::GraphCut:
+      isNew = graphCutMask(old, patch, filled);
+      break;
   }
   isNew.setTo(1, filled == 0);  // nothing to keep where nothing is yet
   return isNew;

@@ -1,14 +1,15 @@
 // Contrast enhancement (SPEC.md section 2) against OpenImageIO's contrast_remap + clamp,
 // a sort-based percentile, and the piecewise definition of Eq. 4.
-#include <OpenImageIO/imagebuf.h>
-#include <OpenImageIO/imagebufalgo.h>
+#include "shanshui/texsynth/enhance.h"
 
 #include <algorithm>
 #include <random>
 
+#include <OpenImageIO/imagebuf.h>
+#include <OpenImageIO/imagebufalgo.h>
+
 #include "shanshui/image/convert.h"
 #include "shanshui/image/image_io.h"
-#include "shanshui/texsynth/enhance.h"
 #include "test_support.h"
 
 namespace shanshui::texsynth {

@@ -1,12 +1,13 @@
 // Image quilting (SPEC.md section 3): the FFT overlap search against the exhaustive one,
 // invariants of the output on every sample texture, determinism across thread counts,
 // tileability, and the metrics on outputs with known answers.
+#include "shanshui/texsynth/quilting.h"
+
 #include <algorithm>
 #include <random>
 
 #include "shanshui/image/image_io.h"
 #include "shanshui/texsynth/quilt_metrics.h"
-#include "shanshui/texsynth/quilting.h"
 #include "test_support.h"
 
 namespace shanshui::texsynth {
@@ -30,7 +31,8 @@ cv::Mat maskOf(int b, int left, int top, int right, int bottom) {
 image::Image footprint(const image::Image& sample, int b, unsigned seed) {
   std::mt19937 rng(seed);
   std::normal_distribution<float> n(0.0f, 0.02f);
-  const int x0 = static_cast<int>(rng() % (sample.width - b + 1)), y0 = static_cast<int>(rng() % (sample.height - b + 1));
+  const int x0 = static_cast<int>(rng() % (sample.width - b + 1)),
+            y0 = static_cast<int>(rng() % (sample.height - b + 1));
   image::Image p(b, b, sample.channels);
   for (int y = 0; y < b; ++y)
     for (int x = 0; x < b; ++x)
@@ -56,7 +58,8 @@ TEST(OverlapSearch, FftEqualsExhaustiveOnEveryTextureAndMaskShape) {
     SCOPED_TRACE(f.filename().string());
     const image::Image sample = image::loadImage(f);
     const OverlapSearch search(sample, b);
-    const cv::Mat masks[] = {maskOf(b, 4, 0, 0, 0), maskOf(b, 4, 4, 0, 0), maskOf(b, 5, 3, 6, 2), maskOf(b, 0, 0, 0, 1)};
+    const cv::Mat masks[] = {maskOf(b, 4, 0, 0, 0), maskOf(b, 4, 4, 0, 0), maskOf(b, 5, 3, 6, 2),
+                             maskOf(b, 0, 0, 0, 1)};
     unsigned seed = 1;
     for (const cv::Mat& mask : masks) {
       const image::Image patch = footprint(sample, b, seed++);

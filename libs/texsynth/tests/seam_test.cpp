@@ -1,9 +1,10 @@
 // Seams: the dynamic-programming cut against brute force, and the graph cut against the
 // DP cut where both must give the same picture.
+#include "shanshui/texsynth/seam.h"
+
 #include <random>
 
 #include "shanshui/texsynth/min_error_cut.h"
-#include "shanshui/texsynth/seam.h"
 #include "test_support.h"
 
 namespace shanshui::texsynth {
@@ -36,7 +37,8 @@ TEST(MinimumErrorCut, MatchesBruteForceOnTinyStrips) {
     for (int rows = 1; rows <= 6; ++rows) {
       for (int trial = 0; trial < 20; ++trial) {
         cv::Mat cost(rows, cols, CV_64F);
-        for (int i = 0; i < rows * cols; ++i) cost.at<double>(i / cols, i % cols) = trial % 5 == 0 ? std::floor(u(rng) * 3) : u(rng);
+        for (int i = 0; i < rows * cols; ++i)
+          cost.at<double>(i / cols, i % cols) = trial % 5 == 0 ? std::floor(u(rng) * 3) : u(rng);
         const std::vector<int> path = minimumErrorPath(cost);
         ASSERT_EQ(static_cast<int>(path.size()), rows);
         for (int r = 0; r < rows; ++r) {

@@ -93,7 +93,7 @@ class OutputSet {
   Entry& find(const std::filesystem::path& target);
   std::vector<std::filesystem::path> inputs_;
   std::vector<Entry> entries_;
-  std::map<std::filesystem::path, std::size_t> byKey_;  //!< canonical path -> entry
+  std::map<std::filesystem::path, std::size_t> byKey_;                                //!< canonical path -> entry
   std::map<std::pair<unsigned long long, unsigned long long>, std::size_t> byInode_;  //!< existing file -> entry
 };
 

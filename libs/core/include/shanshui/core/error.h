@@ -35,15 +35,15 @@ namespace detail {
   } while (false)
 
 //! Compares two values and prints both on failure.
-#define SHANSHUI_CHECK_OP(a, op, b)                                                  \
-  do {                                                                               \
-    const auto& check_a_ = (a);                                                      \
-    const auto& check_b_ = (b);                                                      \
-    if (!(check_a_ op check_b_)) {                                                   \
-      std::ostringstream check_s_;                                                   \
+#define SHANSHUI_CHECK_OP(a, op, b)                                                       \
+  do {                                                                                    \
+    const auto& check_a_ = (a);                                                           \
+    const auto& check_b_ = (b);                                                           \
+    if (!(check_a_ op check_b_)) {                                                        \
+      std::ostringstream check_s_;                                                        \
       check_s_ << "CHECK(" #a " " #op " " #b ") with " << check_a_ << " vs " << check_b_; \
-      ::shanshui::detail::checkFailed(__FILE__, __LINE__, check_s_.str());           \
-    }                                                                                \
+      ::shanshui::detail::checkFailed(__FILE__, __LINE__, check_s_.str());                \
+    }                                                                                     \
   } while (false)
 
 #define SHANSHUI_CHECK_EQ(a, b) SHANSHUI_CHECK_OP(a, ==, b)

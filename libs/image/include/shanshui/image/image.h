@@ -19,9 +19,7 @@ struct Image {
   Image(int width_, int height_, int channels_, float fill = 0.0f);
 
   bool empty() const { return pixels.empty(); }
-  std::size_t index(int x, int y, int c = 0) const {
-    return (static_cast<std::size_t>(y) * width + x) * channels + c;
-  }
+  std::size_t index(int x, int y, int c = 0) const { return (static_cast<std::size_t>(y) * width + x) * channels + c; }
   float& at(int x, int y, int c = 0) { return pixels[index(x, y, c)]; }
   float at(int x, int y, int c = 0) const { return pixels[index(x, y, c)]; }
   bool hasAlpha() const { return channels == 2 || channels == 4; }

@@ -18,7 +18,7 @@ enum class PixelDepth { UInt8, UInt16, Int16, UInt32, Int32, Half, Float, Double
 struct ImageInfo {
   PixelDepth depth = PixelDepth::UInt8;
   int channels = 0;
-  std::string format;  //!< OpenImageIO format name: "png", "tiff", "openexr", ...
+  std::string format;       //!< OpenImageIO format name: "png", "tiff", "openexr", ...
   bool alpha_only = false;  //!< the file's only channel is alpha (a mask, not an image)
 };
 
@@ -59,7 +59,7 @@ PixelDepth closestDepth(const std::filesystem::path& path, PixelDepth wanted);
 //! see encodeImage). Values are clamped to
 //! [0,1] for integer depths. Writes atomically: on failure nothing replaces `path`.
 //! Throws Error for an empty image, NaN/Inf pixels or an unknown extension.
-void saveImage(const Image& img, const std::filesystem::path& path,
-               PixelDepth depth = PixelDepth::UInt8, const WriteOptions& options = {});
+void saveImage(const Image& img, const std::filesystem::path& path, PixelDepth depth = PixelDepth::UInt8,
+               const WriteOptions& options = {});
 
 }  // namespace shanshui::image

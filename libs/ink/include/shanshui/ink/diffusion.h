@@ -32,12 +32,12 @@ inline constexpr Range<double> kThresholdRange{0.0, 1.0};
 
 //! Defaults chosen on the sample scene: a soft bleed around lines and dark strokes.
 struct DiffusionOptions {
-  int ring_steps = 3;          //!< d, main diffusion distance in pixels, kRingStepsRange
-  double attenuation = 0.6;    //!< f, ink kept per ring, kAttenuationRange
-  double absorb = 0.3;         //!< I_p, ink a pixel can absorb over the n iterations, kAbsorbRange
-  double residual = 0.1;       //!< I_r, ink a donor keeps, kResidualRange
-  int iterations = 5;          //!< n, boundary diffusion iterations, kIterationsRange
-  double threshold = 0.8;      //!< ink above which a pixel is a stroke, kThresholdRange
+  int ring_steps = 3;        //!< d, main diffusion distance in pixels, kRingStepsRange
+  double attenuation = 0.6;  //!< f, ink kept per ring, kAttenuationRange
+  double absorb = 0.3;       //!< I_p, ink a pixel can absorb over the n iterations, kAbsorbRange
+  double residual = 0.1;     //!< I_r, ink a donor keeps, kResidualRange
+  int iterations = 5;        //!< n, boundary diffusion iterations, kIterationsRange
+  double threshold = 0.8;    //!< ink above which a pixel is a stroke, kThresholdRange
 };
 
 //! Checks the ranges; throws Error naming the parameter, the value and the range.

@@ -38,7 +38,9 @@ struct Bounds {
 
 //! Axis-aligned bounds of the positions (all zero for an empty mesh).
 Bounds bounds(const std::vector<glm::dvec3>& positions);
-inline Bounds bounds(const Mesh& m) { return bounds(m.positions); }
+inline Bounds bounds(const Mesh& m) {
+  return bounds(m.positions);
+}
 
 //! Moves the mesh so that its bounding-box centre is at the origin; returns the offset
 //! that was subtracted (add it back to get the original coordinates). Done in double.

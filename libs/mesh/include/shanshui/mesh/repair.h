@@ -13,31 +13,31 @@ enum class ComponentPolicy { KeepLargest, Fail, KeepAll };
 
 struct RepairOptions {
   ComponentPolicy components = ComponentPolicy::KeepLargest;  //!< extra connected components
-  bool fill_holes = true;           //!< fill boundary loops that are holes
-  int max_hole_edges = 1000;        //!< holes with more boundary edges stay open, [3, inf)
-  bool keep_outer_boundary = true;  //!< the longest boundary loop is the border, not a hole
+  bool fill_holes = true;                                     //!< fill boundary loops that are holes
+  int max_hole_edges = 1000;                                  //!< holes with more boundary edges stay open, [3, inf)
+  bool keep_outer_boundary = true;                            //!< the longest boundary loop is the border, not a hole
 };
 
 //! Counts of what each repair step changed; all zero when the input was already clean.
 struct RepairReport {
   std::size_t input_vertices = 0;
   std::size_t input_faces = 0;
-  std::size_t non_finite_vertices = 0;      //!< NaN/Inf positions (their faces are dropped)
-  std::size_t invalid_faces_removed = 0;    //!< < 3 distinct vertices, bad indices, NaN
+  std::size_t non_finite_vertices = 0;    //!< NaN/Inf positions (their faces are dropped)
+  std::size_t invalid_faces_removed = 0;  //!< < 3 distinct vertices, bad indices, NaN
   std::size_t duplicate_points_merged = 0;
   std::size_t duplicate_faces_removed = 0;
   std::size_t isolated_vertices_removed = 0;
   std::size_t non_manifold_vertices_split = 0;
-  bool orientation_fixed = false;           //!< some faces were flipped to agree
-  std::size_t faces_triangulated = 0;       //!< polygons with more than three sides
-  std::size_t degenerate_faces_removed = 0; //!< zero-area triangles
+  bool orientation_fixed = false;            //!< some faces were flipped to agree
+  std::size_t faces_triangulated = 0;        //!< polygons with more than three sides
+  std::size_t degenerate_faces_removed = 0;  //!< zero-area triangles
   std::size_t components_removed = 0;
   std::size_t holes_filled = 0;
   std::size_t hole_faces_added = 0;
-  std::size_t holes_left_open = 0;          //!< larger than max_hole_edges, or filling failed
-  std::size_t boundary_loops = 0;           //!< in the result; 0 means closed
-  bool attributes_dropped = false;          //!< UVs/normals could not follow the changes
-  ManifoldProblems left;                    //!< what the final check still finds (warned)
+  std::size_t holes_left_open = 0;  //!< larger than max_hole_edges, or filling failed
+  std::size_t boundary_loops = 0;   //!< in the result; 0 means closed
+  bool attributes_dropped = false;  //!< UVs/normals could not follow the changes
+  ManifoldProblems left;            //!< what the final check still finds (warned)
   std::size_t output_vertices = 0;
   std::size_t output_faces = 0;
   std::vector<std::string> warnings;

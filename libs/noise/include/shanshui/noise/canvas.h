@@ -7,14 +7,14 @@
 namespace shanshui::noise {
 
 struct CanvasNoiseOptions {
-  bool silk = false;             //!< else rice paper
-  double radius = 6.0;           //!< r, truncation radius (length units, pixels for the canvas)
-  double F0 = 0.1;               //!< silk: cycles per length unit
-  double omega0 = 0.0;           //!< silk: radians
-  bool isotropic = false;        //!< silk: random orientation per impulse
-  double mix = 0.5;              //!< silk: weight of the swapped twin
-  double perlin_frequency = 1.5; //!< rice paper: Perlin cycles per radius
-  double impulses = 64.0;        //!< N′
+  bool silk = false;              //!< else rice paper
+  double radius = 6.0;            //!< r, truncation radius (length units, pixels for the canvas)
+  double F0 = 0.1;                //!< silk: cycles per length unit
+  double omega0 = 0.0;            //!< silk: radians
+  bool isotropic = false;         //!< silk: random orientation per impulse
+  double mix = 0.5;               //!< silk: weight of the swapped twin
+  double perlin_frequency = 1.5;  //!< rice paper: Perlin cycles per radius
+  double impulses = 64.0;         //!< N′
 };
 
 //! a = sqrt(−ln 0.05 / π) / r: the Gaussian is 5 % at the radius.

@@ -13,12 +13,12 @@ namespace shanshui::noise {
 inline constexpr Range<double> kImpulsesRange{1.0, 1024.0};
 
 struct GaborOptions {
-  double K = 1.0;               //!< kernel amplitude, (0, 1e6]
-  double a = 0.05;              //!< Gaussian bandwidth (1 / length), (0, 1e3]
-  double F0 = 0.0625;           //!< harmonic frequency (cycles / length), [0, 1e3]
+  double K = 1.0;                      //!< kernel amplitude, (0, 1e6]
+  double a = 0.05;                     //!< Gaussian bandwidth (1 / length), (0, 1e3]
+  double F0 = 0.0625;                  //!< harmonic frequency (cycles / length), [0, 1e3]
   double omega0 = 0.7853981633974483;  //!< orientation, radians (anisotropic noise)
-  bool isotropic = false;       //!< each impulse gets a random orientation instead of omega0
-  double impulses = 64.0;       //!< N′, expected impulses per kernel disc, kImpulsesRange
+  bool isotropic = false;              //!< each impulse gets a random orientation instead of omega0
+  double impulses = 64.0;              //!< N′, expected impulses per kernel disc, kImpulsesRange
   std::uint64_t seed = 1;
 };
 

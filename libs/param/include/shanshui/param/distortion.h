@@ -16,9 +16,9 @@ struct Distortion {
   double angle_distortion = 0.0;  //!< area-weighted mean σ1/σ2; 1 = conformal
   double area_distortion = 0.0;   //!< area-weighted mean |log σ1σ2|; 0 = area preserving
   int faces = 0;
-  int flipped = 0;                //!< UV orientation opposite to the majority (by area)
-  int degenerate = 0;             //!< UV area <= 1e-12 of the mean, or a zero-area surface face
-  int non_finite = 0;             //!< faces with a NaN or infinite UV
+  int flipped = 0;     //!< UV orientation opposite to the majority (by area)
+  int degenerate = 0;  //!< UV area <= 1e-12 of the mean, or a zero-area surface face
+  int non_finite = 0;  //!< faces with a NaN or infinite UV
 
   //! Finite, one-to-one on every face: no flipped, degenerate or non-finite faces.
   bool valid() const { return faces > 0 && flipped == 0 && degenerate == 0 && non_finite == 0; }

@@ -45,26 +45,26 @@ struct ParamOptions {
 struct MethodTrial {
   Method method = Method::Xy;
   double seconds = 0.0;
-  bool ran = false;             //!< false: skipped (size) or failed (see note)
-  std::string note;             //!< why skipped or failed, empty when it ran
+  bool ran = false;  //!< false: skipped (size) or failed (see note)
+  std::string note;  //!< why skipped or failed, empty when it ran
   Distortion distortion;
 };
 
 struct ParamReport {
-  Method method = Method::Xy;   //!< the method whose UVs were kept
-  double seconds = 0.0;         //!< parameterization only (not I/O or repair)
+  Method method = Method::Xy;  //!< the method whose UVs were kept
+  double seconds = 0.0;        //!< parameterization only (not I/O or repair)
   Distortion distortion;
   std::vector<MethodTrial> trials;
-  int seam_vertices = 0;        //!< closed input: vertices on the seam it was cut along (0: no cut)
+  int seam_vertices = 0;  //!< closed input: vertices on the seam it was cut along (0: no cut)
 };
 
 //! Returns `mesh` with one UV per vertex (raw method output; see uv_adjust.h for scaling).
 //! The mesh must be a clean, connected triangle mesh (run mesh::repairMesh with hole filling
 //! first) with exactly one border loop, or closed and of genus 0, in which case it is cut
 //! open along one seam (seam_cut.h) and the result has the seam's interior vertices twice.
-//! Holes, several components and handles are refused with an Error that says so. Throws Error when the chosen method fails or gives
-//! a result that is not one-to-one (flipped, degenerate or non-finite UV faces), naming
-//! the counts; `what` names the mesh in messages.
+//! Holes, several components and handles are refused with an Error that says so. Throws Error when the chosen method
+//! fails or gives a result that is not one-to-one (flipped, degenerate or non-finite UV faces), naming the counts;
+//! `what` names the mesh in messages.
 mesh::Mesh parameterize(const mesh::Mesh& mesh, const ParamOptions& opts, ParamReport* report = nullptr,
                         const std::string& what = "mesh");
 

@@ -10,9 +10,9 @@
 namespace shanshui::param {
 
 struct SeamCut {
-  mesh::Mesh mesh;                   //!< the cut mesh: a topological disc
-  std::vector<std::uint32_t> seam;   //!< vertex indices along the seam in the input mesh
-  int duplicated = 0;                //!< vertices added (the seam's interior vertices)
+  mesh::Mesh mesh;                  //!< the cut mesh: a topological disc
+  std::vector<std::uint32_t> seam;  //!< vertex indices along the seam in the input mesh
+  int duplicated = 0;               //!< vertices added (the seam's interior vertices)
 };
 
 //! Cuts a closed, consistently oriented, connected triangle mesh of genus 0 along the

@@ -25,7 +25,7 @@ struct OrbitCamera {
 //! the origin of the uploaded mesh), from the given azimuth and elevation, in a frame of
 //! the given aspect (width / height); zoom > 1 moves it closer. Near and far planes
 //! enclose the sphere.
-OrbitCamera frameBounds(const mesh::Bounds& b, double azimuth_deg, double elevation_deg,
-                        double fov_y_deg = 35.0, double aspect = 1.0, double zoom = 1.0);
+OrbitCamera frameBounds(const mesh::Bounds& b, double azimuth_deg, double elevation_deg, double fov_y_deg = 35.0,
+                        double aspect = 1.0, double zoom = 1.0);
 
 }  // namespace shanshui::render

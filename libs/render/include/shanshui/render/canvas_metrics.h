@@ -28,9 +28,9 @@ struct WarpView {
 image::Image viewPositions(const InkRenderer& renderer, const OrbitCamera& camera);
 
 struct WarpError {
-  double mse = 0.0;        //!< mean squared difference over the compared pixels
-  double variance = 0.0;   //!< of the current values over the same pixels
-  double coverage = 0.0;   //!< fraction of pixels compared
+  double mse = 0.0;       //!< mean squared difference over the compared pixels
+  double variance = 0.0;  //!< of the current values over the same pixels
+  double coverage = 0.0;  //!< fraction of pixels compared
   double relative() const { return variance > 0 ? mse / variance : 0.0; }
 };
 
@@ -41,9 +41,9 @@ struct WarpError {
 WarpError warpingError(const WarpView& previous, const WarpView& current);
 
 struct SpectrumPeak {
-  double frequency = 0.0;  //!< cycles per pixel: centroid of the radial power above half its maximum
+  double frequency = 0.0;       //!< cycles per pixel: centroid of the radial power above half its maximum
   double mean_frequency = 0.0;  //!< cycles per pixel: power-weighted mean over all rings (broad spectra)
-  double contrast = 0.0;   //!< standard deviation
+  double contrast = 0.0;        //!< standard deviation
   //! cycles per pixel: the same centroid of the radial energy (ring-summed power, the
   //! energy per unit |f|), which peaks at the cut-off of a low-pass spectrum whose ring
   //! average is flat-topped from 0 (the rice paper's) instead of on its lowest rings

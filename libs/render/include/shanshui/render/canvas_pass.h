@@ -77,7 +77,7 @@ class CanvasPass {
   std::uint32_t seed_ = 0;
   bool dynamic_ = true;
   int quads_ = 0;
-  Program single_, multi_, static_;  //!< geometry shader with 1 or kInvocations invocations; static
+  Program single_, multi_, static_;        //!< geometry shader with 1 or kInvocations invocations; static
   std::vector<glm::vec3> dome_positions_;  //!< relative to dome_centre_
   std::vector<glm::uvec3> dome_triangles_;
   GLuint dome_vao_ = 0, dome_buffers_[2] = {0, 0};  //!< positions, visible triangles

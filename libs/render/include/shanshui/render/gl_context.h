@@ -16,7 +16,7 @@ enum class ContextKind {
 
 struct ContextOptions {
   ContextKind kind = ContextKind::Headless;
-  int width = 1024;     //!< window size; headless contexts render into framebuffers of any size
+  int width = 1024;  //!< window size; headless contexts render into framebuffers of any size
   int height = 768;
   std::string title = "shanshui";
   bool visible = true;  //!< window only

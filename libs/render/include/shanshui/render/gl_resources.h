@@ -2,9 +2,9 @@
 // direct state access). Every GL name the renderer creates is owned by one of these.
 #pragma once
 
-#include <epoxy/gl.h>
-
 #include <vector>
+
+#include <epoxy/gl.h>
 
 #include "shanshui/image/image.h"
 

@@ -1,9 +1,9 @@
 // A triangle mesh uploaded to the GPU (positions and normals as float, relative to a centre).
 #pragma once
 
-#include <epoxy/gl.h>
-
 #include <vector>
+
+#include <epoxy/gl.h>
 
 #include "shanshui/mesh/mesh.h"
 

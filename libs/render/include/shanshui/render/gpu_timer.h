@@ -1,10 +1,10 @@
 // GPU time per pass with timer queries (GL_TIME_ELAPSED), one pass at a time.
 #pragma once
 
-#include <epoxy/gl.h>
-
 #include <string>
 #include <vector>
+
+#include <epoxy/gl.h>
 
 namespace shanshui::render {
 

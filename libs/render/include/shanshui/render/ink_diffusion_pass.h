@@ -62,7 +62,8 @@ class InkDiffusionPass {
   Program extract_, rows_, columns_, reach_, boundary_, output_;
   Program output_canvas_;  //!< built on first use with a canvas grain
   Texture2D capacity_, main_, next_, nearest_, out_;
-  Texture2D seeds_, strokes_, near_;  //!< one texel per block: ink above the residual or a stroke, strokes, near a stroke
+  Texture2D seeds_, strokes_,
+      near_;              //!< one texel per block: ink above the residual or a stroke, strokes, near a stroke
   Texture2D active_tex_;  //!< one texel per work-group area: where anything can change (iterations, output)
   const Texture2D* after_ = nullptr;
   int last_iterations_ = 0;  //!< n of the last run

@@ -38,8 +38,8 @@ template <typename T>
 constexpr bool placedAsGlsl(std::size_t offset) {
   return (std::is_same_v<T, vec3> || std::is_same_v<T, vec4>) ? offset % 16 == 0 : offset % 4 == 0;
 }
-#define SHANSHUI_CHECK_PLACEMENT(type, name)                          \
-  static_assert(placedAsGlsl<type>(offsetof(ObjectParams, name)),    \
+#define SHANSHUI_CHECK_PLACEMENT(type, name)                      \
+  static_assert(placedAsGlsl<type>(offsetof(ObjectParams, name)), \
                 "ObjectParams::" #name " is not where std140/std430 puts it");
 SHANSHUI_OBJECT_PARAMS(SHANSHUI_CHECK_PLACEMENT)
 #undef SHANSHUI_CHECK_PLACEMENT

@@ -13,9 +13,9 @@
 #include "shanshui/render/canvas_pass.h"
 #include "shanshui/render/gl_resources.h"
 #include "shanshui/render/gpu_mesh.h"
-#include "shanshui/render/render_pass.h"
 #include "shanshui/render/gpu_timer.h"
 #include "shanshui/render/ink_diffusion_pass.h"
+#include "shanshui/render/render_pass.h"
 #include "shanshui/render/shader_program.h"
 #include "shanshui/scene/scene.h"
 #include "shanshui/scene/scene_assets.h"
@@ -24,9 +24,9 @@ namespace shanshui::render {
 
 //! What one call of InkRenderer::render did.
 struct FrameStats {
-  bool cached = false;              //!< nothing changed: the previous image was presented
-  double frame_ms = 0.0;            //!< CPU wall time of the call (including the wait when timing)
-  std::vector<PassTime> passes;     //!< passes that ran, in order, with GPU milliseconds
+  bool cached = false;           //!< nothing changed: the previous image was presented
+  double frame_ms = 0.0;         //!< CPU wall time of the call (including the wait when timing)
+  std::vector<PassTime> passes;  //!< passes that ran, in order, with GPU milliseconds
 };
 
 //! The camera of a scene for one view: orbit parameters from the scene (or a path key),

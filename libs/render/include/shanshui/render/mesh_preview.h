@@ -15,16 +15,16 @@
 namespace shanshui::render {
 
 struct PreviewOptions {
-  int width = 1024;                             //!< [1, 16384]
-  int height = 768;                             //!< [1, 16384]
-  double azimuth_deg = -60.0;                   //!< camera around +Z
-  double elevation_deg = 25.0;                  //!< camera above the horizon, (-90, 90)
-  double fov_y_deg = 35.0;                      //!< (0, 180)
-  double zoom = 1.0;                            //!< > 1 moves the camera closer, (0, 1000]
-  glm::vec3 light_dir{-0.5f, 0.3f, 0.8f};       //!< towards the light; normalised on use
-  glm::vec3 paper{0.95f, 0.93f, 0.87f};         //!< background and lightest tone
-  glm::vec3 ink{0.08f, 0.08f, 0.09f};           //!< darkest tone
-  float rim_width = 0.3f;                       //!< N·V where the silhouette rim fades out
+  int width = 1024;                        //!< [1, 16384]
+  int height = 768;                        //!< [1, 16384]
+  double azimuth_deg = -60.0;              //!< camera around +Z
+  double elevation_deg = 25.0;             //!< camera above the horizon, (-90, 90)
+  double fov_y_deg = 35.0;                 //!< (0, 180)
+  double zoom = 1.0;                       //!< > 1 moves the camera closer, (0, 1000]
+  glm::vec3 light_dir{-0.5f, 0.3f, 0.8f};  //!< towards the light; normalised on use
+  glm::vec3 paper{0.95f, 0.93f, 0.87f};    //!< background and lightest tone
+  glm::vec3 ink{0.08f, 0.08f, 0.09f};      //!< darkest tone
+  float rim_width = 0.3f;                  //!< N·V where the silhouette rim fades out
   //! Checkerboard squares per UV unit over the shading (paper Fig. 5), [0, 1e6]; 0 = none.
   //! Needs a mesh with UVs; the program is built with the CHECKER variant only then.
   float checker_squares = 0.0f;

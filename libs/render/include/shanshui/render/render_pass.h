@@ -21,15 +21,15 @@ namespace shanshui::render {
 
 //! One object of the scene on the GPU, shared by the passes.
 struct SceneObjectGpu {
-  GpuMesh mesh;                      //!< uploaded relative to the centre of model_bounds
+  GpuMesh mesh;  //!< uploaded relative to the centre of model_bounds
   mesh::Bounds model_bounds;
-  double model_feature_size = 0.0;   //!< model units
-  double max_triangle_area = 0.0;    //!< model units
+  double model_feature_size = 0.0;  //!< model units
+  double max_triangle_area = 0.0;   //!< model units
   std::optional<Texture2D> wrinkle;
-  glm::dmat4 model{1.0};             //!< uploaded coordinates to world (from the scene's transform)
-  glm::dvec3 centre{0.0};            //!< world, of the bounding sphere
-  double radius = 1.0;               //!< world bounding-sphere radius
-  double feature_size = 0.0;         //!< world units
+  glm::dmat4 model{1.0};      //!< uploaded coordinates to world (from the scene's transform)
+  glm::dvec3 centre{0.0};     //!< world, of the bounding sphere
+  double radius = 1.0;        //!< world bounding-sphere radius
+  double feature_size = 0.0;  //!< world units
 };
 
 //! What every pass of a frame reads.
@@ -39,9 +39,9 @@ struct FrameInputs {
   const mesh::Bounds& world_bounds;
   const OrbitCamera& camera;
   int width = 0, height = 0;
-  double time = 0.0;                 //!< seconds, for spinning objects
-  std::string static_key;            //!< changes when anything but the time changes
-  GpuTimer* timer = nullptr;         //!< time each pass under its name when set
+  double time = 0.0;          //!< seconds, for spinning objects
+  std::string static_key;     //!< changes when anything but the time changes
+  GpuTimer* timer = nullptr;  //!< time each pass under its name when set
 
   //! Model matrix of object i at the frame's time.
   glm::dmat4 modelAt(std::size_t i) const;

@@ -1,11 +1,10 @@
 // Compiling and linking GLSL programs from shaders/ with compile-time variants.
 #pragma once
 
-#include <epoxy/gl.h>
-
 #include <string>
 #include <vector>
 
+#include <epoxy/gl.h>
 #include <glm/glm.hpp>
 
 namespace shanshui::render {

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -14,7 +15,6 @@
 #include <nlohmann/json_fwd.hpp>
 
 #include "shanshui/ink/diffusion.h"
-#include <cstdint>
 
 namespace shanshui::scene {
 
@@ -31,7 +31,9 @@ enum class CurvatureSource {
   Cotangent,  //!< per vertex, cotangent Laplacian and angle defect (fast, fragile on irregular meshes)
   Screen,     //!< per pixel |fwidth(N)| / |fwidth(P)|, as seed 001 does
 };
-inline bool perVertex(CurvatureSource s) { return s != CurvatureSource::Screen; }
+inline bool perVertex(CurvatureSource s) {
+  return s != CurvatureSource::Screen;
+}
 
 //! Feature lines from curvature (seed 001 Eq. 1; SPEC.md section 6).
 struct LineParams {
@@ -40,12 +42,12 @@ struct LineParams {
   //! R_CurveFactor on dimensionless curvature k·feature_size (k = 1 at the mesh's 90th
   //! percentile of |k|), so the same value gives the same line density on any mesh.
   double curve_factor = 0.8;
-  double threshold = 0.4;        //!< Curv0: line where 1 − k·curve_factor < threshold
-  double soft_width = 0.1;       //!< smoothstep width around Curv0 (0 = hard binarisation)
+  double threshold = 0.4;                   //!< Curv0: line where 1 − k·curve_factor < threshold
+  double soft_width = 0.1;                  //!< smoothstep width around Curv0 (0 = hard binarisation)
   glm::dvec3 line_color{0.06, 0.06, 0.07};  //!< _LineColor
   glm::dvec3 bg_color{1.0, 1.0, 1.0};       //!< _BgColor, RGB in [0, 1]; multiplies the shading
-  double silhouette = 0.18;      //!< N·V below which the surface is drawn as silhouette
-  double depth_edges = 0.03;     //!< relative depth jump between pixels drawn as a line
+  double silhouette = 0.18;                 //!< N·V below which the surface is drawn as silhouette
+  double depth_edges = 0.03;                //!< relative depth jump between pixels drawn as a line
   //! Objects whose projected area is below this many pixels get N·V lines only (the
   //! paper's small-object path).
   double small_object_px = 2000.0;
@@ -55,19 +57,19 @@ struct LineParams {
 struct ShadingParams {
   bool enabled = true;
   std::array<double, 5> tones{0.22, 0.42, 0.62, 0.82, 1.0};  //!< C1..C5 grey, [0, 1], dark to light
-  std::array<double, 4> thresholds{0.12, 0.3, 0.5, 0.72};     //!< t1..t4, ascending
+  std::array<double, 4> thresholds{0.12, 0.3, 0.5, 0.72};    //!< t1..t4, ascending
   //! σ of the Gaussian-smoothed steps (Φ((t − t_k)/σ) instead of a hard step); [0, 1],
   //! 0 gives Eq. 2 exactly.
   double sigma = 0.04;
-  double beta = -1.0;            //!< β of Eq. 3, t_dw = clamp(t_d + t_w + β, 0, 1)
+  double beta = -1.0;  //!< β of Eq. 3, t_dw = clamp(t_d + t_w + β, 0, 1)
   //! Strength of the erosion noise: t_w = 1 − erosion·(1 − noise), noise in [0, 1].
   double erosion = 0.35;
-  double noise = 0.06;           //!< amplitude of the noise added before quantisation
+  double noise = 0.06;  //!< amplitude of the noise added before quantisation
   //! Size of the erosion noise's coarsest cells as a fraction of the object's radius
   //! (finer octaves at 1/2 and 1/4 of it).
   double noise_scale = 0.03;
-  bool half_lambert = false;     //!< t_d = (N·L)·0.5 + 0.5 instead of max(N·L, 0)
-  bool line_value = true;        //!< multiply t_dw by the line pass's col_i (the paper's Fig. 4f)
+  bool half_lambert = false;  //!< t_d = (N·L)·0.5 + 0.5 instead of max(N·L, 0)
+  bool line_value = true;     //!< multiply t_dw by the line pass's col_i (the paper's Fig. 4f)
 };
 
 enum class UvSource {
@@ -81,19 +83,19 @@ enum class TextureFilter { Nearest, Bilinear, Trilinear };
 
 //! Wrinkle (cun) texture mapping (seed 001 Eq. 5). No texture: no wrinkle code is built.
 struct WrinkleParams {
-  std::string texture;              //!< image path relative to the scene file; empty = none
-  double inner_tex_factor = 1.0;    //!< R_InnerTexFactor, t_w = luma(W) / factor
-  double repeat = 4.0;              //!< texture repetitions per UV unit
+  std::string texture;            //!< image path relative to the scene file; empty = none
+  double inner_tex_factor = 1.0;  //!< R_InnerTexFactor, t_w = luma(W) / factor
+  double repeat = 4.0;            //!< texture repetitions per UV unit
   UvSource uv = UvSource::Mesh;
   TextureFilter filter = TextureFilter::Nearest;
 };
 
 struct Object {
   std::string name;
-  std::string mesh;  //!< .obj/.ply/.off relative to the scene file (exactly one of mesh, dem)
-  std::string dem;   //!< heightfield (.dem, .asc, .png, .tif), meshed on load
-  double z_scale = 1.0;              //!< dem only: vertical exaggeration
-  std::size_t max_vertices = 250000; //!< dem only: grid decimation limit
+  std::string mesh;                   //!< .obj/.ply/.off relative to the scene file (exactly one of mesh, dem)
+  std::string dem;                    //!< heightfield (.dem, .asc, .png, .tif), meshed on load
+  double z_scale = 1.0;               //!< dem only: vertical exaggeration
+  std::size_t max_vertices = 250000;  //!< dem only: grid decimation limit
   //! true: the mesh is moved so its bounding-box centre is the model origin.
   bool recentre = true;
   Transform transform;
@@ -121,12 +123,12 @@ struct CameraKey {
 //! distance 0 frames the bounds (zoom > 1 moves closer).
 struct Camera {
   std::optional<glm::dvec3> target;
-  double distance = 0.0;         //!< [0, 1e9], 0 = frame the scene
-  double azimuth_deg = -60.0;    //!< around +Z, any finite value
-  double elevation_deg = 25.0; 
-  double fov_y_deg = 35.0;     
-  double zoom = 1.0;           
-  std::vector<CameraKey> path;   //!< optional; used by --frames
+  double distance = 0.0;       //!< [0, 1e9], 0 = frame the scene
+  double azimuth_deg = -60.0;  //!< around +Z, any finite value
+  double elevation_deg = 25.0;
+  double fov_y_deg = 35.0;
+  double zoom = 1.0;
+  std::vector<CameraKey> path;  //!< optional; used by --frames
 };
 
 //! Paper (seed 001 Eqs. 9-17, SPEC.md section 8): none; rice paper (Perlin) or silk (two
@@ -169,8 +171,8 @@ struct Diffusion : ink::DiffusionOptions {
 };
 
 struct Output {
-  int width = 1024;  
-  int height = 768;  
+  int width = 1024;
+  int height = 768;
   glm::dvec3 paper{0.95, 0.93, 0.87};  //!< paper colour behind and under the ink, RGB
   //! Distance fade: far parts move towards the paper by up to this much (0 = off).
   double fade = 0.35;
@@ -202,17 +204,17 @@ enum class Effect { Uniform, Rebuild };
 //! viewer's panel builds its widgets from these; docs/scene.md's tables are made of them.
 struct SchemaEntry {
   std::string path;
-  std::string kind;  //!< number, integer, bool, string, file, choice, color, vec3, list, entries
+  std::string kind;             //!< number, integer, bool, string, file, choice, color, vec3, list, entries
   double min = 0.0, max = 0.0;  //!< range of the value (each element's; entries: the count)
   bool lo_open = false;         //!< (min, max] instead of [min, max]
   std::vector<std::string> choices;
-  std::size_t size = 0;         //!< list: the number of values
-  bool optional = false;        //!< null allowed (automatic)
+  std::size_t size = 0;   //!< list: the number of values
+  bool optional = false;  //!< null allowed (automatic)
   std::string unit, doc;
   Effect effect = Effect::Uniform;
-  std::string default_text;     //!< as docs/scene.md writes it
+  std::string default_text;  //!< as docs/scene.md writes it
   std::string range_text;
-  std::string table;            //!< the docs table it is listed in ("" = top level)
+  std::string table;  //!< the docs table it is listed in ("" = top level)
 };
 
 //! Parses and validates. `origin` names the file in messages. Unknown keys and values out

@@ -13,8 +13,8 @@
 namespace shanshui::scene {
 
 struct ObjectAsset {
-  mesh::Mesh mesh;       //!< model space (recentred when the object asks); UVs when wrinkled
-  mesh::Bounds bounds;   //!< of mesh
+  mesh::Mesh mesh;      //!< model space (recentred when the object asks); UVs when wrinkled
+  mesh::Bounds bounds;  //!< of mesh
   //! Per-vertex |k|·feature_size (dimensionless, 1 at the 90th percentile); empty unless
   //! the object draws lines from object-space curvature.
   std::vector<float> curvature;

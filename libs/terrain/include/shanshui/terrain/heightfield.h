@@ -21,13 +21,13 @@ inline constexpr double kNoData = std::numeric_limits<double>::quiet_NaN();
 struct Heightfield {
   int columns = 0;
   int rows = 0;
-  std::vector<double> elevation;  //!< rows * columns, row-major
-  double cell_x = 1.0;            //!< metres between columns
-  double cell_y = 1.0;            //!< metres between rows
-  double origin_x = 0.0;          //!< easting of column 0
-  double origin_y = 0.0;          //!< northing of row 0 (the north edge)
-  std::string source;             //!< what was read and how it was interpreted, one line
-  std::vector<std::string> notes; //!< conversions applied (degrees to metres, feet to metres, ...)
+  std::vector<double> elevation;   //!< rows * columns, row-major
+  double cell_x = 1.0;             //!< metres between columns
+  double cell_y = 1.0;             //!< metres between rows
+  double origin_x = 0.0;           //!< easting of column 0
+  double origin_y = 0.0;           //!< northing of row 0 (the north edge)
+  std::string source;              //!< what was read and how it was interpreted, one line
+  std::vector<std::string> notes;  //!< conversions applied (degrees to metres, feet to metres, ...)
 
   double at(int c, int r) const { return elevation[static_cast<std::size_t>(r) * columns + c]; }
   std::size_t validCount() const;

@@ -7,15 +7,15 @@
 namespace shanshui::terrain {
 
 struct TerrainMeshOptions {
-  double z_scale = 1.0;         //!< vertical exaggeration, (0, 1000]
-  int step = 1;                 //!< keep every step-th sample in both directions, [1, 4096]
-  std::size_t max_vertices = 0; //!< if > 0, raise step until the grid has at most this many
+  double z_scale = 1.0;          //!< vertical exaggeration, (0, 1000]
+  int step = 1;                  //!< keep every step-th sample in both directions, [1, 4096]
+  std::size_t max_vertices = 0;  //!< if > 0, raise step until the grid has at most this many
 };
 
 struct TerrainMeshInfo {
-  int step = 1;                  //!< the step actually used
-  glm::dvec3 offset{0.0};        //!< subtracted from x and y (z keeps true elevation)
-  std::size_t skipped_cells = 0; //!< cells with a missing corner (no or one triangle)
+  int step = 1;                   //!< the step actually used
+  glm::dvec3 offset{0.0};         //!< subtracted from x and y (z keeps true elevation)
+  std::size_t skipped_cells = 0;  //!< cells with a missing corner (no or one triangle)
 };
 
 //! Checks the option ranges; throws Error naming the flag, the value and the range.

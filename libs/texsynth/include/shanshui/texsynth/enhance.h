@@ -18,25 +18,25 @@ struct ValueRange {
 struct EnhanceOptions {
   //! [a, b], explicit; 0 <= a < b <= 1. When absent it comes from the percentiles below.
   std::optional<ValueRange> input_range;
-  double low_percentile = 1.0;   //!< percent of values at or below a, [0, 100)
-  double high_percentile = 99.0; //!< percent of values at or below b, (low, 100]
-  ValueRange output_range;       //!< [c, d], each in [0, 1], c != d (c > d inverts)
+  double low_percentile = 1.0;    //!< percent of values at or below a, [0, 100)
+  double high_percentile = 99.0;  //!< percent of values at or below b, (low, 100]
+  ValueRange output_range;        //!< [c, d], each in [0, 1], c != d (c > d inverts)
   //! false: one grey channel (alpha composited over white, luma weights); true: the same
   //! map on every colour channel, alpha kept as it is.
   bool colour = false;
 };
 
 struct EnhanceReport {
-  ValueRange input_range;        //!< the [a, b] used (given or from the percentiles)
-  double clipped_low = 0.0;      //!< fraction of values at or below a
-  double clipped_high = 0.0;     //!< fraction of values above b
+  ValueRange input_range;     //!< the [a, b] used (given or from the percentiles)
+  double clipped_low = 0.0;   //!< fraction of values at or below a
+  double clipped_high = 0.0;  //!< fraction of values above b
 };
 
 //! Applies Eq. 4. `what` names the input in error messages (a file name). Throws Error for
 //! b <= a, values outside [0, 1], NaN, a sample whose percentile range collapses (no
 //! contrast), or bad options.
-image::Image enhanceContrast(const image::Image& img, const EnhanceOptions& opts,
-                             EnhanceReport* report = nullptr, const std::string& what = "image");
+image::Image enhanceContrast(const image::Image& img, const EnhanceOptions& opts, EnhanceReport* report = nullptr,
+                             const std::string& what = "image");
 
 //! The low and high percentiles (in percent) of the colour channels of `img` (alpha left
 //! out), on a grid of 1/65535, which is exact for 8- and 16-bit data: the smallest value v

@@ -9,10 +9,10 @@
 namespace shanshui::texsynth {
 
 struct QuiltMetricsOptions {
-  int patches = 256;         //!< random output patches for the coherence measure, [1, 100000]
-  int patch_size = 8;        //!< their size, [2, block]; clamped to the sample size
-  std::uint64_t seed = 7;    //!< where the patches are
-  int threads = 0;           //!< 0 = one per hardware thread
+  int patches = 256;       //!< random output patches for the coherence measure, [1, 100000]
+  int patch_size = 8;      //!< their size, [2, block]; clamped to the sample size
+  std::uint64_t seed = 7;  //!< where the patches are
+  int threads = 0;         //!< 0 = one per hardware thread
 };
 
 struct QuiltMetrics {
@@ -27,9 +27,9 @@ struct QuiltMetrics {
   double coherence_mean = 0.0;
   double coherence_max = 0.0;
   //! Source usage: how often each sample pixel appears in the output.
-  double sample_coverage = 0.0;   //!< fraction of sample pixels used at least once
-  double usage_cv = 0.0;          //!< standard deviation / mean of the use counts
-  double usage_max_ratio = 0.0;   //!< most-used pixel's count / mean count
+  double sample_coverage = 0.0;  //!< fraction of sample pixels used at least once
+  double usage_cv = 0.0;         //!< standard deviation / mean of the use counts
+  double usage_max_ratio = 0.0;  //!< most-used pixel's count / mean count
   //! Verbatim copies: 4-connected output regions copied from one place in the sample.
   double verbatim_copy_ratio = 0.0;  //!< largest region / output area
   double largest_copy_blocks = 0.0;  //!< largest region / block area

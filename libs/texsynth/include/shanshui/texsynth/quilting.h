@@ -13,19 +13,19 @@
 namespace shanshui::texsynth {
 
 struct QuiltOptions {
-  int width = 512;             //!< output width, >= block
-  int height = 512;            //!< output height, >= block
-  int block = 48;              //!< B, block size in pixels, [3, min(sample width, height)]
-  int overlap = -1;            //!< O, [1, B − 1]; −1 = round(B / 6), at least 1
-  double tolerance = 0.1;      //!< candidates within (1 + tol)·min error, [0, 1e9]
+  int width = 512;         //!< output width, >= block
+  int height = 512;        //!< output height, >= block
+  int block = 48;          //!< B, block size in pixels, [3, min(sample width, height)]
+  int overlap = -1;        //!< O, [1, B − 1]; −1 = round(B / 6), at least 1
+  double tolerance = 0.1;  //!< candidates within (1 + tol)·min error, [0, 1e9]
   //! Absolute floor of the candidate threshold per overlap pixel and channel, [0, 1]: keeps
   //! blank paper (all errors near 0) from leaving a single candidate.
   double error_floor = 1e-4;
-  std::uint64_t seed = 1;      //!< same seed, same output, whatever the thread count
+  std::uint64_t seed = 1;  //!< same seed, same output, whatever the thread count
   SeamMode seam = SeamMode::Cut;
   SearchMode search = SearchMode::Fft;
-  bool tileable = false;       //!< wrap-around overlaps so the output tiles seamlessly
-  int threads = 0;             //!< worker threads; 0 = one per hardware thread
+  bool tileable = false;  //!< wrap-around overlaps so the output tiles seamlessly
+  int threads = 0;        //!< worker threads; 0 = one per hardware thread
   //! Also run the exhaustive search for every block and record how the chosen error compares
   //! with its minimum (slow; for benchmarks).
   bool audit = false;
@@ -41,10 +41,10 @@ struct QuiltStats {
   double seconds = 0.0;
   int blocks = 0;
   int blocks_x = 0, blocks_y = 0;
-  int waves = 0;               //!< groups of independent blocks searched in parallel
+  int waves = 0;  //!< groups of independent blocks searched in parallel
   int threads = 1;
-  double mean_candidates = 0.0;         //!< candidates per block with an overlap
-  long long overlap_pixels = 0;         //!< summed over all blocks
+  double mean_candidates = 0.0;  //!< candidates per block with an overlap
+  long long overlap_pixels = 0;  //!< summed over all blocks
   //! Overlap error of the chosen blocks (SSD summed over channels) per overlap pixel.
   double overlap_error_per_pixel = 0.0;
   //! With audit: mean over blocks of chosen error / exhaustive minimum (floored as in the
@@ -53,11 +53,11 @@ struct QuiltStats {
   //! With audit: fraction of blocks whose choice the exhaustive search would not have
   //! allowed (error above its candidate threshold); 0 for an exact search. −1 without audit.
   double search_rule_violations = -1.0;
-  double audit_seconds = 0.0;           //!< CPU time spent in the audit (part of `seconds`)
+  double audit_seconds = 0.0;  //!< CPU time spent in the audit (part of `seconds`)
 };
 
 struct QuiltResult {
-  image::Image image;          //!< width × height, the sample's channels
+  image::Image image;  //!< width × height, the sample's channels
   //! For every output pixel, the index y·sample_width + x of the sample pixel it shows.
   std::vector<std::int32_t> source;
   QuiltStats stats;
