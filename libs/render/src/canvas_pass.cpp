@@ -62,19 +62,22 @@ CanvasPass::CanvasPass(const scene::Canvas& canvas, std::uint64_t seed, const me
       dome_positions_.emplace_back(p);
     }
     dome_triangles_ = std::move(dome.triangles);
-    glCreateVertexArrays(1, &dome_vao_);
-    glCreateBuffers(2, dome_buffers_);
-    glNamedBufferStorage(dome_buffers_[0], static_cast<GLsizeiptr>(dome_positions_.size() * sizeof(glm::vec3)),
-                         dome_positions_.data(), 0);
-    glNamedBufferStorage(dome_buffers_[1], static_cast<GLsizeiptr>(dome_triangles_.size() * sizeof(glm::uvec3)),
-                         nullptr, GL_DYNAMIC_STORAGE_BIT);
-    glVertexArrayVertexBuffer(dome_vao_, 0, dome_buffers_[0], 0, sizeof(glm::vec3));
-    glEnableVertexArrayAttrib(dome_vao_, 0);
-    glVertexArrayAttribFormat(dome_vao_, 0, 3, GL_FLOAT, GL_FALSE, 0);
-    glVertexArrayAttribBinding(dome_vao_, 0, 0);
-    glVertexArrayElementBuffer(dome_vao_, dome_buffers_[1]);
+    dome_vao_ = VertexArray::create();
+    dome_positions_buffer_ = Buffer::create();
+    dome_visible_buffer_ = Buffer::create();
+    glNamedBufferStorage(dome_positions_buffer_.id(),
+                         static_cast<GLsizeiptr>(dome_positions_.size() * sizeof(glm::vec3)), dome_positions_.data(),
+                         0);
+    glNamedBufferStorage(dome_visible_buffer_.id(),
+                         static_cast<GLsizeiptr>(dome_triangles_.size() * sizeof(glm::uvec3)), nullptr,
+                         GL_DYNAMIC_STORAGE_BIT);
+    glVertexArrayVertexBuffer(dome_vao_.id(), 0, dome_positions_buffer_.id(), 0, sizeof(glm::vec3));
+    glEnableVertexArrayAttrib(dome_vao_.id(), 0);
+    glVertexArrayAttribFormat(dome_vao_.id(), 0, 3, GL_FLOAT, GL_FALSE, 0);
+    glVertexArrayAttribBinding(dome_vao_.id(), 0, 0);
+    glVertexArrayElementBuffer(dome_vao_.id(), dome_visible_buffer_.id());
   } else {
-    glCreateVertexArrays(1, &empty_vao_);
+    empty_vao_ = VertexArray::create();
   }
 }
 
@@ -109,12 +112,6 @@ void CanvasPass::reloadShaders() {
   multi_ = std::move(multi);
 }
 
-CanvasPass::~CanvasPass() {
-  if (empty_vao_) glDeleteVertexArrays(1, &empty_vao_);
-  if (dome_vao_) glDeleteVertexArrays(1, &dome_vao_);
-  if (dome_buffers_[0]) glDeleteBuffers(2, dome_buffers_);
-}
-
 GLsizei CanvasPass::uploadVisibleDome(const glm::dmat4& model_view_projection) {
   // Most of the dome is off screen, and every triangle costs kInvocations geometry-shader
   // runs: only those not wholly outside one clip plane are drawn.
@@ -131,7 +128,7 @@ GLsizei CanvasPass::uploadVisibleDome(const glm::dmat4& model_view_projection) {
     if (outside(0, 1) || outside(0, -1) || outside(1, 1) || outside(1, -1)) continue;
     visible.push_back(f);
   }
-  glNamedBufferSubData(dome_buffers_[1], 0, static_cast<GLsizeiptr>(visible.size() * sizeof(glm::uvec3)),
+  glNamedBufferSubData(dome_visible_buffer_.id(), 0, static_cast<GLsizeiptr>(visible.size() * sizeof(glm::uvec3)),
                        visible.data());
   return static_cast<GLsizei>(visible.size() * 3);
 }
@@ -190,7 +187,7 @@ const Texture2D& CanvasPass::run(const std::vector<Item>& items, const Texture2D
     glDisable(GL_BLEND);
     static_.use();
     setKernel(static_, o);
-    glBindVertexArray(empty_vao_);
+    glBindVertexArray(empty_vao_.id());
     glDrawArrays(GL_TRIANGLES, 0, 3);
     if (timer) timer->end();
     SHANSHUI_GL_CHECK("canvas_static pass");
@@ -241,7 +238,7 @@ const Texture2D& CanvasPass::run(const std::vector<Item>& items, const Texture2D
     multi_.use();
     multi_.set("u_model_view_projection", glm::mat4(dome_mvp));
     multi_.set("u_background", 1);
-    glBindVertexArray(dome_vao_);
+    glBindVertexArray(dome_vao_.id());
     glDrawElements(GL_TRIANGLES, indices, GL_UNSIGNED_INT, nullptr);
   }
   glDisable(GL_BLEND);

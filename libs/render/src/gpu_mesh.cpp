@@ -23,9 +23,11 @@ GpuMesh::GpuMesh(const mesh::Mesh& m, const glm::dvec3& centre, const std::vecto
   std::vector<glm::vec3> positions(m.positions.size());
   for (std::size_t i = 0; i < positions.size(); ++i) positions[i] = glm::vec3(m.positions[i] - centre);
   const std::vector<glm::vec3> normals = m.normals.size() == m.positions.size() ? m.normals : mesh::vertexNormals(m);
-  glCreateBuffers(5, buffers_);
-  glNamedBufferStorage(buffers_[0], static_cast<GLsizeiptr>(positions.size() * sizeof(glm::vec3)), positions.data(), 0);
-  glNamedBufferStorage(buffers_[1], static_cast<GLsizeiptr>(normals.size() * sizeof(glm::vec3)), normals.data(), 0);
+  for (Buffer& b : buffers_) b = Buffer::create();
+  glNamedBufferStorage(buffers_[0].id(), static_cast<GLsizeiptr>(positions.size() * sizeof(glm::vec3)),
+                       positions.data(), 0);
+  glNamedBufferStorage(buffers_[1].id(), static_cast<GLsizeiptr>(normals.size() * sizeof(glm::vec3)), normals.data(),
+                       0);
   if (sorted_orders) {
     // The original order, then six orders for cameras looking along +x, −x, +y, −y, +z, −z:
     // the mesh's own order cut into chunks of kChunkTriangles, the chunks sorted by their
@@ -58,64 +60,37 @@ GpuMesh::GpuMesh(const mesh::Mesh& m, const glm::dvec3& centre, const std::vecto
       for (const auto& k : keyed) append(k.second);
       for (auto it = keyed.rbegin(); it != keyed.rend(); ++it) append(it->second);
     }
-    glNamedBufferStorage(buffers_[2], static_cast<GLsizeiptr>(all.size() * sizeof(glm::uvec3)), all.data(), 0);
+    glNamedBufferStorage(buffers_[2].id(), static_cast<GLsizeiptr>(all.size() * sizeof(glm::uvec3)), all.data(), 0);
   } else {
-    glNamedBufferStorage(buffers_[2], static_cast<GLsizeiptr>(m.triangles.size() * sizeof(glm::uvec3)),
+    glNamedBufferStorage(buffers_[2].id(), static_cast<GLsizeiptr>(m.triangles.size() * sizeof(glm::uvec3)),
                          m.triangles.data(), 0);
   }
-  glCreateVertexArrays(1, &vao_);
+  vao_ = VertexArray::create();
   for (GLuint a = 0; a < 2; ++a) {
-    glVertexArrayVertexBuffer(vao_, a, buffers_[a], 0, sizeof(glm::vec3));
-    glVertexArrayAttribFormat(vao_, a, 3, GL_FLOAT, GL_FALSE, 0);
-    glVertexArrayAttribBinding(vao_, a, a);
-    glEnableVertexArrayAttrib(vao_, a);
+    glVertexArrayVertexBuffer(vao_.id(), a, buffers_[a].id(), 0, sizeof(glm::vec3));
+    glVertexArrayAttribFormat(vao_.id(), a, 3, GL_FLOAT, GL_FALSE, 0);
+    glVertexArrayAttribBinding(vao_.id(), a, a);
+    glEnableVertexArrayAttrib(vao_.id(), a);
   }
   if (m.uvs.size() == m.positions.size()) {
-    glNamedBufferStorage(buffers_[3], static_cast<GLsizeiptr>(m.uvs.size() * sizeof(glm::vec2)), m.uvs.data(), 0);
-    glVertexArrayVertexBuffer(vao_, 2, buffers_[3], 0, sizeof(glm::vec2));
-    glVertexArrayAttribFormat(vao_, 2, 2, GL_FLOAT, GL_FALSE, 0);
-    glVertexArrayAttribBinding(vao_, 2, 2);
-    glEnableVertexArrayAttrib(vao_, 2);
+    glNamedBufferStorage(buffers_[3].id(), static_cast<GLsizeiptr>(m.uvs.size() * sizeof(glm::vec2)), m.uvs.data(), 0);
+    glVertexArrayVertexBuffer(vao_.id(), 2, buffers_[3].id(), 0, sizeof(glm::vec2));
+    glVertexArrayAttribFormat(vao_.id(), 2, 2, GL_FLOAT, GL_FALSE, 0);
+    glVertexArrayAttribBinding(vao_.id(), 2, 2);
+    glEnableVertexArrayAttrib(vao_.id(), 2);
   }
   if (scalar) {
     if (scalar->size() != m.positions.size())
       throw makeError("GpuMesh: ", scalar->size(), " scalars for ", m.positions.size(), " vertices");
-    glNamedBufferStorage(buffers_[4], static_cast<GLsizeiptr>(scalar->size() * sizeof(float)), scalar->data(), 0);
-    glVertexArrayVertexBuffer(vao_, 3, buffers_[4], 0, sizeof(float));
-    glVertexArrayAttribFormat(vao_, 3, 1, GL_FLOAT, GL_FALSE, 0);
-    glVertexArrayAttribBinding(vao_, 3, 3);
-    glEnableVertexArrayAttrib(vao_, 3);
+    glNamedBufferStorage(buffers_[4].id(), static_cast<GLsizeiptr>(scalar->size() * sizeof(float)), scalar->data(), 0);
+    glVertexArrayVertexBuffer(vao_.id(), 3, buffers_[4].id(), 0, sizeof(float));
+    glVertexArrayAttribFormat(vao_.id(), 3, 1, GL_FLOAT, GL_FALSE, 0);
+    glVertexArrayAttribBinding(vao_.id(), 3, 3);
+    glEnableVertexArrayAttrib(vao_.id(), 3);
   }
-  glVertexArrayElementBuffer(vao_, buffers_[2]);
+  glVertexArrayElementBuffer(vao_.id(), buffers_[2].id());
   indexCount_ = static_cast<GLsizei>(m.triangles.size() * 3);
   SHANSHUI_GL_CHECK("GpuMesh upload");
-}
-
-void GpuMesh::release() {
-  if (vao_) glDeleteVertexArrays(1, &vao_);
-  if (buffers_[0]) glDeleteBuffers(5, buffers_);
-  vao_ = 0;
-  for (GLuint& b : buffers_) b = 0;
-}
-
-GpuMesh::~GpuMesh() {
-  release();
-}
-
-GpuMesh::GpuMesh(GpuMesh&& o) noexcept
-    : vao_(std::exchange(o.vao_, 0)), indexCount_(std::exchange(o.indexCount_, 0)), sorted_(o.sorted_) {
-  for (int i = 0; i < 5; ++i) buffers_[i] = std::exchange(o.buffers_[i], 0);
-}
-
-GpuMesh& GpuMesh::operator=(GpuMesh&& o) noexcept {
-  if (this != &o) {
-    release();
-    vao_ = std::exchange(o.vao_, 0);
-    indexCount_ = std::exchange(o.indexCount_, 0);
-    sorted_ = o.sorted_;
-    for (int i = 0; i < 5; ++i) buffers_[i] = std::exchange(o.buffers_[i], 0);
-  }
-  return *this;
 }
 
 void GpuMesh::drawFrontToBack(const glm::vec3& view_dir) const {
@@ -129,14 +104,14 @@ void GpuMesh::drawFrontToBack(const glm::vec3& view_dir) const {
     axis[k / 2] = (k % 2 == 0) ? 1.0f : -1.0f;
     if (glm::dot(axis, d) > best_dot) best_dot = glm::dot(axis, d), best = k;
   }
-  glBindVertexArray(vao_);
+  glBindVertexArray(vao_.id());
   const std::size_t offset =
       static_cast<std::size_t>(indexCount_) * sizeof(std::uint32_t) * static_cast<std::size_t>(1 + best);
   glDrawElements(GL_TRIANGLES, indexCount_, GL_UNSIGNED_INT, reinterpret_cast<const void*>(offset));
 }
 
 void GpuMesh::draw() const {
-  glBindVertexArray(vao_);
+  glBindVertexArray(vao_.id());
   glDrawElements(GL_TRIANGLES, indexCount_, GL_UNSIGNED_INT, nullptr);
 }
 

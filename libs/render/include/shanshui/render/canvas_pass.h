@@ -80,15 +80,15 @@ class CanvasPass {
   Program single_, multi_, static_;        //!< geometry shader with 1 or kInvocations invocations; static
   std::vector<glm::vec3> dome_positions_;  //!< relative to dome_centre_
   std::vector<glm::uvec3> dome_triangles_;
-  GLuint dome_vao_ = 0, dome_buffers_[2] = {0, 0};  //!< positions, visible triangles
+  VertexArray dome_vao_;
+  Buffer dome_positions_buffer_, dome_visible_buffer_;
   glm::dvec3 dome_centre_{0.0};
   double dome_radius_ = 1.0;
   Framebuffer target_;
-  GLuint empty_vao_ = 0;
+  VertexArray empty_vao_;
   std::string static_key_;
 
  public:
-  ~CanvasPass();
   CanvasPass(const CanvasPass&) = delete;
   CanvasPass& operator=(const CanvasPass&) = delete;
 };

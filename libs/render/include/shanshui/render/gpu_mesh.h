@@ -1,11 +1,13 @@
 // A triangle mesh uploaded to the GPU (positions and normals as float, relative to a centre).
 #pragma once
 
+#include <array>
 #include <vector>
 
 #include <epoxy/gl.h>
 
 #include "shanshui/mesh/mesh.h"
+#include "shanshui/render/gl_resources.h"
 
 namespace shanshui::render {
 
@@ -18,11 +20,6 @@ class GpuMesh {
   //! given, to attribute 3.
   GpuMesh(const mesh::Mesh& m, const glm::dvec3& centre, const std::vector<float>* scalar = nullptr,
           bool sorted_orders = false);
-  ~GpuMesh();
-  GpuMesh(GpuMesh&& other) noexcept;
-  GpuMesh& operator=(GpuMesh&& other) noexcept;
-  GpuMesh(const GpuMesh&) = delete;
-  GpuMesh& operator=(const GpuMesh&) = delete;
 
   //! Attribute 0: position (vec3), 1: normal (vec3).
   void draw() const;
@@ -37,9 +34,8 @@ class GpuMesh {
   std::size_t triangleCount() const { return static_cast<std::size_t>(indexCount_ / 3); }
 
  private:
-  void release();
-  GLuint vao_ = 0;
-  GLuint buffers_[5] = {0, 0, 0, 0, 0};
+  VertexArray vao_;
+  std::array<Buffer, 5> buffers_;  //!< positions, normals, indices, UVs, scalars
   GLsizei indexCount_ = 0;
   bool sorted_ = false;  //!< the element buffer holds the six sorted orders after the original
 };
