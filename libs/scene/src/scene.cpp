@@ -1,10 +1,7 @@
 #include "shanshui/scene/scene.h"
 
 #include <cctype>
-#include <cmath>
 #include <fstream>
-#include <set>
-#include <sstream>
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <nlohmann/json.hpp>
