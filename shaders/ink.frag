@@ -9,6 +9,11 @@
 #ifdef SHADING
 #include "ink_gaussian_cdf.glsl"
 #endif
+#if defined(BORDER) || defined(MIST)
+// Tiled fractal value noise in [0, 1] (libs/noise's erosion noise, 4 coarsest cells per
+// tile): one filtered fetch costs a fraction of procedural noise on a software rasteriser.
+layout(binding = 3) uniform sampler2D u_value_noise;
+#endif
 
 // The G-buffer's colour targets are read as images: llvmpipe's image load is about a third
 // of the cost of a texel fetch (the ink pass ~10 % cheaper, measured side by side). The
@@ -23,6 +28,10 @@ uniform vec3 u_light_dir;    // unit, towards the light
 uniform vec3 u_paper;
 uniform float u_fade;        // strength, [0, 1]
 uniform vec2 u_fade_range;   // distances where the fade starts and is full
+#ifdef MIST
+uniform vec4 u_mist;         // density, z of the full mist's top, thinning band, noise amplitude (world units)
+uniform float u_mist_noise;  // noise tiles per world unit
+#endif
 #ifdef CANVAS
 layout(r32f, binding = 2) readonly uniform image2D u_canvas;  // unit-variance paper noise
 uniform float u_canvas_contrast;
@@ -64,6 +73,37 @@ vec4 onPaper(ivec2 p, vec3 colour) {
 #endif
   return vec4(clamp(colour, 0.0, 1.0), 1.0);
 }
+
+#ifdef BORDER
+// How much of the object is left at `position` (1 inside, 0 at its horizontal border): the
+// distance to the border over the falloff width, pulled inwards by up to `roughness` widths
+// of noise, so the edge is an irregular wash, never a straight cut, and always paper.
+float borderPresence(ObjectParams o, vec3 position) {
+  if (o.border_width <= 0.0) return 1.0;
+  vec4 w = vec4(position, 1.0);
+  vec2 m = vec2(dot(o.world_to_model_x, w), dot(o.world_to_model_y, w));
+  vec2 inside = o.half_extent.xy - abs(m);
+  float t = min(inside.x, inside.y) / o.border_width;
+  if (t >= 1.0 + o.border_roughness) return 1.0;  // beyond the band the noise can reach: no noise
+  // About one coarse noise cell per border width.
+  float n = texture(u_value_noise, m / o.border_width * 0.25).r;
+  return smoothstep(0.0, 1.0, t - o.border_roughness * n);
+}
+#endif
+
+#ifdef MIST
+// Mist at `position`: full below u_mist.y, thinning over u_mist.z above it, the band broken
+// by noise so it lies in banks.
+float mistAt(vec3 position) {
+  // Noise moves the band by at most u_mist.w: outside that, no noise is needed.
+  float h0 = (position.z - u_mist.y) / u_mist.z, reach = u_mist.w / u_mist.z;
+  if (h0 >= 1.0 + reach) return 0.0;
+  if (h0 <= -reach) return u_mist.x;
+  float n = 2.0 * texture(u_value_noise, position.xy * u_mist_noise).g - 1.0;
+  float h = h0 + reach * n;
+  return u_mist.x * (1.0 - smoothstep(0.0, 1.0, h));
+}
+#endif
 
 void main() {
   ivec2 p = ivec2(gl_FragCoord.xy);
@@ -147,7 +187,14 @@ void main() {
   // Composite: ink on paper, lines over the interior, far surfaces fading into the paper.
   vec3 colour = mix(u_paper * o.bg_color * tone, o.line_color, line_weight);
   float fade = u_fade * smoothstep(u_fade_range.x, u_fade_range.y, distance(u_eye, position));
-  o_colour = onPaper(p, mix(colour, u_paper, fade));
+  colour = mix(colour, u_paper, fade);
+#ifdef MIST
+  colour = mix(colour, u_paper, mistAt(position));
+#endif
+#ifdef BORDER
+  colour = mix(u_paper, colour, borderPresence(o, position));
+#endif
+  o_colour = onPaper(p, colour);
 #ifdef DEBUG_OUTPUTS
   o_line = vec2(line_weight, col);
   o_tone = tone;

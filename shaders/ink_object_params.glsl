@@ -11,7 +11,14 @@
   F(vec4, tones)  \
   F(vec4, thresholds) \
   F(float, tone5)         F(float, sigma)        F(float, beta)                 F(float, erosion) \
-  F(float, noise)         F(float, inv_inner_tex_factor) F(uint, shade_flags)   F(uint, unused)
+  F(float, noise)         F(float, inv_inner_tex_factor) F(uint, shade_flags)   F(float, border_roughness) \
+  F(vec4, world_to_model_x) \
+  F(vec4, world_to_model_y) \
+  F(vec3, half_extent)    F(float, border_width)
+
+// world_to_model_x/y: rows of the world-to-model affine map (x and y of the model, relative
+// to its bounding-box centre); half_extent: the box's half size; border_width: the
+// dissolving border's falloff in model units (0 = a hard edge).
 
 // line_flags bits
 const uint kLinesOn = 1u;

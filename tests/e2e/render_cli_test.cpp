@@ -45,7 +45,7 @@ TEST(RenderCli, StatsListThePassesBuiltAndTheirGpuTimePerFrame) {
   }
   const json s = readJson(dir / "s.json");
   EXPECT_EQ(s["passes_built"], json({"gbuffer", "canvas", "ink"}));
-  EXPECT_EQ(s["variants"]["ink"], json({"LINES SHADING WRINKLE SINGLE_OBJECT CANVAS"}));
+  EXPECT_EQ(s["variants"]["ink"], json({"LINES SHADING WRINKLE SINGLE_OBJECT CANVAS BORDER MIST"}));
   EXPECT_EQ(s["variants"]["canvas"].size(), 2u) << "one and 32 geometry-shader invocations, rice paper";
   EXPECT_EQ(s["variants"]["gbuffer"], json({"SURFACE WRINKLE OBJECT_CURVATURE"}));
   ASSERT_EQ(s["frames"].size(), 3u);
@@ -98,13 +98,13 @@ TEST(RenderCli, LinesOnlyAndShadingOnlyBuildOnlyTheirShaderCode) {
                " --set objects.0.shading.enabled=false");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const json a = readJson(dir / "a.json");
-  EXPECT_EQ(a["variants"]["ink"], json({"LINES SINGLE_OBJECT CANVAS"}));
+  EXPECT_EQ(a["variants"]["ink"], json({"LINES SINGLE_OBJECT CANVAS BORDER MIST"}));
   EXPECT_EQ(a["variants"]["gbuffer"], json({"OBJECT_CURVATURE"})) << "no noise, no wrinkle texture, no UVs";
   r = run(base + " -o " + quote(dir / "b.png") + " --stats " + quote(dir / "b.json") +
           " --set objects.0.lines.enabled=false");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const json b = readJson(dir / "b.json");
-  EXPECT_EQ(b["variants"]["ink"], json({"SHADING WRINKLE SINGLE_OBJECT CANVAS"}));
+  EXPECT_EQ(b["variants"]["ink"], json({"SHADING WRINKLE SINGLE_OBJECT CANVAS BORDER MIST"}));
   EXPECT_EQ(b["variants"]["gbuffer"], json({"SURFACE WRINKLE"}));  // no curvature of either kind
 }
 

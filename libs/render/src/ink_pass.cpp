@@ -4,7 +4,11 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <optional>
 
+#include <glm/gtc/matrix_access.hpp>
+
+#include "shanshui/noise/value_noise.h"
 #include "shanshui/render/gl_check.h"
 #include "shanshui/render/ink_object_params.h"
 #include "shanshui/render/render_pass.h"
@@ -30,6 +34,8 @@ std::vector<std::string> inkDefines(const scene::Scene& s, bool debug_outputs) {
   if (s.usesWrinkles()) d.emplace_back("WRINKLE");
   if (s.objects.size() == 1) d.emplace_back("SINGLE_OBJECT");
   if (grainHere(s)) d.emplace_back("CANVAS");
+  if (s.dissolvesBorders()) d.emplace_back("BORDER");
+  if (s.mist.enabled()) d.emplace_back("MIST");
   if (debug_outputs) d.emplace_back("DEBUG_OUTPUTS");
   return d;
 }
@@ -50,7 +56,13 @@ class InkPass final : public RenderPass {
 
   std::vector<std::string> variants() const override { return {joined(defines_)}; }
 
-  void setScene(const scene::Scene& s) override { scene_ = s; }
+  void setScene(const scene::Scene& s) override {
+    scene_ = s;
+    if ((s.dissolvesBorders() || s.mist.enabled()) && noise_seed_ != s.seed) {
+      value_noise_ = Texture2D::tiledFromImage(noise::erosionNoise(256, s.seed ^ 0x5A17ull), GL_RG8);
+      noise_seed_ = s.seed;
+    }
+  }
 
   void resize(int width, int height) override {
     std::vector<GLenum> out{GL_RGBA8};
@@ -92,6 +104,17 @@ class InkPass final : public RenderPass {
     const double radius = 0.5 * glm::length(in.world_bounds.size());
     ink.set("u_fade_range",
             glm::vec2(static_cast<float>(to_centre - 0.5 * radius), static_cast<float>(to_centre + radius)));
+    if (value_noise_) glBindTextureUnit(3, value_noise_->id());
+    if (in.scene.mist.enabled()) {
+      // Heights as fractions of the scene's vertical extent; noise cells about a tenth of
+      // the scene's horizontal size.
+      const scene::Mist& m = in.scene.mist;
+      const double z0 = in.world_bounds.min.z, extent = std::max(in.world_bounds.size().z, 1e-9);
+      ink.set("u_mist", glm::vec4(static_cast<float>(m.density), static_cast<float>(z0 + m.height * extent),
+                                  static_cast<float>(m.softness * extent), static_cast<float>(m.roughness * extent)));
+      const double size = std::max(std::max(in.world_bounds.size().x, in.world_bounds.size().y), 1e-9);
+      ink.set("u_mist_noise", static_cast<float>(2.0 / size));
+    }
     if (grainHere(in.scene)) {
       glBindImageTexture(2, images.canvas->id(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_R32F);
       ink.set("u_canvas_contrast", static_cast<float>(in.scene.canvas.contrast));
@@ -136,6 +159,15 @@ class InkPass final : public RenderPass {
       p.inv_inner_tex_factor = static_cast<float>(1.0 / o.wrinkle.inner_tex_factor);
       p.shade_flags = (sh.enabled ? gpu::kShadingOn : 0u) | (sh.half_lambert ? gpu::kHalfLambert : 0u) |
                       (sh.line_value ? gpu::kLineValue : 0u) | (wrinkled(o) ? gpu::kWrinkled : 0u);
+      // The dissolving border, in the coordinates the object was uploaded in (relative to
+      // its bounding-box centre).
+      const glm::dmat4 to_model = glm::inverse(in.modelAt(i));
+      p.world_to_model_x = glm::vec4(glm::row(to_model, 0));
+      p.world_to_model_y = glm::vec4(glm::row(to_model, 1));
+      const glm::dvec3 half = 0.5 * g.model_bounds.size();
+      p.half_extent = glm::vec3(half);
+      p.border_width = o.dissolvesBorder() ? static_cast<float>(o.border.width * std::min(half.x, half.y)) : 0.0f;
+      p.border_roughness = static_cast<float>(o.border.roughness);
     }
     const std::size_t bytes = params.size() * sizeof(gpu::ObjectParams);
     if (bytes > capacity_) {
@@ -159,6 +191,8 @@ class InkPass final : public RenderPass {
   Buffer params_;
   std::size_t capacity_ = 0;
   Framebuffer target_;
+  std::optional<Texture2D> value_noise_;  //!< the border's and mist's noise
+  std::optional<std::uint64_t> noise_seed_;
 };
 
 }  // namespace

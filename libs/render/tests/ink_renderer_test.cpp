@@ -8,8 +8,10 @@
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
+#include <map>
 #include <memory>
 #include <set>
+#include <sstream>
 
 #include <nlohmann/json.hpp>
 
@@ -524,38 +526,55 @@ class Variants : public test::HeadlessGl {};
 
 // Every shader variant the scene keys can produce compiles and links: scenes over every
 // combination of the keys that choose variants (lines on/off and their curvature source,
-// shading, wrinkles, canvas type and pattern, diffusion, one or two objects), a renderer
-// for each scene that brings a pass a variant not seen yet, with and without the ink
-// pass's debug outputs.
+// shading, wrinkles, canvas type and pattern, diffusion, mist, dissolving borders, one or
+// two objects), a renderer for each scene that brings the G-buffer, canvas or diffusion a
+// variant not seen yet, and each ink program the keys can choose compiled on its own.
 TEST_F(Variants, EveryCombinationTheSceneKeysCanProduceCompiles) {
   const mesh::Mesh sphere = test::uvSphere(1.0, 8, 16);
   auto wrinkle = std::make_shared<const image::Image>(8, 8, 1);
   std::set<std::string> seen;
-  int built = 0;
-  for (int bits = 0; bits < 1 << 9; ++bits) {
+  int built = 0, compiled = 0;
+  for (int bits = 0; bits < 1 << 11; ++bits) {
     const bool lines = bits & 1, screen = bits & 2, shading = bits & 4, wrinkled = bits & 8, diffusion = bits & 16,
                two = bits & 32;
     const int canvas = (bits >> 6) & 3;
-    const bool silk_static = bits & 256;
+    const bool silk_static = bits & 256, mist = bits & 512, border = bits & 1024;
     if (screen && !lines) continue;
     if (silk_static && canvas != 3) continue;
     json object = {{"mesh", "memory.obj"},
                    {"lines", {{"enabled", lines}, {"curvature", screen ? "screen" : "quadric"}}},
                    {"shading", {{"enabled", shading}}}};
     if (wrinkled) object["wrinkle"] = {{"texture", "w.png"}, {"uv", "planar"}};
+    if (border) object["border"] = {{"mode", "dissolve"}};
     json j = {{"objects", json::array({object})},
               {"canvas",
                {{"type", std::array{"none", "rice_paper", "silk", "static"}[canvas]},
                 {"static_pattern", silk_static ? "silk" : "rice_paper"}}}};
     if (two) j["objects"].push_back({{"mesh", "memory.obj"}});
     if (diffusion) j["diffusion"] = {{"ring_steps", 2}, {"iterations", 1}};
+    if (mist) j["mist"] = {{"density", 0.5}};
     const scene::Scene s = scene::parseScene(j, "variants", ".");
+    // The ink pass's structure is its defines: compile that program alone. Any other new
+    // structure needs a renderer (its passes compile their own programs).
     std::vector<std::string> keys;
+    std::string ink_defines;
     for (const PassEntry& e : passList()) {
-      if (e.wanted(s)) keys.push_back(std::string(e.name) + ":" + e.structure(s));
+      if (!e.wanted(s)) continue;
+      if (std::string(e.name) == "ink")
+        ink_defines = e.structure(s);
+      else
+        keys.push_back(std::string(e.name) + ":" + e.structure(s));
+    }
+    SCOPED_TRACE(j.dump());
+    if (!seen.count("ink:" + ink_defines)) {
+      std::vector<std::string> defines;
+      std::istringstream words(ink_defines);
+      for (std::string w; words >> w;) defines.push_back(w);
+      ASSERT_NO_THROW(Program({"fullscreen.vert", "ink.frag"}, defines)) << ink_defines;
+      seen.insert("ink:" + ink_defines);
+      ++compiled;
     }
     if (std::all_of(keys.begin(), keys.end(), [&](const std::string& k) { return seen.count(k) > 0; })) continue;
-    SCOPED_TRACE(j.dump());
     std::vector<scene::LoadedObject> objects;
     for (const scene::Object& o : s.objects) {
       objects.push_back({std::make_shared<const scene::ObjectAsset>(scene::prepareAsset(sphere, o)),
@@ -564,15 +583,116 @@ TEST_F(Variants, EveryCombinationTheSceneKeysCanProduceCompiles) {
     std::unique_ptr<InkRenderer> r;
     ASSERT_NO_THROW(r = std::make_unique<InkRenderer>(s, objects));
     r->render(sceneCamera(s, r->worldBounds(), 1.0, {-40, 30, 1.0}), 32, 32);
-    ASSERT_NO_THROW(r->setDebugOutputs(true));
-    r->render(sceneCamera(s, r->worldBounds(), 1.0, {-40, 30, 1.0}), 32, 32);
     seen.insert(keys.begin(), keys.end());
     ++built;
   }
+  // The tests' debug outputs on top of every other define.
+  ASSERT_NO_THROW(Program({"fullscreen.vert", "ink.frag"},
+                          {"LINES", "SHADING", "WRINKLE", "CANVAS", "BORDER", "MIST", "DEBUG_OUTPUTS"}));
   // G-buffer: SURFACE × WRINKLE × curvature kinds; ink: LINES × SHADING × WRINKLE ×
   // SINGLE_OBJECT × CANVAS; canvas: four type/pattern pairs; diffusion: one.
-  EXPECT_GE(seen.size(), 20u);
-  EXPECT_GT(built, 10);
+  EXPECT_GE(compiled, 64);  // LINES × SHADING × WRINKLE × SINGLE_OBJECT × CANVAS × BORDER × MIST, less the impossible
+  EXPECT_GE(built, 10);
+}
+
+}  // namespace
+}  // namespace shanshui::render
+
+namespace shanshui::render {
+namespace {
+
+class Look : public test::HeadlessGl {};
+
+// Ink at each pixel: 1 − luminance / the paper's, as libs/ink measures it.
+std::vector<double> inkOf(const image::Image& rgb, const glm::dvec3& paper) {
+  const double paper_lum = 0.2126 * paper.x + 0.7152 * paper.y + 0.0722 * paper.z;
+  std::vector<double> ink(static_cast<std::size_t>(rgb.width) * rgb.height);
+  for (int y = 0; y < rgb.height; ++y) {
+    for (int x = 0; x < rgb.width; ++x) {
+      const double lum = 0.2126 * rgb.at(x, y, 0) + 0.7152 * rgb.at(x, y, 1) + 0.0722 * rgb.at(x, y, 2);
+      ink[static_cast<std::size_t>(y) * rgb.width + x] = std::max(0.0, 1.0 - lum / paper_lum);
+    }
+  }
+  return ink;
+}
+
+// A flat square seen from above: with `dissolve` the ink at its border is bare paper and
+// well inside the falloff the picture is the one with a hard edge; with `keep` the border
+// carries its outline.
+TEST_F(Look, BorderDissolvesIntoPaperAndLeavesTheInsideAlone) {
+  const mesh::Mesh grid = test::heightGrid(101, 101, 0.02, [](double, double) { return 0.0; });
+  std::map<std::string, image::Image> pictures;
+  image::Image positions;
+  glm::dvec3 centre(0.0);
+  scene::Scene s;
+  for (const char* mode : {"keep", "dissolve"}) {
+    s = sceneWith({{"border", {{"mode", mode}, {"width", 0.3}, {"roughness", 1.0}}}},
+                  {{"output", {{"fade", 0.0}}}, {"light", {{"direction", {0.3, 0.2, 1.0}}}}});
+    InkRenderer r(s, prepare(s, grid));
+    pictures[mode] = r.render(sceneCamera(s, r.worldBounds(), 1.0, {0, 89.9, 1.0}), 200, 200).colour(0).download(3);
+    positions = r.worldPositions();
+    centre = r.worldBounds().centre();
+  }
+  const std::vector<double> keep = inkOf(pictures["keep"], s.output.paper);
+  const std::vector<double> dissolve = inkOf(pictures["dissolve"], s.output.paper);
+  const double half = 1.0, width = 0.3 * half;  // the grid spans 2 × 2 around its centre
+  double edge_keep = 0, edge_dissolve = 0;
+  int edge = 0, inside = 0;
+  for (int y = 0; y < 200; ++y) {
+    for (int x = 0; x < 200; ++x) {
+      if (positions.at(x, y, 3) < 0.5f) continue;
+      const double d =
+          half - std::max(std::abs(positions.at(x, y, 0) - centre.x), std::abs(positions.at(x, y, 1) - centre.y));
+      const std::size_t i = static_cast<std::size_t>(y) * 200 + x;
+      if (d < 0.03 * half) {  // the outer pixel or two
+        edge_keep += keep[i];
+        edge_dissolve += dissolve[i];
+        EXPECT_LT(dissolve[i], 0.03) << x << "," << y;
+        ++edge;
+      } else if (d > 2.05 * width) {  // beyond the falloff pulled in by a full width of noise
+        EXPECT_NEAR(dissolve[i], keep[i], 2e-3) << x << "," << y;
+        ++inside;
+      }
+    }
+  }
+  ASSERT_GT(edge, 100);
+  ASSERT_GT(inside, 1000);
+  EXPECT_GT(edge_keep / edge, 0.3) << "the hard edge carries its outline";
+  EXPECT_LT(edge_dissolve / edge, 0.01);
+}
+
+// A sphere in mist without noise: below the mist's top the ink is gone in proportion to the
+// density, above its band the picture is unchanged.
+TEST_F(Look, MistLeavesTheLowGroundWhiteAndTheTopsAlone) {
+  const mesh::Mesh sphere = test::uvSphere(1.0, 48, 96);
+  const json top = {{"output", {{"fade", 0.0}}}};
+  json misty = top;
+  misty["mist"] = {{"density", 1.0}, {"height", 0.3}, {"softness", 0.2}, {"roughness", 0.0}};
+  const scene::Scene plain = sceneWith(json::object(), top), fog = sceneWith(json::object(), misty);
+  InkRenderer a(plain, prepare(plain, sphere)), b(fog, prepare(fog, sphere));
+  EXPECT_EQ(a.variants().at("ink")[0].find("MIST"), std::string::npos);
+  EXPECT_NE(b.variants().at("ink")[0].find("MIST"), std::string::npos);
+  const OrbitCamera cam = sceneCamera(plain, a.worldBounds(), 1.0, {-30, 10, 1.0});
+  const std::vector<double> ia = inkOf(a.render(cam, 160, 160).colour(0).download(3), plain.output.paper);
+  const std::vector<double> ib = inkOf(b.render(cam, 160, 160).colour(0).download(3), plain.output.paper);
+  const image::Image pos = b.worldPositions();
+  int low = 0, high = 0;
+  for (int y = 0; y < 160; ++y) {
+    for (int x = 0; x < 160; ++x) {
+      if (pos.at(x, y, 3) < 0.5f) continue;
+      const double h = (pos.at(x, y, 2) + 1.0) / 2.0;  // fraction of the height from the bottom
+      const std::size_t i = static_cast<std::size_t>(y) * 160 + x;
+      if (h < 0.29) {
+        EXPECT_LT(ib[i], 0.01) << x << "," << y;
+        ++low;
+      } else if (h > 0.51) {
+        EXPECT_NEAR(ib[i], ia[i], 2e-3) << x << "," << y;
+        ++high;
+      }
+    }
+  }
+  EXPECT_GT(low, 500);
+  EXPECT_GT(high, 2000);
 }
 
 }  // namespace

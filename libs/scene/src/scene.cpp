@@ -47,6 +47,13 @@ bool Scene::hasAnimation() const {
   return false;
 }
 
+bool Scene::dissolvesBorders() const {
+  for (const Object& o : objects) {
+    if (o.dissolvesBorder()) return true;
+  }
+  return false;
+}
+
 bool Scene::usesShading() const {
   for (const Object& o : objects) {
     if (o.shading.enabled) return true;

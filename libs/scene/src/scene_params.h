@@ -68,6 +68,9 @@ inline constexpr std::array<Named<CanvasType>, 4> kCanvasTypes{{{"none", CanvasT
 inline constexpr std::array<Named<CanvasPattern>, 2> kCanvasPatterns{
     {{"rice_paper", CanvasPattern::RicePaper}, {"silk", CanvasPattern::Silk}}};
 
+inline constexpr std::array<Named<BorderMode>, 3> kBorderModes{
+    {{"auto", BorderMode::Auto}, {"dissolve", BorderMode::Dissolve}, {"keep", BorderMode::Keep}}};
+
 constexpr Effect kRebuild = Effect::Rebuild;
 
 template <typename V>
@@ -156,6 +159,14 @@ void describe(V& v, WrinkleParams& p) {
 }
 
 template <typename V>
+void describe(V& v, BorderParams& b) {
+  v.choice({"mode", "`dissolve`: the horizontal border fades into paper; `keep`: a hard edge; `auto`: dissolve DEMs"},
+           b.mode, kBorderModes);
+  v.number({"width", "falloff width, fraction of the smaller horizontal half-extent; 0 = a hard edge"}, b.width, kUnit);
+  v.number({"roughness", "how far noise pushes the falloff inwards, fraction of the width"}, b.roughness, {0, 4});
+}
+
+template <typename V>
 void describe(V& v, Object& o) {
   v.text({"name", "shown in the viewer; empty: `objects.N`"}, o.name, Text::Plain);
   v.text({"mesh", "`.obj`, `.ply`, `.off`, repaired on load like `shanshui-repair`; give `mesh` or `dem`", kRebuild},
@@ -183,6 +194,7 @@ void describe(V& v, Object& o) {
   v.group("lines", o.lines, Table::Own);
   v.group("shading", o.shading, Table::Own);
   v.group("wrinkle", o.wrinkle, Table::Own);
+  v.group("border", o.border, Table::Own);
 }
 
 template <typename V>
@@ -262,6 +274,16 @@ void describe(V& v, Diffusion& d) {
 }
 
 template <typename V>
+void describe(V& v, Mist& m) {
+  v.number({"density", "how far the mist moves ink towards paper at its thickest; 0 = no mist (no mist code)"},
+           m.density, kUnit);
+  v.number({"height", "top of the full mist, fraction of the scene's vertical extent from its lowest point"}, m.height,
+           kUnit);
+  v.number({"softness", "band above it over which the mist thins out, same units"}, m.softness, {0.001, 1});
+  v.number({"roughness", "noise amplitude that breaks the band into banks, same units"}, m.roughness, {0, 1});
+}
+
+template <typename V>
 void describe(V& v, Output& o) {
   v.integer({"width", "`--size WxH` overrides", Effect::Uniform, "pixels"}, o.width, {1, 16384});
   v.integer({"height", "`--size WxH` overrides", Effect::Uniform, "pixels"}, o.height, {1, 16384});
@@ -279,6 +301,7 @@ void describe(V& v, Scene& s) {
   v.group("camera", s.camera, Table::Own);
   v.group("canvas", s.canvas, Table::Own);
   v.group("diffusion", s.diffusion, Table::Own);
+  v.group("mist", s.mist, Table::Own);
   v.group("output", s.output, Table::Own);
 }
 

@@ -90,6 +90,19 @@ struct WrinkleParams {
   TextureFilter filter = TextureFilter::Nearest;
 };
 
+//! How an object's horizontal border meets the paper: a DEM is a tile cut from a larger
+//! land, so its four straight cut edges dissolve into paper through a noise-perturbed
+//! falloff; a closed mesh keeps its silhouette.
+enum class BorderMode { Auto, Dissolve, Keep };
+
+struct BorderParams {
+  BorderMode mode = BorderMode::Auto;  //!< auto: dissolve DEMs, keep meshes
+  //! Falloff width as a fraction of the smaller horizontal half-extent of the object.
+  double width = 0.35;
+  //! How far the noise pushes the falloff inwards, as a fraction of the width.
+  double roughness = 1.2;
+};
+
 struct Object {
   std::string name;
   std::string mesh;                   //!< .obj/.ply/.off relative to the scene file (exactly one of mesh, dem)
@@ -106,6 +119,11 @@ struct Object {
   LineParams lines;
   ShadingParams shading;
   WrinkleParams wrinkle;
+  BorderParams border;
+  bool dissolvesBorder() const {
+    return border.width > 0 &&
+           (border.mode == BorderMode::Dissolve || (border.mode == BorderMode::Auto && !dem.empty()));
+  }
 };
 
 struct Light {
@@ -170,6 +188,16 @@ struct Diffusion : ink::DiffusionOptions {
   bool enabled() const { return ring_steps > 0 || iterations > 0; }
 };
 
+//! Height mist: the lower part of the scene dissolves into paper, thinning out upwards
+//! through a noise-perturbed band (the valleys of a shanshui painting left white).
+struct Mist {
+  double density = 0.0;    //!< how far the mist moves ink towards paper at its thickest; 0 = off
+  double height = 0.3;     //!< top of the full mist, fraction of the scene's vertical extent
+  double softness = 0.3;   //!< band above it over which the mist thins out, same units
+  double roughness = 0.5;  //!< noise that breaks the band into banks, same units
+  bool enabled() const { return density > 0; }
+};
+
 struct Output {
   int width = 1024;
   int height = 768;
@@ -186,6 +214,7 @@ struct Scene {
   Camera camera;
   Canvas canvas;
   Diffusion diffusion;
+  Mist mist;
   Output output;
 
   std::filesystem::path resolve(const std::string& relative) const;
@@ -193,6 +222,7 @@ struct Scene {
   bool usesLines() const;
   bool usesShading() const;
   bool hasAnimation() const;
+  bool dissolvesBorders() const;
 };
 
 //! What a change of a parameter needs: new uniforms only (the next frame shows it), or a
