@@ -50,8 +50,9 @@ class InkPass final : public RenderPass {
   std::string name() const override { return "ink"; }
 
   void buildPrograms() override {
-    defines_ = inkDefines(scene_, debug_outputs_);
-    program_ = Program({"fullscreen.vert", "ink.frag"}, defines_);
+    std::vector<std::string> defines = inkDefines(scene_, debug_outputs_);
+    program_ = Program({"fullscreen.vert", "ink.frag"}, defines);  // a throw keeps the old program
+    defines_ = std::move(defines);
   }
 
   std::vector<std::string> variants() const override { return {joined(defines_)}; }
