@@ -17,14 +17,10 @@ namespace shanshui::render {
 
 namespace {
 
-bool wrinkled(const scene::Object& o) {
-  return !o.wrinkle.texture.empty() && o.shading.enabled;
-}
-
 std::vector<std::string> objectDefines(const scene::Scene& s, const scene::Object& o) {
   std::vector<std::string> d;
   if (s.usesShading()) d.emplace_back("SURFACE");
-  if (wrinkled(o)) d.emplace_back("WRINKLE");
+  if (o.wrinkled()) d.emplace_back("WRINKLE");
   if (o.lines.enabled) d.emplace_back(scene::perVertex(o.lines.curvature) ? "OBJECT_CURVATURE" : "SCREEN_CURVATURE");
   return d;
 }

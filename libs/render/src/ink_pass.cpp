@@ -18,10 +18,6 @@ namespace shanshui::render {
 
 namespace {
 
-bool wrinkled(const scene::Object& o) {
-  return !o.wrinkle.texture.empty() && o.shading.enabled;
-}
-
 // The paper grain goes on last: here, or after the diffusion when there is one.
 bool grainHere(const scene::Scene& s) {
   return s.canvas.type != scene::CanvasType::None && !s.diffusion.enabled();
@@ -159,7 +155,7 @@ class InkPass final : public RenderPass {
       p.noise = static_cast<float>(sh.noise);
       p.inv_inner_tex_factor = static_cast<float>(1.0 / o.wrinkle.inner_tex_factor);
       p.shade_flags = (sh.enabled ? gpu::kShadingOn : 0u) | (sh.half_lambert ? gpu::kHalfLambert : 0u) |
-                      (sh.line_value ? gpu::kLineValue : 0u) | (wrinkled(o) ? gpu::kWrinkled : 0u);
+                      (sh.line_value ? gpu::kLineValue : 0u) | (o.wrinkled() ? gpu::kWrinkled : 0u);
       // The dissolving border, in the coordinates the object was uploaded in (relative to
       // its bounding-box centre).
       const glm::dmat4 to_model = glm::inverse(in.modelAt(i));

@@ -14,10 +14,6 @@ namespace shanshui::render {
 
 namespace {
 
-bool wrinkled(const scene::Object& o) {
-  return !o.wrinkle.texture.empty() && o.shading.enabled;
-}
-
 // The wrinkle texture's minification filter. Nearest is the default: on llvmpipe bilinear
 // filtering cost ~5 ms a frame at 1024² on the sample scene, and a texel of the right mip
 // level is about a pixel (bench/ink_tradeoff.cpp measures both against trilinear).
@@ -92,7 +88,7 @@ InkRenderer::InkRenderer(const scene::Scene& s, const std::vector<scene::LoadedO
     g.model_bounds = a.bounds;
     g.model_feature_size = a.feature_size;
     g.max_triangle_area = maxTriangleArea(a.mesh);
-    if (wrinkled(o)) {
+    if (o.wrinkled()) {
       SHANSHUI_CHECK(objects[i].wrinkle != nullptr);
       g.wrinkle = Texture2D::tiledFromImage(*objects[i].wrinkle, GL_R8);
     }

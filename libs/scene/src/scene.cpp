@@ -28,7 +28,7 @@ std::filesystem::path Scene::resolve(const std::string& relative) const {
 
 bool Scene::usesWrinkles() const {
   for (const Object& o : objects) {
-    if (!o.wrinkle.texture.empty() && o.shading.enabled) return true;
+    if (o.wrinkled()) return true;
   }
   return false;
 }

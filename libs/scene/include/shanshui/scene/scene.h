@@ -120,6 +120,8 @@ struct Object {
   ShadingParams shading;
   WrinkleParams wrinkle;
   BorderParams border;
+  //! The wrinkle texture is drawn (a texture, and shading on).
+  bool wrinkled() const { return !wrinkle.texture.empty() && shading.enabled; }
   bool dissolvesBorder() const {
     return border.width > 0 &&
            (border.mode == BorderMode::Dissolve || (border.mode == BorderMode::Auto && !dem.empty()));
