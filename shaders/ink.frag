@@ -66,6 +66,14 @@ float farthestNeighbour(ivec2 p) {
   return max(max(max(a.x, a.y), max(a.z, a.w)), max(max(b.x, b.y), max(b.z, b.w)));
 }
 
+#ifdef LINES
+// The G-buffer's encoded curvature k / (1 + k) at q (monotone in k), 0 on the background.
+float curvatureCode(ivec2 q) {
+  if (texelFetch(u_depth, q, 0).r >= 1.0) return 0.0;
+  return imageLoad(u_normal_curvature, q).w;
+}
+#endif
+
 // The paper's grain over the finished colour: brightness × (1 + contrast · noise).
 vec4 onPaper(ivec2 p, vec3 colour) {
 #ifdef CANVAS
@@ -141,6 +149,15 @@ void main() {
     if ((o.line_flags & kNormalOnly) == 0u) {
       line_weight = soft > 0.0 ? 1.0 - smoothstep(threshold - 0.5 * soft, threshold + 0.5 * soft, col)
                                : (col < threshold ? 1.0 : 0.0);
+      // Thin lines: of the pixels past the threshold keep those where the curvature peaks
+      // across the line (non-maximum suppression along the axis where it changes most), so
+      // a broad band of high curvature draws its crest, not a filled shape.
+      if ((o.line_flags & kThinLines) != 0u && line_weight > 0.0) {
+        float l = curvatureCode(p - ivec2(1, 0)), r = curvatureCode(p + ivec2(1, 0));
+        float d = curvatureCode(p - ivec2(0, 1)), u = curvatureCode(p + ivec2(0, 1));
+        bool peak = abs(r - l) >= abs(u - d) ? nc.w >= max(l, r) : nc.w >= max(d, u);
+        if (!peak) line_weight = 0.0;
+      }
     }
     float silhouette = o.silhouette;
     if (silhouette > 0.0) {

@@ -23,6 +23,7 @@
 // line_flags bits
 const uint kLinesOn = 1u;
 const uint kNormalOnly = 2u;  // small object: N·V and depth-edge lines only
+const uint kThinLines = 4u;   // Eq. 1's lines thinned to the curvature's crest
 // shade_flags bits
 const uint kShadingOn = 1u;
 const uint kHalfLambert = 2u;

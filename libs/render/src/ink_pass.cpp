@@ -145,7 +145,8 @@ class InkPass final : public RenderPass {
       p.soft_width = static_cast<float>(l.soft_width);
       p.silhouette = static_cast<float>(l.silhouette);
       p.depth_edges = static_cast<float>(l.depth_edges);
-      p.line_flags = (l.enabled ? gpu::kLinesOn : 0u) | (small ? gpu::kNormalOnly : 0u);
+      p.line_flags =
+          (l.enabled ? gpu::kLinesOn : 0u) | (small ? gpu::kNormalOnly : 0u) | (l.thin ? gpu::kThinLines : 0u);
       p.tones = glm::vec4(sh.tones[0], sh.tones[1], sh.tones[2], sh.tones[3]);
       p.thresholds = glm::vec4(sh.thresholds[0], sh.thresholds[1], sh.thresholds[2], sh.thresholds[3]);
       p.tone5 = static_cast<float>(sh.tones[4]);

@@ -697,3 +697,45 @@ TEST_F(Look, MistLeavesTheLowGroundWhiteAndTheTopsAlone) {
 
 }  // namespace
 }  // namespace shanshui::render
+
+namespace shanshui::render {
+namespace {
+
+// A smooth Gaussian hill with a little roughness: Eq. 1 past its threshold covers a broad
+// band of it; `thin` keeps only the crests, a small share of it, and only pixels Eq. 1
+// also draws.
+TEST_F(Look, ThinLinesKeepTheCrestsOfEquationOnesBands) {
+  const mesh::Mesh hill = test::heightGrid(121, 121, 0.05, [](double x, double y) {
+    const double dx = x - 3.0, dy = y - 3.0;
+    return 1.5 * std::exp(-(dx * dx + dy * dy) / 2.0) + 0.004 * std::sin(7.0 * x) * std::cos(5.0 * y);
+  });
+  std::map<bool, image::Image> weight;
+  image::Image positions;
+  for (const bool thin : {false, true}) {
+    const scene::Scene s = sceneWith({{"lines", {{"thin", thin}, {"silhouette", 0.0}, {"depth_edges", 0.0}}}});
+    InkRenderer r(s, prepare(s, hill));
+    r.setDebugOutputs(true);
+    r.render(sceneCamera(s, r.worldBounds(), 1.0, {-30, 35, 1.2}), 240, 240);
+    weight[thin] = r.passTarget("ink")->colour(1).download(2);
+    positions = r.worldPositions();
+  }
+  int object = 0, thick_lines = 0, thin_lines = 0, thin_outside = 0;
+  for (int y = 0; y < 240; ++y) {
+    for (int x = 0; x < 240; ++x) {
+      if (positions.at(x, y, 3) < 0.5f) continue;
+      ++object;
+      const bool a = weight[false].at(x, y, 0) > 0.5f, b = weight[true].at(x, y, 0) > 0.5f;
+      thick_lines += a;
+      thin_lines += b;
+      thin_outside += b && weight[false].at(x, y, 0) <= 0.0f;
+    }
+  }
+  ASSERT_GT(object, 10000);
+  EXPECT_GT(thick_lines, object / 20) << "Eq. 1 draws a band";
+  EXPECT_LT(thin_lines, thick_lines / 3);
+  EXPECT_GT(thin_lines, 0);
+  EXPECT_EQ(thin_outside, 0);
+}
+
+}  // namespace
+}  // namespace shanshui::render

@@ -109,6 +109,10 @@ void describe(V& v, LineParams& p) {
             "trees and pavilions)",
             Effect::Uniform, "pixels"},
            p.small_object_px, {0, kBig});
+  v.boolean({"thin",
+             "keep only the crest of each band past the threshold (curvature peaks across it): strokes, not "
+             "filled regions"},
+            p.thin);
 }
 
 template <typename V>

@@ -51,6 +51,9 @@ struct LineParams {
   //! Objects whose projected area is below this many pixels get N·V lines only (the
   //! paper's small-object path).
   double small_object_px = 2000.0;
+  //! Keep only the crest of each band past the threshold (non-maximum suppression of the
+  //! curvature across it): lines instead of filled regions.
+  bool thin = false;
 };
 
 //! Interior shading (seed 001 Eqs. 2, 3, 5; SPEC.md section 7).
