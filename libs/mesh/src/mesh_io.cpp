@@ -40,34 +40,21 @@ void appendNumber(std::string& out, double v) {
   out.append(buf, res.ptr);
 }
 
+// One text row: `tag` (may be empty) and the numbers, separated by spaces.
+template <typename... T>
+void appendRow(std::string& out, const char* tag, T... values) {
+  out += tag;
+  bool first = *tag == '\0';
+  ((out += first ? "" : " ", appendNumber(out, values), first = false), ...);
+  out += '\n';
+}
+
 std::string objText(const Mesh& m) {
   std::string text = "# written by shanshui\n";
   text.reserve(m.positions.size() * 64 + m.triangles.size() * 32);
-  for (const auto& p : m.positions) {
-    text += "v ";
-    appendNumber(text, p.x);
-    text += ' ';
-    appendNumber(text, p.y);
-    text += ' ';
-    appendNumber(text, p.z);
-    text += '\n';
-  }
-  for (const auto& t : m.uvs) {
-    text += "vt ";
-    appendNumber(text, t.x);
-    text += ' ';
-    appendNumber(text, t.y);
-    text += '\n';
-  }
-  for (const auto& n : m.normals) {
-    text += "vn ";
-    appendNumber(text, n.x);
-    text += ' ';
-    appendNumber(text, n.y);
-    text += ' ';
-    appendNumber(text, n.z);
-    text += '\n';
-  }
+  for (const auto& p : m.positions) appendRow(text, "v", p.x, p.y, p.z);
+  for (const auto& t : m.uvs) appendRow(text, "vt", t.x, t.y);
+  for (const auto& n : m.normals) appendRow(text, "vn", n.x, n.y, n.z);
   const bool uv = !m.uvs.empty(), nrm = !m.normals.empty();
   for (const auto& tri : m.triangles) {
     text += 'f';
@@ -89,14 +76,7 @@ std::string objText(const Mesh& m) {
 
 std::string offText(const Mesh& m) {
   std::string text = "OFF\n" + std::to_string(m.positions.size()) + " " + std::to_string(m.triangles.size()) + " 0\n";
-  for (const auto& p : m.positions) {
-    appendNumber(text, p.x);
-    text += ' ';
-    appendNumber(text, p.y);
-    text += ' ';
-    appendNumber(text, p.z);
-    text += '\n';
-  }
+  for (const auto& p : m.positions) appendRow(text, "", p.x, p.y, p.z);
   for (const auto& t : m.triangles) {
     text += "3 " + std::to_string(t.x) + " " + std::to_string(t.y) + " " + std::to_string(t.z) + "\n";
   }
