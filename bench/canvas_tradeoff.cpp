@@ -6,13 +6,16 @@
 //     object-space texture; and the peak frequency and contrast of each through the dolly,
 //     on spectra averaged over seeds, beside the estimator's own spread at a fixed view.
 //     Pictures of the dolly.
-//  2. N′ ∈ {8, 16, 32, 64, 128}: the canvas pass's GPU time on the sample scene at 1024² as
+//  2. N′ ∈ {8, 16, 32, 64, 128} of the splatted canvas: its GPU time on the sample scene at 1024² as
 //     a ratio to its G-buffer pass (interleaved in one run), and the error of a facing
 //     plane's canvas against the analytic Gabor spectrum, its variance and its excess
 //     kurtosis (0 for Gaussian noise; sparse noise is spiky).
+//  3. The tiles canvas (the default) beside the splatted reference for each `patch`:
+//     spectrum distance on a plane, warping error on the paths of 1, cost against the
+//     G-buffer at 1024x768.
 // Writes canvas_tradeoff.md, .csv, _points.csv (for shanshui-bench's plots) and
 // canvas_dolly.png. --quick: small frames, short paths, N′ ∈ {8, 32}.
-//   bench_canvas_tradeoff [--out DIR] [--only coherence|impulses] [--quick]
+//   bench_canvas_tradeoff [--out DIR] [--only coherence|impulses|tiles] [--quick]
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -53,8 +56,43 @@ image::Image channel(const image::Image& img, int c) {
 
 // What each kind shows: the canvas noise, or for the object-space texture the G-buffer's
 // erosion noise (value noise fixed to the model's x, y).
-enum class Kind { Silk, RicePaper, Static, ObjectSpace };
-const char* kKindNames[] = {"dynamic silk", "dynamic rice paper", "static (screen) silk", "object-space texture"};
+enum class Kind { Silk, RicePaper, Static, ObjectSpace, TilesSilk, TilesRicePaper };
+const char* kKindNames[] = {"splat silk",           "splat rice paper", "static (screen) silk",
+                            "object-space texture", "tiles silk",       "tiles rice paper"};
+constexpr Kind kKinds[] = {Kind::TilesSilk, Kind::TilesRicePaper, Kind::Silk,
+                           Kind::RicePaper, Kind::Static,         Kind::ObjectSpace};
+
+// The scene `s` with the canvas that `kind` shows.
+scene::Scene withKind(scene::Scene s, Kind kind) {
+  s.canvas.type = kind == Kind::Silk || kind == Kind::ObjectSpace || kind == Kind::TilesSilk ? scene::CanvasType::Silk
+                  : kind == Kind::Static                                                     ? scene::CanvasType::Static
+                                         : scene::CanvasType::RicePaper;
+  s.canvas.method =
+      kind == Kind::TilesSilk || kind == Kind::TilesRicePaper ? scene::CanvasMethod::Tiles : scene::CanvasMethod::Splat;
+  s.canvas.static_pattern = scene::CanvasPattern::Silk;
+  return s;
+}
+
+// Cameras along one of the paths ("orbit", "dolly", "pan") from `base`, clip planes kept
+// around the scene of radius `radius` centred at `centre`.
+std::vector<render::OrbitCamera> cameraPath(const render::OrbitCamera& base, const std::string& path, int frames,
+                                            const glm::dvec3& centre, double radius) {
+  std::vector<render::OrbitCamera> cams;
+  for (int i = 0; i < frames; ++i) {
+    render::OrbitCamera c = base;
+    if (path == "orbit") c.azimuth_deg += i;
+    if (path == "dolly") c.distance = base.distance * 2.0 * std::pow(2.0, -2.0 * i / (frames - 1));
+    if (path == "pan") {
+      const glm::dvec3 right = glm::normalize(glm::cross(base.target - base.eye(), glm::dvec3(0, 0, 1)));
+      c.target += right * (0.01 * radius * i);
+    }
+    const double to_centre = glm::length(c.eye() - centre);
+    c.near_plane = std::max(to_centre - radius * 1.01, to_centre * 1e-3);
+    c.far_plane = to_centre + radius * 1.01;
+    cams.push_back(c);
+  }
+  return cams;
+}
 
 struct Frame {
   render::WarpView view;
@@ -134,11 +172,154 @@ double excessKurtosis(const image::Image& img) {
   return s4 / n / (var * var) - 3.0;
 }
 
+// Ring-averaged periodogram of the canvas on a plane seen from above filling an n² frame,
+// mean over `seeds` seeds from `first`.
+std::vector<double> planeSpectrum(const nlohmann::json& canvas, int n, int seeds, int first) {
+  std::vector<double> mean(static_cast<std::size_t>(n / 2), 0.0);
+  const mesh::Mesh plane = mesh::heightGrid(33, 33, 1.0 / 32, [](double, double) { return 0.0; });
+  for (int seed = first; seed < first + seeds; ++seed) {
+    scene::Scene ps =
+        scene::parseScene(nlohmann::json{{"seed", seed},
+                                         {"objects", nlohmann::json::array({{{"mesh", "memory.obj"},
+                                                                             {"lines", {{"enabled", false}}},
+                                                                             {"shading", {{"enabled", false}}}}})},
+                                         {"canvas", canvas},
+                                         {"output", {{"width", n}, {"height", n}, {"fade", 0.0}}}},
+                          "plane", ".");
+    const std::vector<scene::LoadedObject> plane_objects{
+        {std::make_shared<const scene::ObjectAsset>(scene::prepareAsset(plane, ps.objects[0])), nullptr}};
+    render::InkRenderer pr(ps, plane_objects);
+    pr.render(render::sceneCamera(ps, pr.worldBounds(), 1.0, {0, 89, 1.6}), n, n);
+    const std::vector<double> ring = render::radialPowerSpectrum(pr.passTarget("canvas")->colour(0).download(1));
+    for (std::size_t b = 0; b < mean.size(); ++b) mean[b] += ring[b] / seeds;
+  }
+  return mean;
+}
+
+// Relative L2 distance between two ring spectra over the rings where `reference` is above
+// 1 % of its peak.
+double spectrumDistance(const std::vector<double>& a, const std::vector<double>& reference) {
+  const double peak = *std::max_element(reference.begin() + 1, reference.end());
+  double d2 = 0, r2 = 0;
+  for (std::size_t b = 1; b < reference.size(); ++b) {
+    if (reference[b] < 0.01 * peak) continue;
+    d2 += (a[b] - reference[b]) * (a[b] - reference[b]);
+    r2 += reference[b] * reference[b];
+  }
+  return std::sqrt(d2 / r2);
+}
+
+// The tiles canvas beside the splatted reference for each `patch`: spectrum distance to the
+// reference on a plane (silk and rice paper), warping error on the sample scene's paths,
+// and cost as a ratio to the G-buffer at 1024x768 (the sample scene's own size).
+void tilesSection(std::ostream& md, std::ostream& csv, bench::TradeoffPoints& points, const scene::Scene& sc,
+                  const std::vector<scene::LoadedObject>& objects, bool quick) {
+  const int n = quick ? 128 : 512, seeds = quick ? 2 : 8;
+  const int w = quick ? 128 : 512, h = quick ? 96 : 384;
+  const int cost_w = quick ? 256 : 1024, cost_h = quick ? 192 : 768, cost_frames = quick ? 3 : 9;
+  md << "## Tiles against the splatted reference: error against run time for `patch`\n\n"
+     << "Spectrum: relative L2 distance between the mean ring-averaged periodogram (" << seeds
+     << " seeds) of each canvas on a plane filling a " << n << "² frame and that of the splatted canvas over "
+     << "rings above 1 % of its peak (`grain` 24; silk one-way at `frequency` 0.06). The floor row is the splatted "
+        "canvas against itself with other seeds: the estimator's own distance. Warping error: as in the first "
+        "table, silk (`grain` 24, `frequency` 0.06) on the sample scene at "
+     << w << "×" << h << ". Cost: the sample scene as shipped (rice paper) at " << cost_w << "×" << cost_h
+     << ", canvas over G-buffer GPU time in the same frame, median of " << cost_frames - 1
+     << " frames of an orbit (the first, which draws the tile, left out).\n\n"
+     << "| canvas | silk spectrum distance | rice paper spectrum distance | orbit | dolly | pan | canvas ms | "
+        "G-buffer ms | canvas ÷ G-buffer |\n|---|---|---|---|---|---|---|---|---|\n";
+  csv << "section,canvas,patch,silk_distance,rice_distance,orbit,dolly,pan,canvas_ms,gbuffer_ms,ratio\n";
+  const nlohmann::json silk{{"type", "silk"}, {"grain", 24}, {"frequency", 0.06}, {"mix", 0.0}};
+  const nlohmann::json rice{{"type", "rice_paper"}, {"grain", 24}};
+  auto with = [](nlohmann::json j, const char* method, double patch) {
+    j["method"] = method;
+    j["patch"] = patch;
+    return j;
+  };
+  const std::vector<double> silk_ref = planeSpectrum(with(silk, "splat", 2), n, seeds, 1);
+  const std::vector<double> rice_ref = planeSpectrum(with(rice, "splat", 2), n, seeds, 1);
+  struct Row {
+    std::string name, method;
+    double patch;
+  };
+  std::vector<Row> rows{{"splat (floor: other seeds)", "splat", 2}};
+  for (double patch : quick ? std::vector<double>{2, 4} : std::vector<double>{1, 1.5, 2, 3, 4}) {
+    rows.push_back({"tiles, patch " + std::to_string(patch).substr(0, 3), "tiles", patch});
+  }
+  for (const Row& row : rows) {
+    const int first = row.method == "splat" ? 1 + seeds : 1;
+    const double silk_d =
+        spectrumDistance(planeSpectrum(with(silk, row.method.c_str(), row.patch), n, seeds, first), silk_ref);
+    const double rice_d =
+        spectrumDistance(planeSpectrum(with(rice, row.method.c_str(), row.patch), n, seeds, first), rice_ref);
+    // Warping error on the sample scene.
+    scene::Scene s = withKind(sc, row.method == "splat" ? Kind::Silk : Kind::TilesSilk);
+    s.canvas.grain = 24;
+    s.canvas.frequency = 0.06;
+    s.canvas.patch = row.patch;
+    render::InkRenderer r(s, objects);
+    const render::OrbitCamera base =
+        render::sceneCamera(s, r.worldBounds(), static_cast<double>(w) / h, render::frameKey(s, 0, 1, 0.0));
+    const double radius = 0.5 * glm::length(r.worldBounds().size());
+    std::map<std::string, double> warp;
+    for (const std::string path : {"orbit", "dolly", "pan"}) {
+      const int frames = quick ? 3 : path == "dolly" ? 13 : 6;
+      std::vector<Frame> seen;
+      for (const render::OrbitCamera& cam : cameraPath(base, path, frames, r.worldBounds().centre(), radius)) {
+        seen.push_back(renderFrame(r, Kind::Silk, cam, w, h));
+        if (seen.size() > 1) {
+          warp[path] += render::warpingError(seen[seen.size() - 2].view, seen.back().view).relative() / (frames - 1);
+        }
+      }
+    }
+    // Cost on the sample scene as shipped.
+    scene::Scene cs = sc;
+    cs.canvas.method = row.method == "splat" ? scene::CanvasMethod::Splat : scene::CanvasMethod::Tiles;
+    cs.canvas.patch = row.patch;
+    render::InkRenderer cr(cs, objects);
+    const render::OrbitCamera cam0 = render::sceneCamera(cs, cr.worldBounds(), static_cast<double>(cost_w) / cost_h,
+                                                         render::frameKey(cs, 0, 1, 0.0));
+    std::vector<double> canvas_ms, gbuffer_ms, ratios;
+    for (int f = 0; f < cost_frames; ++f) {
+      render::OrbitCamera c = cam0;
+      c.azimuth_deg += 2.0 * f;
+      render::FrameStats st;
+      cr.render(c, cost_w, cost_h, &st);
+      if (f == 0) continue;
+      double cm = 0, gm = 0;
+      for (const auto& p : st.passes) {
+        if (p.name == "canvas") cm = p.gpu_ms;
+        if (p.name == "gbuffer") gm = p.gpu_ms;
+      }
+      canvas_ms.push_back(cm);
+      gbuffer_ms.push_back(gm);
+      ratios.push_back(cm / gm);
+    }
+    char line[512];
+    std::snprintf(line, sizeof line, "| %s | %.3f | %.3f | %.4f | %.4f | %.4f | %.1f | %.1f | %.2f |\n",
+                  row.name.c_str(), silk_d, rice_d, warp["orbit"], warp["dolly"], warp["pan"], median(canvas_ms),
+                  median(gbuffer_ms), median(ratios));
+    md << line;
+    std::fputs(line, stderr);
+    csv << "tiles," << row.method << "," << row.patch << "," << silk_d << "," << rice_d << "," << warp["orbit"] << ","
+        << warp["dolly"] << "," << warp["pan"] << "," << median(canvas_ms) << "," << median(gbuffer_ms) << ","
+        << median(ratios) << "\n";
+    if (row.method == "tiles") {
+      const std::string series = "tiles canvas, patch 1 .. 4 (sample scene)";
+      points.add("canvas: tiles spectrum against patch", "relative L2 distance to the splatted spectrum (silk)", series,
+                 true, median(canvas_ms), silk_d);
+      points.add("canvas: tiles warping against patch", "warping error through the dolly", series, true,
+                 median(canvas_ms), warp["dolly"]);
+    }
+  }
+  md << "\n";
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   const bench::BenchArgs args = bench::parseBenchArgs(
-      argc, argv, "bench_canvas_tradeoff [--out DIR] [--only coherence|impulses] [--quick]", {"--only"});
+      argc, argv, "bench_canvas_tradeoff [--out DIR] [--only coherence|impulses|tiles] [--quick]", {"--only"});
   const std::filesystem::path out = args.out;
   const bool quick = args.quick;
   const std::string only = args.text("--only", "");  // one section (a quick look; the files then hold only it)
@@ -171,14 +352,10 @@ int main(int argc, char** argv) {
     // measured too: the same view, `batches` disjoint sets of seeds.
     const int seeds = quick ? 2 : 8, batches = quick ? 3 : 8;
     std::map<Kind, std::vector<render::SpectrumPeak>> dolly_peaks, floor_peaks;
-    std::vector<std::vector<Frame>> dolly_frames(4);
+    std::vector<std::vector<Frame>> dolly_frames(std::size(kKinds));
     const char* paths[] = {"orbit", "dolly", "pan"};
-    for (Kind kind : {Kind::Silk, Kind::RicePaper, Kind::Static, Kind::ObjectSpace}) {
-      scene::Scene s = sc;
-      s.canvas.type = kind == Kind::Silk || kind == Kind::ObjectSpace ? scene::CanvasType::Silk
-                      : kind == Kind::RicePaper                       ? scene::CanvasType::RicePaper
-                                                                      : scene::CanvasType::Static;
-      s.canvas.static_pattern = scene::CanvasPattern::Silk;
+    for (Kind kind : kKinds) {
+      scene::Scene s = withKind(sc, kind);
       s.canvas.grain = 24;
       s.canvas.frequency = 0.06;
       render::InkRenderer r(s, objects);
@@ -186,23 +363,9 @@ int main(int argc, char** argv) {
           render::sceneCamera(s, r.worldBounds(), static_cast<double>(w) / h, render::frameKey(s, 0, 1, 0.0));
       const double radius = 0.5 * glm::length(r.worldBounds().size());
       for (const char* path : paths) {
-        std::vector<render::OrbitCamera> cams;
         const std::string p = path;
         const int frames = quick ? (p == "dolly" ? 5 : 3) : p == "dolly" ? 13 : 6;
-        for (int i = 0; i < frames; ++i) {
-          render::OrbitCamera c = base;
-          if (p == "orbit") c.azimuth_deg += i;
-          if (p == "dolly") c.distance = base.distance * 2.0 * std::pow(2.0, -2.0 * i / (frames - 1));
-          if (p == "pan") {
-            const glm::dvec3 right = glm::normalize(glm::cross(base.target - base.eye(), glm::dvec3(0, 0, 1)));
-            c.target += right * (0.01 * radius * i);
-          }
-          // Keep the clip planes around the scene wherever the eye goes.
-          const double to_centre = glm::length(c.eye() - r.worldBounds().centre());
-          c.near_plane = std::max(to_centre - radius * 1.01, to_centre * 1e-3);
-          c.far_plane = to_centre + radius * 1.01;
-          cams.push_back(c);
-        }
+        const std::vector<render::OrbitCamera> cams = cameraPath(base, p, frames, r.worldBounds().centre(), radius);
         std::vector<Frame> frames_out;
         double sum = 0;
         for (std::size_t i = 0; i < cams.size(); ++i) {
@@ -232,7 +395,7 @@ int main(int argc, char** argv) {
     }
     md << "| canvas | orbit | dolly | pan | ÷ static (orbit, dolly, pan) |\n|---|---|---|---|---|\n";
     csv << "section,kind,path,warping_error,ratio_to_static\n";
-    for (Kind kind : {Kind::Silk, Kind::RicePaper, Kind::Static, Kind::ObjectSpace}) {
+    for (Kind kind : kKinds) {
       char line[512];
       std::snprintf(line, sizeof line, "| %s | %.4f | %.4f | %.4f | %.3f, %.3f, %.3f |\n",
                     kKindNames[static_cast<int>(kind)], errors[kind]["orbit"], errors[kind]["dolly"],
@@ -272,7 +435,7 @@ int main(int argc, char** argv) {
       for (const auto& p : peaks) r.deviation = std::max(r.deviation, std::abs(p.*measure / r.mean - 1));
       return r;
     };
-    for (Kind kind : {Kind::Silk, Kind::RicePaper, Kind::Static, Kind::ObjectSpace}) {
+    for (Kind kind : kKinds) {
       std::string row = std::string("| ") + kKindNames[static_cast<int>(kind)];
       csv << "flatness," << kKindNames[static_cast<int>(kind)];
       for (auto measure : {&render::SpectrumPeak::frequency, &render::SpectrumPeak::energy_frequency,
@@ -296,20 +459,22 @@ int main(int argc, char** argv) {
     // with the dynamic silk and with the static one, the dynamic canvas alone, and the
     // object-space texture alone.
     const int cw = std::min(224, w), ch = std::min(168, h);
-    image::Image mosaic(3 * cw, 4 * ch, 3);
-    const int last = static_cast<int>(dolly_frames[0].size()) - 1;
+    image::Image mosaic(3 * cw, 5 * ch, 3);
+    const int last = static_cast<int>(dolly_frames[0].size()) - 1;  // every kind has the same path
     const int picks[3] = {0, last / 2, last};
     for (int col = 0; col < 3; ++col) {
       const auto i = static_cast<std::size_t>(picks[col]);
-      paste(mosaic, dolly_frames[0][i].picture, col * cw, 0, cw, ch, false);
-      paste(mosaic, dolly_frames[2][i].picture, col * cw, ch, cw, ch, false);
-      paste(mosaic, dolly_frames[0][i].view.values, col * cw, 2 * ch, cw, ch, true);
-      paste(mosaic, dolly_frames[3][i].view.values, col * cw, 3 * ch, cw, ch, false);
+      auto frame = [&](Kind kind) -> const Frame& { return dolly_frames[static_cast<std::size_t>(kind)][i]; };
+      paste(mosaic, frame(Kind::TilesSilk).picture, col * cw, 0, cw, ch, false);
+      paste(mosaic, frame(Kind::Static).picture, col * cw, ch, cw, ch, false);
+      paste(mosaic, frame(Kind::TilesSilk).view.values, col * cw, 2 * ch, cw, ch, true);
+      paste(mosaic, frame(Kind::Silk).view.values, col * cw, 3 * ch, cw, ch, true);
+      paste(mosaic, frame(Kind::ObjectSpace).view.values, col * cw, 4 * ch, cw, ch, false);
     }
     image::saveImage(mosaic, out / "canvas_dolly.png");
     md << "\n![dolly](canvas_dolly.png)\n\nColumns: 2×, 1× and 0.5× the distance (centre crops). Rows: the painted "
-          "frame on dynamic silk (default contrast); on static silk; the dynamic canvas alone; the "
-          "object-space texture alone (its grain grows as the camera comes closer).\n\n";
+          "frame on tiles silk (default contrast); on static silk; the tiles canvas alone; the splatted canvas "
+          "alone; the object-space texture alone (its grain grows as the camera comes closer).\n\n";
   }
 
   // 2. N′: cost on the sample scene at 1024², error on a facing plane.
@@ -328,6 +493,7 @@ int main(int argc, char** argv) {
     csv << "section,impulses,canvas_ms,gbuffer_ms,ratio,spectrum_error,variance,excess_kurtosis\n";
     scene::Scene s = sc;
     s.canvas.type = scene::CanvasType::Silk;
+    s.canvas.method = scene::CanvasMethod::Splat;
     render::InkRenderer r(s, objects);
     const render::OrbitCamera cam = render::sceneCamera(s, r.worldBounds(), 1.0, render::frameKey(s, 0, 1, 0.0));
 
@@ -335,12 +501,13 @@ int main(int argc, char** argv) {
     // The plane keeps its size with --quick: its pattern is in pixels of a 1024-tall frame.
     const int n = 512, frame = quick ? 256 : 1024;
     scene::Scene ps = scene::parseScene(
-        nlohmann::json{{"objects", nlohmann::json::array({{{"mesh", "memory.obj"},
-                                                           {"lines", {{"enabled", false}}},
-                                                           {"shading", {{"enabled", false}}}}})},
-                       {"camera", {{"elevation", 89.0}, {"azimuth", 0.0}, {"zoom", 1.6}}},
-                       {"canvas", {{"type", "silk"}, {"grain", 32}, {"frequency", 0.1}, {"mix", 0.0}}},
-                       {"output", {{"width", n}, {"height", n}, {"fade", 0.0}}}},
+        nlohmann::json{
+            {"objects",
+             nlohmann::json::array(
+                 {{{"mesh", "memory.obj"}, {"lines", {{"enabled", false}}}, {"shading", {{"enabled", false}}}}})},
+            {"camera", {{"elevation", 89.0}, {"azimuth", 0.0}, {"zoom", 1.6}}},
+            {"canvas", {{"type", "silk"}, {"method", "splat"}, {"grain", 32}, {"frequency", 0.1}, {"mix", 0.0}}},
+            {"output", {{"width", n}, {"height", n}, {"fade", 0.0}}}},
         "plane", ".");
     const mesh::Mesh plane = mesh::heightGrid(9, 9, 1.0 / 8, [](double, double) { return 0.0; });
     const std::vector<scene::LoadedObject> plane_objects{
@@ -422,5 +589,8 @@ int main(int argc, char** argv) {
       points.add("canvas: Gaussianity against N'", "excess kurtosis (0 = Gaussian)", series, true, cm, kurt);
     }
   }
+
+  // 3. The tiles canvas against the splatted one, and its patch knob.
+  if (only.empty() || only == "tiles") tilesSection(md, csv, points, sc, objects, quick);
   return 0;
 }

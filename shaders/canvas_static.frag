@@ -1,7 +1,9 @@
 #version 450 core
 // The static canvas (the "shower door" baseline): the same kernels as the dynamic canvas
 // but fixed to the screen, scattered over cells of the kernel's radius (as gaborNoise does)
-// and evaluated at the pixel centre.
+// and evaluated at the pixel centre. CANVAS_TILE draws the tile of the `tiles` canvas
+// instead: u_cells × u_cells cells whose kernels repeat with that period, so the texture
+// wraps without a seam.
 #include "noise_gabor.glsl"
 #ifndef CANVAS_SILK
 #include "noise_perlin.glsl"
@@ -10,6 +12,9 @@
 
 uniform float u_density;  // λ, kernels per square pixel
 uniform uint u_seed;
+#ifdef CANVAS_TILE
+uniform int u_cells;
+#endif
 layout(location = 0) out float o_canvas;
 
 void main() {
@@ -21,7 +26,11 @@ void main() {
   for (int dj = -1; dj <= 1; ++dj) {
     for (int di = -1; di <= 1; ++di) {
       ivec2 cell = ivec2(c) + ivec2(di, dj);
+#ifdef CANVAS_TILE
+      uint s = noiseCellSeed(((cell % u_cells) + u_cells) % u_cells, u_seed);
+#else
       uint s = noiseCellSeed(cell, u_seed);
+#endif
       int count = impulseCount(mean, noiseUnit(noiseStream(s, 0u)));
       for (int n = 0; n < count; ++n) {
         uint k = 1u + uint(n) * 6u;

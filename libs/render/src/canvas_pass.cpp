@@ -1,6 +1,7 @@
 #include "shanshui/render/canvas_pass.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <map>
 #include <numbers>
@@ -47,15 +48,30 @@ double maxTriangleArea(const mesh::Mesh& m) {
   return best;
 }
 
-CanvasPass::CanvasPass(const scene::Canvas& canvas, std::uint64_t seed, const mesh::Bounds& world_bounds)
-    : canvas_(canvas), seed_(canvasSeed(seed)), dynamic_(canvas.type != scene::CanvasType::Static) {
+CanvasPass::CanvasPass(const scene::Canvas& canvas, std::uint64_t seed, const mesh::Bounds& world_bounds,
+                       std::size_t objects)
+    : canvas_(canvas),
+      objects_(objects),
+      seed_(canvasSeed(seed)),
+      method_(canvas.type == scene::CanvasType::Static      ? Method::Static
+              : canvas.method == scene::CanvasMethod::Splat ? Method::Splat
+                                                            : Method::Tiles) {
   SHANSHUI_CHECK(canvas.type != scene::CanvasType::None);
   if (canvas.pattern() == scene::CanvasPattern::Silk) defines_.emplace_back("CANVAS_SILK");
-  if (dynamic_) quads_ = maxQuadsPerInvocation();
+  if (method_ == Method::Splat) quads_ = maxQuadsPerInvocation();
+  if (method_ == Method::Tiles) {
+    GLint block = 0;
+    glGetIntegerv(GL_MAX_UNIFORM_BLOCK_SIZE, &block);
+    const std::size_t needed = (objects + 1) * 2 * sizeof(glm::mat4);
+    if (needed > static_cast<std::size_t>(block)) {
+      throw makeError("canvas.method 'tiles' needs a ", needed, "-byte uniform block for ", objects,
+                      " objects and this driver allows ", block, "; use canvas.method 'splat' or fewer objects");
+    }
+  }
   reloadShaders();
-  if (dynamic_) {
-    dome_centre_ = world_bounds.centre();
-    dome_radius_ = kDomeScale * std::max(0.5 * glm::length(world_bounds.size()), 1e-6);
+  dome_centre_ = world_bounds.centre();
+  dome_radius_ = kDomeScale * std::max(0.5 * glm::length(world_bounds.size()), 1e-6);
+  if (method_ == Method::Splat) {
     mesh::Mesh dome = mesh::icosphere(kDomeLevels);
     for (auto& p : dome.positions) {
       p *= dome_radius_;
@@ -83,28 +99,54 @@ CanvasPass::CanvasPass(const scene::Canvas& canvas, std::uint64_t seed, const me
 
 std::vector<std::string> CanvasPass::definesFor(int invocations) const {
   std::vector<std::string> d = defines_;
-  if (dynamic_) {
+  if (method_ == Method::Splat) {
     d.push_back("INVOCATIONS=" + std::to_string(invocations));
     d.push_back("QUADS=" + std::to_string(quads_));
   }
+  if (method_ == Method::Tiles) d.emplace_back("CANVAS_TILE");
+  return d;
+}
+
+std::vector<std::string> CanvasPass::tilesDefines() const {
+  // The block of clip ↔ model matrices holds the background and every object.
+  std::vector<std::string> d{"SPACES=" + std::to_string(objects_ + 1)};
+  if (objects_ == 1) d.emplace_back("SINGLE_OBJECT");
   return d;
 }
 
 std::vector<std::string> CanvasPass::variants() const {
-  std::vector<std::string> out;
-  for (int invocations : dynamic_ ? std::vector<int>{1, kInvocations} : std::vector<int>{1}) {
+  auto joined = [](const std::vector<std::string>& defines) {
     std::string s;
-    for (const std::string& x : definesFor(invocations)) s += (s.empty() ? "" : " ") + x;
-    out.push_back(s);
+    for (const std::string& x : defines) s += (s.empty() ? "" : " ") + x;
+    return s;
+  };
+  switch (method_) {
+    case Method::Splat:
+      return {joined(definesFor(1)), joined(definesFor(kInvocations))};
+    case Method::Tiles:
+      return {joined(definesFor(1)), joined(tilesDefines())};  // the tile's program, the pass's
+    case Method::Static:
+      break;
   }
-  return out;
+  return {joined(definesFor(1))};
 }
 
 void CanvasPass::reloadShaders() {
-  if (!dynamic_) {
-    static_ = Program({"fullscreen.vert", "canvas_static.frag"}, definesFor(1));
-    static_key_.clear();
-    return;
+  switch (method_) {
+    case Method::Static:
+      static_ = Program({"fullscreen.vert", "canvas_static.frag"}, definesFor(1));
+      static_key_.clear();
+      return;
+    case Method::Tiles: {
+      Program synthesis({"fullscreen.vert", "canvas_static.frag"}, definesFor(1));
+      Program tiles({"fullscreen.vert", "canvas_tiles.frag"}, tilesDefines());  // both built before either is replaced
+      tile_synthesis_ = std::move(synthesis);
+      tiles_ = std::move(tiles);
+      tile_key_.clear();
+      return;
+    }
+    case Method::Splat:
+      break;
   }
   const std::vector<std::string> files{"canvas.vert", "canvas.geom", "canvas.frag"};
   Program single(files, definesFor(1)), multi(files, definesFor(kInvocations));  // both built before either is replaced
@@ -136,6 +178,7 @@ GLsizei CanvasPass::uploadVisibleDome(const glm::dmat4& model_view_projection) {
 void CanvasPass::setParams(const scene::Canvas& canvas, std::uint64_t seed) {
   SHANSHUI_CHECK(canvas.type == canvas_.type);
   SHANSHUI_CHECK(canvas.pattern() == canvas_.pattern());
+  SHANSHUI_CHECK(canvas.method == canvas_.method || method_ == Method::Static);
   canvas_ = canvas;
   seed_ = canvasSeed(seed);
   static_key_.clear();
@@ -171,14 +214,14 @@ void CanvasPass::setKernel(const Program& p, const noise::CanvasNoiseOptions& o)
   p.set("u_seed", seed_);
 }
 
-const Texture2D& CanvasPass::run(const std::vector<Item>& items, const Texture2D& depth, const OrbitCamera& camera,
+const Texture2D& CanvasPass::run(const std::vector<Item>& items, const Framebuffer& gbuffer, const OrbitCamera& camera,
                                  int width, int height, GpuTimer* timer) {
   if (target_.width() != width || target_.height() != height) {
     target_ = Framebuffer(width, height, {GL_R32F}, false);
     static_key_.clear();
   }
   const noise::CanvasNoiseOptions o = noiseOptions(height);
-  if (!dynamic_) {
+  if (method_ == Method::Static) {
     const std::string key = std::to_string(width) + "x" + std::to_string(height);
     if (key == static_key_) return target_.colour(0);
     if (timer) timer->begin(passName());
@@ -194,8 +237,125 @@ const Texture2D& CanvasPass::run(const std::vector<Item>& items, const Texture2D
     static_key_ = key;
     return target_.colour(0);
   }
-
+  if (method_ == Method::Tiles) updateTile(o);  // before the timer: once per parameter set
   if (timer) timer->begin(passName());
+  if (method_ == Method::Tiles) {
+    runTiles(items, gbuffer, camera, width, height, o);
+  } else {
+    runSplat(items, gbuffer.depth(), camera, width, height, o);
+  }
+  if (timer) timer->end();
+  SHANSHUI_GL_CHECK("canvas pass");
+  return target_.colour(0);
+}
+
+void CanvasPass::updateTile(const noise::CanvasNoiseOptions& pixels) {
+  // The tile holds kTileCells² cells of one kernel radius r_t texels: a power of two (the
+  // shader wraps by a mask), 16 texels per cycle across a radius (silk threads, Perlin
+  // octaves) so that reading the nearest texel moves the pattern by a small fraction of a
+  // cycle. It is read at r_t / r texels per screen pixel.
+  const double cycles = pixels.silk ? pixels.F0 * pixels.radius : pixels.perlin_frequency;
+  const int radius =
+      16 * static_cast<int>(std::bit_ceil(static_cast<unsigned>(std::ceil(std::clamp(cycles, 1.0, 4.0)))));
+  noise::CanvasNoiseOptions texels = pixels;
+  texels.radius = radius;
+  texels.F0 = pixels.F0 * pixels.radius / radius;
+  texels_per_pixel_ = static_cast<float>(radius / pixels.radius);
+  std::ostringstream key;
+  key.precision(17);
+  key << texels.silk << "," << texels.F0 << "," << texels.omega0 << "," << texels.isotropic << "," << texels.mix << ","
+      << texels.perlin_frequency << "," << texels.impulses << "," << radius << "," << seed_;
+  if (key.str() == tile_key_) return;
+  tile_options_ = texels;
+  // The tile costs texels × N′ kernel evaluations to draw: past twice the default's, fewer
+  // cells (down to 8 across; copies are read at random offsets, so a small tile does not
+  // show as a repeat).
+  tile_cells_ = kTileCells;
+  while (tile_cells_ > 8 &&
+         static_cast<double>(tile_cells_ * radius) * (tile_cells_ * radius) * texels.impulses > kTileWork) {
+    tile_cells_ /= 2;
+  }
+  const int size = tile_cells_ * radius;
+  const Framebuffer canvas(size, size, {GL_R32F}, false);
+  canvas.bind();
+  glDisable(GL_DEPTH_TEST);
+  glDisable(GL_BLEND);
+  tile_synthesis_.use();
+  setKernel(tile_synthesis_, texels);
+  tile_synthesis_.set("u_cells", tile_cells_);
+  glBindVertexArray(empty_vao_.id());
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+  SHANSHUI_GL_CHECK("canvas tile");
+  // Zero mean and unit variance over the tile exactly (the parameters' σ is that of an
+  // infinite plane; a finite tile differs by a few per cent), stored as 8-bit signed
+  // values of v / kTileRange: the shader's reads of random texels cost less the smaller
+  // the tile is in memory, and the rounding (σ / 32 steps) adds under 0.01 % of variance.
+  image::Image values = canvas.colour(0).download(1);
+  double sum = 0, sum2 = 0;
+  for (float v : values.pixels) {
+    sum += v;
+    sum2 += static_cast<double>(v) * v;
+  }
+  const double n = static_cast<double>(values.pixels.size()), mean = sum / n;
+  const double var = std::max(sum2 / n - mean * mean, 0.0);
+  const double scale = var > 1e-30 ? 1.0 / std::sqrt(var) : 0.0;
+  // Rows bottom first, as GL stores them (the download put the top first).
+  std::vector<float> rows(values.pixels.size());
+  for (int y = 0; y < size; ++y)
+    for (int x = 0; x < size; ++x) {
+      const double v = (values.at(x, size - 1 - y, 0) - mean) * scale / kTileRange;
+      rows[static_cast<std::size_t>(y) * size + x] = static_cast<float>(std::clamp(v, -1.0, 1.0));
+    }
+  if (tile_.width() != size) tile_ = Texture2D(size, size, GL_R8_SNORM);
+  glTextureSubImage2D(tile_.id(), 0, 0, 0, size, size, GL_RED, GL_FLOAT, rows.data());
+  SHANSHUI_GL_CHECK("canvas tile upload");
+  tile_key_ = key.str();
+}
+
+void CanvasPass::runTiles(const std::vector<Item>& items, const Framebuffer& gbuffer, const OrbitCamera& camera,
+                          int width, int height, const noise::CanvasNoiseOptions& o) {
+  // Clip ↔ model matrices of the background (world) and of each object, indexed by the
+  // G-buffer's object id.
+  struct Space {
+    glm::mat4 to_model, to_clip;
+  };
+  const double aspect = static_cast<double>(width) / height;
+  const glm::dmat4 view_projection = glm::dmat4(camera.projection(aspect)) * glm::dmat4(camera.view());
+  std::vector<Space> spaces;
+  spaces.push_back({glm::mat4(glm::inverse(view_projection)), glm::mat4(view_projection)});
+  for (const Item& item : items) {
+    const glm::dmat4 m = view_projection * item.model;
+    spaces.push_back({glm::mat4(glm::inverse(m)), glm::mat4(m)});
+  }
+  if (!spaces_ || spaces_capacity_ < spaces.size()) {
+    spaces_ = Buffer::create();
+    spaces_capacity_ = spaces.size();
+    glNamedBufferStorage(spaces_.id(), static_cast<GLsizeiptr>(spaces_capacity_ * sizeof(Space)), nullptr,
+                         GL_DYNAMIC_STORAGE_BIT);
+  }
+  glNamedBufferSubData(spaces_.id(), 0, static_cast<GLsizeiptr>(spaces.size() * sizeof(Space)), spaces.data());
+  target_.bind();
+  glDisable(GL_DEPTH_TEST);
+  glDisable(GL_BLEND);
+  tiles_.use();
+  glBindTextureUnit(0, gbuffer.depth().id());
+  glBindTextureUnit(1, gbuffer.colour(1).id());
+  glBindImageTexture(0, tile_.id(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_R8_SNORM);
+  glBindBufferBase(GL_UNIFORM_BUFFER, 0, spaces_.id());
+  tiles_.set("u_viewport", glm::vec2(width, height));
+  tiles_.set("u_texels_per_pixel", texels_per_pixel_);
+  tiles_.set("u_patch_pixels", static_cast<float>(canvas_.patch * o.radius));
+  tiles_.set("u_dome", glm::vec4(glm::vec3(dome_centre_), static_cast<float>(dome_radius_)));
+  tiles_.set("u_eye", glm::vec3(camera.eye()));
+  tiles_.set("u_seed", seed_);
+  tiles_.set("u_tile_scale", static_cast<float>(kTileRange));
+  tiles_.set("u_tile_mask", tile_.width() - 1);
+  glBindVertexArray(empty_vao_.id());
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+}
+
+void CanvasPass::runSplat(const std::vector<Item>& items, const Texture2D& depth, const OrbitCamera& camera, int width,
+                          int height, const noise::CanvasNoiseOptions& o) {
   target_.bind();
   const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};  // GL reads four components whatever the format
   glClearNamedFramebufferfv(target_.id(), GL_COLOR, 0, zero);
@@ -243,9 +403,6 @@ const Texture2D& CanvasPass::run(const std::vector<Item>& items, const Texture2D
   }
   glDisable(GL_BLEND);
   glDisable(GL_DEPTH_CLAMP);
-  if (timer) timer->end();
-  SHANSHUI_GL_CHECK("canvas pass");
-  return target_.colour(0);
 }
 
 }  // namespace shanshui::render
@@ -257,7 +414,8 @@ namespace {
 // The canvas in the renderer's pass list.
 class CanvasStage final : public RenderPass {
  public:
-  explicit CanvasStage(const PassSetup& setup) : canvas_(setup.scene.canvas, setup.scene.seed, setup.world_bounds) {}
+  explicit CanvasStage(const PassSetup& setup)
+      : canvas_(setup.scene.canvas, setup.scene.seed, setup.world_bounds, setup.objects.size()) {}
   std::string name() const override { return canvas_.passName(); }
   void buildPrograms() override { canvas_.reloadShaders(); }
   std::vector<std::string> variants() const override { return canvas_.variants(); }
@@ -269,7 +427,7 @@ class CanvasStage final : public RenderPass {
       const SceneObjectGpu& g = in.objects[i];
       items.push_back({&g.mesh, in.modelAt(i), g.max_triangle_area, 0.5 * glm::length(g.model_bounds.size())});
     }
-    images.canvas = &canvas_.run(items, images.gbuffer->depth(), in.camera, in.width, in.height, in.timer);
+    images.canvas = &canvas_.run(items, *images.gbuffer, in.camera, in.width, in.height, in.timer);
   }
   const Framebuffer* target() const override { return &canvas_.target(); }
   const CanvasPass& canvas() const { return canvas_; }
@@ -281,7 +439,8 @@ class CanvasStage final : public RenderPass {
 }  // namespace
 
 std::string canvasStructure(const scene::Scene& s) {
-  return std::to_string(static_cast<int>(s.canvas.type)) + std::to_string(static_cast<int>(s.canvas.pattern()));
+  return std::to_string(static_cast<int>(s.canvas.type)) + std::to_string(static_cast<int>(s.canvas.pattern())) +
+         std::to_string(static_cast<int>(s.canvas.method));
 }
 
 std::unique_ptr<RenderPass> makeCanvasPass(const PassSetup& setup) {

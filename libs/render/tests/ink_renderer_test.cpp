@@ -514,7 +514,7 @@ class Variants : public test::HeadlessGl {};
 
 // Every shader variant the scene keys can produce compiles and links: scenes over every
 // combination of the keys that choose variants (lines on/off and their curvature source,
-// shading, wrinkles, canvas type and pattern, diffusion, mist, dissolving borders, one or
+// shading, wrinkles, canvas type, pattern and method, diffusion, mist, dissolving borders, one or
 // two objects), a renderer for each scene that brings the G-buffer, canvas or diffusion a
 // variant not seen yet, and each ink program the keys can choose compiled on its own.
 TEST_F(Variants, EveryCombinationTheSceneKeysCanProduceCompiles) {
@@ -522,13 +522,14 @@ TEST_F(Variants, EveryCombinationTheSceneKeysCanProduceCompiles) {
   auto wrinkle = std::make_shared<const image::Image>(8, 8, 1);
   std::set<std::string> seen;
   int built = 0, compiled = 0;
-  for (int bits = 0; bits < 1 << 11; ++bits) {
+  for (int bits = 0; bits < 1 << 12; ++bits) {
     const bool lines = bits & 1, screen = bits & 2, shading = bits & 4, wrinkled = bits & 8, diffusion = bits & 16,
                two = bits & 32;
     const int canvas = (bits >> 6) & 3;
-    const bool silk_static = bits & 256, mist = bits & 512, border = bits & 1024;
+    const bool silk_static = bits & 256, mist = bits & 512, border = bits & 1024, splat = bits & 2048;
     if (screen && !lines) continue;
     if (silk_static && canvas != 3) continue;
+    if (splat && (canvas == 0 || canvas == 3)) continue;  // the method draws rice paper and silk only
     json object = {{"mesh", "memory.obj"},
                    {"lines", {{"enabled", lines}, {"curvature", screen ? "screen" : "quadric"}}},
                    {"shading", {{"enabled", shading}}}};
@@ -537,7 +538,8 @@ TEST_F(Variants, EveryCombinationTheSceneKeysCanProduceCompiles) {
     json j = {{"objects", json::array({object})},
               {"canvas",
                {{"type", std::array{"none", "rice_paper", "silk", "static"}[canvas]},
-                {"static_pattern", silk_static ? "silk" : "rice_paper"}}}};
+                {"static_pattern", silk_static ? "silk" : "rice_paper"},
+                {"method", splat ? "splat" : "tiles"}}}};
     if (two) j["objects"].push_back({{"mesh", "memory.obj"}});
     if (diffusion) j["diffusion"] = {{"ring_steps", 2}, {"iterations", 1}};
     if (mist) j["mist"] = {{"density", 0.5}};
@@ -578,7 +580,8 @@ TEST_F(Variants, EveryCombinationTheSceneKeysCanProduceCompiles) {
   ASSERT_NO_THROW(Program({"fullscreen.vert", "ink.frag"},
                           {"LINES", "SHADING", "WRINKLE", "CANVAS", "BORDER", "MIST", "DEBUG_OUTPUTS"}));
   // G-buffer: SURFACE × WRINKLE × curvature kinds; ink: LINES × SHADING × WRINKLE ×
-  // SINGLE_OBJECT × CANVAS; canvas: four type/pattern pairs; diffusion: one.
+  // SINGLE_OBJECT × CANVAS; canvas: two patterns × tiles (one or more objects) or splat,
+  // and static's two; diffusion: one.
   EXPECT_GE(compiled, 64);  // LINES × SHADING × WRINKLE × SINGLE_OBJECT × CANVAS × BORDER × MIST, less the impossible
   EXPECT_GE(built, 10);
 }

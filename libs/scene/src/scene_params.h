@@ -67,6 +67,8 @@ inline constexpr std::array<Named<CanvasType>, 4> kCanvasTypes{{{"none", CanvasT
                                                                 {"static", CanvasType::Static}}};
 inline constexpr std::array<Named<CanvasPattern>, 2> kCanvasPatterns{
     {{"rice_paper", CanvasPattern::RicePaper}, {"silk", CanvasPattern::Silk}}};
+inline constexpr std::array<Named<CanvasMethod>, 2> kCanvasMethods{
+    {{"tiles", CanvasMethod::Tiles}, {"splat", CanvasMethod::Splat}}};
 
 inline constexpr std::array<Named<BorderMode>, 3> kBorderModes{
     {{"auto", BorderMode::Auto}, {"dissolve", BorderMode::Dissolve}, {"keep", BorderMode::Keep}}};
@@ -243,6 +245,17 @@ void describe(V& v, Canvas& c) {
             kRebuild},
            c.type, kCanvasTypes);
   v.choice({"static_pattern", "what `static` draws", kRebuild}, c.static_pattern, kCanvasPatterns);
+  v.choice({"method",
+            "how `rice_paper` and `silk` are drawn: `tiles`, a precomputed noise tile pinned to the surfaces in "
+            "small patches (one full-screen pass); `splat`, seed 001's kernels scattered on every triangle by a "
+            "geometry shader (the reference, 10-20x slower)",
+            kRebuild},
+           c.method, kCanvasMethods);
+  v.number({"patch",
+            "tiles: spacing of the points the tile is pinned to, in kernel radii; smaller follows the surface "
+            "more closely under zoom, larger keeps the spectrum closer to the kernels'",
+            Effect::Uniform, "kernel radii"},
+           c.patch, {0.5, 16});
   v.number({"contrast", "the paper's brightness is multiplied by 1 + contrast × the unit-variance canvas noise"},
            c.contrast, kUnit);
   v.number({"absorbency", "how far the canvas varies the diffusion's absorbency: 0.75 + 0.25 × absorbency × noise"},

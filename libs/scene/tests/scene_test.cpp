@@ -242,7 +242,8 @@ TEST(Scene, RebuildKeysAreTheOnesThatChangeVariantsOrFiles) {
                                           "objects.*.wrinkle.texture",
                                           "objects.*.wrinkle.uv",
                                           "canvas.type",
-                                          "canvas.static_pattern"};
+                                          "canvas.static_pattern",
+                                          "canvas.method"};
   EXPECT_EQ(rebuild, expected);
 }
 

@@ -1,8 +1,10 @@
-// The paper canvas (seed 001 Eqs. 9-17, SPEC.md section 8): noise kernels scattered by a
-// geometry shader on every visible triangle and on a background dome, so the paper moves
-// with the scene yet keeps its grain size on screen; or, for `static`, the same kernels
-// fixed to the screen. The result is unit-variance noise in a float target that the ink
-// pass turns into paper brightness and the diffusion into absorbency.
+// The paper canvas (seed 001 Eqs. 9-17, SPEC.md section 8): paper that moves with the scene
+// yet keeps its grain size on screen. `tiles` (the default) pins copies of a precomputed
+// noise tile to the surfaces in one full-screen pass; `splat` scatters seed 001's noise
+// kernels on every visible triangle and a background dome with a geometry shader (the
+// reference); `static` draws the same kernels fixed to the screen. The result is
+// unit-variance noise in a float target that the ink pass turns into paper brightness and
+// the diffusion into absorbency.
 #pragma once
 
 #include <cstdint>
@@ -32,9 +34,10 @@ class CanvasPass {
     double radius = 0.0;
   };
 
-  //! Programs for the scene's canvas type (not None). The background dome is centred on
-  //! `world_bounds` with 20 times its radius.
-  CanvasPass(const scene::Canvas& canvas, std::uint64_t seed, const mesh::Bounds& world_bounds);
+  //! Programs for the scene's canvas type and method (type not None) and its number of
+  //! objects. The background dome is centred on `world_bounds` with 20 times its radius.
+  CanvasPass(const scene::Canvas& canvas, std::uint64_t seed, const mesh::Bounds& world_bounds,
+             std::size_t objects = 1);
 
   //! New parameters (same type and pattern) and scene seed.
   void setParams(const scene::Canvas& canvas, std::uint64_t seed);
@@ -46,9 +49,9 @@ class CanvasPass {
   std::vector<std::string> variants() const;
 
   //! Draws the canvas of the view into the target (width × height, R32F) and returns it.
-  //! `depth` is the G-buffer's. The static canvas is drawn only when the size or the
-  //! parameters change.
-  const Texture2D& run(const std::vector<Item>& items, const Texture2D& depth, const OrbitCamera& camera, int width,
+  //! `gbuffer` is the G-buffer of the frame (depth, and the object ids in colour 1). The
+  //! static canvas is drawn only when the size or the parameters change.
+  const Texture2D& run(const std::vector<Item>& items, const Framebuffer& gbuffer, const OrbitCamera& camera, int width,
                        int height, GpuTimer* timer);
 
   //! The last canvas drawn.
@@ -57,27 +60,58 @@ class CanvasPass {
   //! The noise options in pixels for an output `height` pixels tall.
   noise::CanvasNoiseOptions noiseOptions(int height) const;
   //! Pass name for statistics: "canvas" or "canvas_static".
-  const char* passName() const { return dynamic_ ? "canvas" : "canvas_static"; }
-  //! Kernels one geometry-shader invocation can emit, and the per-triangle cap.
+  const char* passName() const { return method_ == Method::Static ? "canvas_static" : "canvas"; }
+  //! The `tiles` canvas's tile: zero mean, variance 1 / kTileRange² (R8_SNORM); empty
+  //! before the first frame and for the other methods.
+  const Texture2D& tile() const { return tile_; }
+  //! The noise options the tile was drawn with (texels of the tile).
+  const noise::CanvasNoiseOptions& tileOptions() const { return tile_options_; }
+  //! Kernel cells across the tile: kTileCells, fewer for large N′.
+  int tileCells() const { return tile_cells_; }
+  bool usesTiles() const { return method_ == Method::Tiles; }
+  //! Kernels one geometry-shader invocation can emit, and the per-triangle cap (splat).
   int quadsPerInvocation() const { return quads_; }
   int cap() const { return quads_ * kInvocations; }
   glm::dvec3 domeCentre() const { return dome_centre_; }
   double domeRadius() const { return dome_radius_; }
 
   static constexpr int kInvocations = 32;
+  //! Kernel cells across the `tiles` canvas's square tile.
+  static constexpr int kTileCells = 32;
+  //! Most kernel evaluations (texels × N′) spent on drawing a tile: twice the default's.
+  static constexpr double kTileWork = 2.0 * 1024 * 1024 * 32;
+  //! The tile stores v / kTileRange, clamped to [-1, 1] (σ = 1).
+  static constexpr double kTileRange = 4.0;
 
  private:
+  enum class Method { Splat, Tiles, Static };
   void setKernel(const Program& p, const noise::CanvasNoiseOptions& o) const;
+  //! Draws the tile for options `o` (pixels) unless it is already drawn for them.
+  void updateTile(const noise::CanvasNoiseOptions& o);
+  void runTiles(const std::vector<Item>& items, const Framebuffer& gbuffer, const OrbitCamera& camera, int width,
+                int height, const noise::CanvasNoiseOptions& o);
+  void runSplat(const std::vector<Item>& items, const Texture2D& depth, const OrbitCamera& camera, int width,
+                int height, const noise::CanvasNoiseOptions& o);
   std::vector<std::string> definesFor(int invocations) const;
+  std::vector<std::string> tilesDefines() const;
   //! Writes the dome triangles the camera can see into the element buffer; index count.
   GLsizei uploadVisibleDome(const glm::dmat4& model_view_projection);
 
   scene::Canvas canvas_;
   std::vector<std::string> defines_;  //!< the pattern's
+  std::size_t objects_ = 1;
   std::uint32_t seed_ = 0;
-  bool dynamic_ = true;
+  Method method_ = Method::Tiles;
   int quads_ = 0;
-  Program single_, multi_, static_;        //!< geometry shader with 1 or kInvocations invocations; static
+  Program single_, multi_, static_;  //!< geometry shader with 1 or kInvocations invocations; static
+  Program tiles_, tile_synthesis_;   //!< the tiles canvas, and its tile
+  Texture2D tile_;
+  std::string tile_key_;  //!< the options the tile was drawn for
+  noise::CanvasNoiseOptions tile_options_;
+  int tile_cells_ = kTileCells;
+  float texels_per_pixel_ = 1.0f;
+  Buffer spaces_;  //!< per object + background: clip ↔ model matrices
+  std::size_t spaces_capacity_ = 0;
   std::vector<glm::vec3> dome_positions_;  //!< relative to dome_centre_
   std::vector<glm::uvec3> dome_triangles_;
   VertexArray dome_vao_;

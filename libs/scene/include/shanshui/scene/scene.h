@@ -160,11 +160,17 @@ struct Camera {
 //! "shower door" baseline).
 enum class CanvasType { None, RicePaper, Silk, Static };
 enum class CanvasPattern { RicePaper, Silk };
+//! How the moving canvas is drawn: a precomputed noise tile pinned to the surfaces in
+//! patches (one full-screen pass), or seed 001's kernels splatted by a geometry shader on
+//! every triangle (the reference the tiles are measured against).
+enum class CanvasMethod { Tiles, Splat };
 
 //! Lengths are in pixels of a 1024-pixel-tall frame (they scale with the output height).
 struct Canvas {
   CanvasType type = CanvasType::None;
   CanvasPattern static_pattern = CanvasPattern::RicePaper;  //!< what `static` shows
+  CanvasMethod method = CanvasMethod::Tiles;                //!< rice paper and silk only
+  double patch = 2.0;                                       //!< tiles: anchor spacing in kernel radii
   double contrast = 0.06;         //!< paper brightness × (1 + contrast · unit-variance noise)
   double absorbency = 1.0;        //!< how much the canvas varies the ink absorbency
   double grain = 6.0;             //!< kernel radius r (the quads' half side)
