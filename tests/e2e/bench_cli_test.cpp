@@ -108,8 +108,9 @@ TEST(BenchCli, QuickStagesWriteTablesPointsAndPlots) {
     ++plots;
   }
   // quilt 2, param 1, curvature 4 (object space, per pixel, the CDF, the wrinkle filter),
-  // diffusion 2, canvas 2, pipeline 1; and the pictures.
-  EXPECT_EQ(plots, 12) << index;
+  // diffusion 2, canvas 4 (N′: spectrum and Gaussianity; tiles: spectrum and warping
+  // against patch), pipeline 1; and the pictures.
+  EXPECT_EQ(plots, 14) << index;
   EXPECT_GE(colours(image::loadImage(dir / "canvas_dolly.png")), 3u);
   EXPECT_TRUE(fs::exists(dir / "pipeline_presets.png"));
 
