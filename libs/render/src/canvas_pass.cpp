@@ -67,6 +67,8 @@ CanvasPass::CanvasPass(const scene::Canvas& canvas, std::uint64_t seed, const me
       throw makeError("canvas.method 'tiles' needs a ", needed, "-byte uniform block for ", objects,
                       " objects and this driver allows ", block, "; use canvas.method 'splat' or fewer objects");
     }
+    spaces_ = Buffer::create();
+    glNamedBufferStorage(spaces_.id(), static_cast<GLsizeiptr>(needed), nullptr, GL_DYNAMIC_STORAGE_BIT);
   }
   reloadShaders();
   dome_centre_ = world_bounds.centre();
@@ -115,11 +117,6 @@ std::vector<std::string> CanvasPass::tilesDefines() const {
 }
 
 std::vector<std::string> CanvasPass::variants() const {
-  auto joined = [](const std::vector<std::string>& defines) {
-    std::string s;
-    for (const std::string& x : defines) s += (s.empty() ? "" : " ") + x;
-    return s;
-  };
   switch (method_) {
     case Method::Splat:
       return {joined(definesFor(1)), joined(definesFor(kInvocations))};
@@ -315,10 +312,11 @@ void CanvasPass::updateTile(const noise::CanvasNoiseOptions& pixels) {
 void CanvasPass::runTiles(const std::vector<Item>& items, const Framebuffer& gbuffer, const OrbitCamera& camera,
                           int width, int height, const noise::CanvasNoiseOptions& o) {
   // Clip ↔ model matrices of the background (world) and of each object, indexed by the
-  // G-buffer's object id.
+  // G-buffer's object id (the block sized in the constructor).
   struct Space {
     glm::mat4 to_model, to_clip;
   };
+  SHANSHUI_CHECK(items.size() == objects_);
   const double aspect = static_cast<double>(width) / height;
   const glm::dmat4 view_projection = glm::dmat4(camera.projection(aspect)) * glm::dmat4(camera.view());
   std::vector<Space> spaces;
@@ -326,12 +324,6 @@ void CanvasPass::runTiles(const std::vector<Item>& items, const Framebuffer& gbu
   for (const Item& item : items) {
     const glm::dmat4 m = view_projection * item.model;
     spaces.push_back({glm::mat4(glm::inverse(m)), glm::mat4(m)});
-  }
-  if (!spaces_ || spaces_capacity_ < spaces.size()) {
-    spaces_ = Buffer::create();
-    spaces_capacity_ = spaces.size();
-    glNamedBufferStorage(spaces_.id(), static_cast<GLsizeiptr>(spaces_capacity_ * sizeof(Space)), nullptr,
-                         GL_DYNAMIC_STORAGE_BIT);
   }
   glNamedBufferSubData(spaces_.id(), 0, static_cast<GLsizeiptr>(spaces.size() * sizeof(Space)), spaces.data());
   target_.bind();

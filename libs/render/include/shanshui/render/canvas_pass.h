@@ -110,8 +110,7 @@ class CanvasPass {
   noise::CanvasNoiseOptions tile_options_;
   int tile_cells_ = kTileCells;
   float texels_per_pixel_ = 1.0f;
-  Buffer spaces_;  //!< per object + background: clip ↔ model matrices
-  std::size_t spaces_capacity_ = 0;
+  Buffer spaces_;                          //!< per object + background: clip ↔ model matrices (tiles)
   std::vector<glm::vec3> dome_positions_;  //!< relative to dome_centre_
   std::vector<glm::uvec3> dome_triangles_;
   VertexArray dome_vao_;
