@@ -14,16 +14,20 @@
   F(float, noise)         F(float, inv_inner_tex_factor) F(uint, shade_flags)   F(float, border_roughness) \
   F(vec4, world_to_model_x) \
   F(vec4, world_to_model_y) \
-  F(vec3, half_extent)    F(float, border_width)
+  F(vec3, half_extent)    F(float, border_width) \
+  F(float, stroke_half_width) F(float, stroke_taper) F(float, stroke_far) F(float, valley_ink)
 
 // world_to_model_x/y: rows of the world-to-model affine map (x and y of the model, relative
 // to its bounding-box centre); half_extent: the box's half size; border_width: the
-// dissolving border's falloff in model units (0 = a hard edge).
+// dissolving border's falloff in model units (0 = a hard edge). stroke_half_width: half the
+// stroke width in pixels (0 = Eq. 1's bands); stroke_taper, stroke_far, valley_ink: see
+// LineParams.
 
 // line_flags bits
 const uint kLinesOn = 1u;
 const uint kNormalOnly = 2u;  // small object: N·V and depth-edge lines only
 const uint kThinLines = 4u;   // Eq. 1's lines thinned to the curvature's crest
+const uint kStrokes = 8u;     // lines drawn as strokes from their centres (ink_lines.frag)
 // shade_flags bits
 const uint kShadingOn = 1u;
 const uint kHalfLambert = 2u;

@@ -45,13 +45,15 @@ TEST(RenderCli, StatsListThePassesBuiltAndTheirGpuTimePerFrame) {
   }
   const json s = readJson(dir / "s.json");
   EXPECT_EQ(s["passes_built"], json({"gbuffer", "canvas", "ink"}));
-  EXPECT_EQ(s["variants"]["ink"], json({"LINES SHADING WRINKLE SINGLE_OBJECT CANVAS BORDER MIST"}));
+  // The sample draws its lines as strokes: the ink pass has a lines stage before it.
+  EXPECT_EQ(s["variants"]["ink"], json({"LINES STROKES SHADING WRINKLE CANVAS SINGLE_OBJECT BORDER MIST",
+                                        "lines: SINGLE_OBJECT BORDER MIST"}));
   EXPECT_EQ(s["variants"]["canvas"].size(), 2u) << "one and 32 geometry-shader invocations, rice paper";
   EXPECT_EQ(s["variants"]["gbuffer"], json({"SURFACE WRINKLE OBJECT_CURVATURE"}));
   ASSERT_EQ(s["frames"].size(), 3u);
   for (const json& f : s["frames"]) {
     EXPECT_FALSE(f["cached"].get<bool>());
-    EXPECT_EQ(passNames(f), std::set<std::string>({"gbuffer", "canvas", "ink"}));
+    EXPECT_EQ(passNames(f), std::set<std::string>({"gbuffer", "canvas", "lines", "ink"}));
     double sum = 0;
     for (const auto& [k, v] : f["passes"].items()) {
       EXPECT_GE(v.get<double>(), 0.0) << k;
@@ -98,14 +100,22 @@ TEST(RenderCli, LinesOnlyAndShadingOnlyBuildOnlyTheirShaderCode) {
                " --set objects.0.shading.enabled=false");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const json a = readJson(dir / "a.json");
-  EXPECT_EQ(a["variants"]["ink"], json({"LINES SINGLE_OBJECT CANVAS BORDER MIST"}));
+  EXPECT_EQ(a["variants"]["ink"],
+            json({"LINES STROKES CANVAS SINGLE_OBJECT BORDER MIST", "lines: SINGLE_OBJECT BORDER MIST"}));
   EXPECT_EQ(a["variants"]["gbuffer"], json({"OBJECT_CURVATURE"})) << "no noise, no wrinkle texture, no UVs";
   r = run(base + " -o " + quote(dir / "b.png") + " --stats " + quote(dir / "b.json") +
           " --set objects.0.lines.enabled=false");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const json b = readJson(dir / "b.json");
-  EXPECT_EQ(b["variants"]["ink"], json({"SHADING WRINKLE SINGLE_OBJECT CANVAS BORDER MIST"}));
+  EXPECT_EQ(b["variants"]["ink"], json({"SHADING WRINKLE CANVAS SINGLE_OBJECT BORDER MIST"}));
   EXPECT_EQ(b["variants"]["gbuffer"], json({"SURFACE WRINKLE"}));  // no curvature of either kind
+  // Eq. 1's bands instead of strokes: no lines stage, no stroke code.
+  r = run(base + " -o " + quote(dir / "c.png") + " --stats " + quote(dir / "c.json") +
+          " --set objects.0.lines.width=0");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const json c = readJson(dir / "c.json");
+  EXPECT_EQ(c["variants"]["ink"], json({"LINES SHADING WRINKLE CANVAS SINGLE_OBJECT BORDER MIST"}));
+  EXPECT_EQ(passNames(c["frames"][0]).count("lines"), 0u);
 }
 
 TEST(RenderCli, SetChangesTheRenderedPicture) {

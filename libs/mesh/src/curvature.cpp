@@ -267,4 +267,40 @@ double curvatureFeatureSize(const Mesh& m, const VertexCurvature& c, double perc
   return 0.0;
 }
 
+void smoothOverOneRing(const Mesh& m, std::vector<float>& field, int iterations) {
+  SHANSHUI_CHECK_EQ(field.size(), m.positions.size());
+  if (iterations <= 0) return;
+  // Edge neighbours in compressed rows; an edge shared by two faces is listed once.
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> edges;
+  edges.reserve(6 * m.triangles.size());
+  for (const glm::uvec3& t : m.triangles) {
+    for (int e = 0; e < 3; ++e) {
+      const std::uint32_t a = t[e], b = t[(e + 1) % 3];
+      edges.emplace_back(std::min(a, b), std::max(a, b));
+    }
+  }
+  std::sort(edges.begin(), edges.end());
+  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+  std::vector<std::uint32_t> start(m.positions.size() + 1, 0);
+  for (const auto& [a, b] : edges) {
+    ++start[a + 1];
+    ++start[b + 1];
+  }
+  for (std::size_t i = 1; i < start.size(); ++i) start[i] += start[i - 1];
+  std::vector<std::uint32_t> neighbours(start.back()), fill(start.begin(), start.end() - 1);
+  for (const auto& [a, b] : edges) {
+    neighbours[fill[a]++] = b;
+    neighbours[fill[b]++] = a;
+  }
+  std::vector<float> out(field.size());
+  for (int it = 0; it < iterations; ++it) {
+    for (std::size_t v = 0; v < field.size(); ++v) {
+      double sum = field[v];
+      for (std::uint32_t k = start[v]; k < start[v + 1]; ++k) sum += field[neighbours[k]];
+      out[v] = static_cast<float>(sum / (1.0 + (start[v + 1] - start[v])));
+    }
+    field.swap(out);
+  }
+}
+
 }  // namespace shanshui::mesh

@@ -148,5 +148,53 @@ TEST(CurvatureFit, FlatAndTinyMeshesFallBackWithoutNan) {
   for (float k : estimateCurvatureByFit(tri).magnitude) ASSERT_TRUE(std::isfinite(k));
 }
 
+// One-ring smoothing against what the mean of a vertex and its edge neighbours must do: a
+// constant stays put, a linear field stays put at interior vertices of a regular grid (each
+// neighbour has its mirror image), a spike spreads to its one ring and no further per sweep
+// and keeps its sum where every vertex has the same valence, and zero sweeps change nothing.
+TEST(SmoothOverOneRing, KeepsConstantsAndLinearFieldsAndSpreadsASpikeOneRingPerSweep) {
+  const int n = 21;
+  const Mesh grid = test::heightGrid(n, n, 1.0, [](double, double) { return 0.0; });
+  std::vector<float> constant(grid.positions.size(), 2.5f);
+  smoothOverOneRing(grid, constant, 5);
+  for (float v : constant) EXPECT_FLOAT_EQ(v, 2.5f);
+
+  std::vector<float> linear(grid.positions.size());
+  for (std::size_t i = 0; i < linear.size(); ++i)
+    linear[i] = static_cast<float>(3.0 * grid.positions[i].x - 2.0 * grid.positions[i].y);
+  const std::vector<float> before = linear;
+  smoothOverOneRing(grid, linear, 1);
+  int interior = 0;
+  for (int j = 1; j + 1 < n; ++j) {
+    for (int i = 1; i + 1 < n; ++i) {
+      const std::size_t v = static_cast<std::size_t>(j * n + i);
+      EXPECT_NEAR(linear[v], before[v], 1e-4) << i << "," << j;
+      ++interior;
+    }
+  }
+  EXPECT_EQ(interior, (n - 2) * (n - 2));
+  bool border_moved = false;
+  for (std::size_t v = 0; v < linear.size(); ++v) border_moved = border_moved || std::abs(linear[v] - before[v]) > 1e-3;
+  EXPECT_TRUE(border_moved) << "a corner has no mirror neighbours: the test can tell";
+
+  std::vector<float> spike(grid.positions.size(), 0.0f);
+  const std::size_t centre = static_cast<std::size_t>(10 * n + 10);
+  spike[centre] = 7.0f;
+  smoothOverOneRing(grid, spike, 1);
+  int reached = 0;
+  double sum = 0;
+  for (std::size_t v = 0; v < spike.size(); ++v) {
+    sum += spike[v];
+    reached += spike[v] > 0.0f;
+  }
+  EXPECT_EQ(reached, 7) << "the vertex and its six edge neighbours";
+  EXPECT_FLOAT_EQ(spike[centre], 1.0f);
+  EXPECT_NEAR(sum, 7.0, 1e-5);
+
+  std::vector<float> same = before;
+  smoothOverOneRing(grid, same, 0);
+  EXPECT_EQ(same, before);
+}
+
 }  // namespace
 }  // namespace shanshui::mesh

@@ -1,6 +1,7 @@
-// The ink pass: feature lines (seed 001 Eq. 1), interior shading (Eqs. 2, 3, 5) and the
-// composite on paper in one image pass over the G-buffer (shaders/ink.frag), with the
-// per-object parameters in the block of shaders/ink_object_params.glsl.
+// The ink pass: feature lines (seed 001 Eq. 1, or strokes from the centres that
+// shaders/ink_lines.frag finds first), interior shading (Eqs. 2, 3, 5) and the composite on
+// paper in one image pass over the G-buffer (shaders/ink.frag), with the per-object
+// parameters in the block of shaders/ink_object_params.glsl.
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -23,15 +24,21 @@ bool grainHere(const scene::Scene& s) {
   return s.canvas.type != scene::CanvasType::None && !s.diffusion.enabled();
 }
 
+// Variants both image passes share: how objects are indexed and what the atmosphere needs.
+void addSurfaceDefines(const scene::Scene& s, std::vector<std::string>& d) {
+  if (s.objects.size() == 1) d.emplace_back("SINGLE_OBJECT");
+  if (s.dissolvesBorders()) d.emplace_back("BORDER");
+  if (s.mist.enabled()) d.emplace_back("MIST");
+}
+
 std::vector<std::string> inkDefines(const scene::Scene& s, bool debug_outputs) {
   std::vector<std::string> d;
   if (s.usesLines()) d.emplace_back("LINES");
+  if (s.usesStrokes()) d.emplace_back("STROKES");
   if (s.usesShading()) d.emplace_back("SHADING");
   if (s.usesWrinkles()) d.emplace_back("WRINKLE");
-  if (s.objects.size() == 1) d.emplace_back("SINGLE_OBJECT");
   if (grainHere(s)) d.emplace_back("CANVAS");
-  if (s.dissolvesBorders()) d.emplace_back("BORDER");
-  if (s.mist.enabled()) d.emplace_back("MIST");
+  addSurfaceDefines(s, d);
   if (debug_outputs) d.emplace_back("DEBUG_OUTPUTS");
   return d;
 }
@@ -47,11 +54,23 @@ class InkPass final : public RenderPass {
 
   void buildPrograms() override {
     std::vector<std::string> defines = inkDefines(scene_, debug_outputs_);
-    program_ = Program({"fullscreen.vert", "ink.frag"}, defines);  // a throw keeps the old program
+    std::optional<Program> lines;
+    std::vector<std::string> line_defines;
+    if (scene_.usesStrokes()) {
+      addSurfaceDefines(scene_, line_defines);
+      lines.emplace(Program({"fullscreen.vert", "ink_lines.frag"}, line_defines));
+    }
+    program_ = Program({"fullscreen.vert", "ink.frag"}, defines);  // a throw keeps the old programs
+    lines_ = std::move(lines);
     defines_ = std::move(defines);
+    line_defines_ = std::move(line_defines);
   }
 
-  std::vector<std::string> variants() const override { return {joined(defines_)}; }
+  std::vector<std::string> variants() const override {
+    std::vector<std::string> v{joined(defines_)};
+    if (lines_) v.push_back("lines: " + joined(line_defines_));
+    return v;
+  }
 
   void setScene(const scene::Scene& s) override {
     scene_ = s;
@@ -65,6 +84,8 @@ class InkPass final : public RenderPass {
     std::vector<GLenum> out{GL_RGBA8};
     if (debug_outputs_) out.insert(out.end(), {GL_RG16F, GL_R16F});
     target_ = Framebuffer(width, height, out, false);
+    strokes_ = Framebuffer();  // both made at the next frame that draws strokes
+    stroke_ink_ = Texture2D();
   }
 
   bool setDebugOutputs(bool on) override {
@@ -78,40 +99,40 @@ class InkPass final : public RenderPass {
 
   void run(const FrameInputs& in, FrameImages& images) override {
     uploadObjectParams(in);
-    if (in.timer) in.timer->begin("ink");
     const Framebuffer& g = *images.gbuffer;
     glDisable(GL_DEPTH_TEST);
     glBindVertexArray(vao_.id());
     glBindImageTexture(0, g.colour(0).id(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA16);
     glBindImageTexture(1, g.colour(1).id(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA8);
     glBindTextureUnit(2, g.depth().id());
+    if (value_noise_) glBindTextureUnit(3, value_noise_->id());
+    if (lines_ && in.scene.usesStrokes()) {
+      if (stroke_ink_.width() != target_.width() || stroke_ink_.height() != target_.height()) {
+        strokes_ = Framebuffer(target_.width(), target_.height(), {GL_R8}, false);
+        stroke_ink_ = Texture2D(target_.width(), target_.height(), GL_R32UI);
+      }
+      if (in.timer) in.timer->begin("lines");
+      const GLuint zero = 0;
+      glClearTexImage(stroke_ink_.id(), 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+      glBindImageTexture(3, stroke_ink_.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
+      strokes_.bind();
+      glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+      lines_->use();
+      setSurfaceUniforms(*lines_, in);
+      glDrawArrays(GL_TRIANGLES, 0, 3);
+      glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+      glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+      if (in.timer) in.timer->end();
+      SHANSHUI_GL_CHECK("ink lines");
+      glBindImageTexture(3, stroke_ink_.id(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_R32UI);
+    }
+    if (in.timer) in.timer->begin("ink");
     target_.bind();
     const Program& ink = program_;
     ink.use();
-    const double aspect = static_cast<double>(in.width) / in.height;
-    const OrbitCamera& camera = in.camera;
-    ink.set("u_inverse_view_projection",
-            glm::mat4(glm::inverse(glm::dmat4(camera.projection(aspect)) * glm::dmat4(camera.view()))));
-    ink.set("u_eye", glm::vec3(camera.eye()));
-    ink.set("u_near_far", glm::vec2(static_cast<float>(camera.near_plane), static_cast<float>(camera.far_plane)));
+    setSurfaceUniforms(ink, in);
     ink.set("u_light_dir", glm::vec3(glm::normalize(in.scene.light.direction)));
     ink.set("u_paper", glm::vec3(in.scene.output.paper));
-    ink.set("u_fade", static_cast<float>(in.scene.output.fade));
-    const double to_centre = glm::length(camera.eye() - in.world_bounds.centre());
-    const double radius = 0.5 * glm::length(in.world_bounds.size());
-    ink.set("u_fade_range",
-            glm::vec2(static_cast<float>(to_centre - 0.5 * radius), static_cast<float>(to_centre + radius)));
-    if (value_noise_) glBindTextureUnit(3, value_noise_->id());
-    if (in.scene.mist.enabled()) {
-      // Heights as fractions of the scene's vertical extent; noise cells about a tenth of
-      // the scene's horizontal size.
-      const scene::Mist& m = in.scene.mist;
-      const double z0 = in.world_bounds.min.z, extent = std::max(in.world_bounds.size().z, 1e-9);
-      ink.set("u_mist", glm::vec4(static_cast<float>(m.density), static_cast<float>(z0 + m.height * extent),
-                                  static_cast<float>(m.softness * extent), static_cast<float>(m.roughness * extent)));
-      const double size = std::max(std::max(in.world_bounds.size().x, in.world_bounds.size().y), 1e-9);
-      ink.set("u_mist_noise", static_cast<float>(2.0 / size));
-    }
     if (grainHere(in.scene)) {
       glBindImageTexture(2, images.canvas->id(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_R32F);
       ink.set("u_canvas_contrast", static_cast<float>(in.scene.canvas.contrast));
@@ -125,6 +146,31 @@ class InkPass final : public RenderPass {
   const Framebuffer* target() const override { return &target_; }
 
  private:
+  // What ink_surface.glsl reads: the camera, the distance fade and the mist.
+  static void setSurfaceUniforms(const Program& p, const FrameInputs& in) {
+    const double aspect = static_cast<double>(in.width) / in.height;
+    const OrbitCamera& camera = in.camera;
+    p.set("u_inverse_view_projection",
+          glm::mat4(glm::inverse(glm::dmat4(camera.projection(aspect)) * glm::dmat4(camera.view()))));
+    p.set("u_eye", glm::vec3(camera.eye()));
+    p.set("u_near_far", glm::vec2(static_cast<float>(camera.near_plane), static_cast<float>(camera.far_plane)));
+    p.set("u_fade", static_cast<float>(in.scene.output.fade));
+    const double to_centre = glm::length(camera.eye() - in.world_bounds.centre());
+    const double radius = 0.5 * glm::length(in.world_bounds.size());
+    p.set("u_fade_range",
+          glm::vec2(static_cast<float>(to_centre - 0.5 * radius), static_cast<float>(to_centre + radius)));
+    if (in.scene.mist.enabled()) {
+      // Heights as fractions of the scene's vertical extent; noise cells about a tenth of
+      // the scene's horizontal size.
+      const scene::Mist& m = in.scene.mist;
+      const double z0 = in.world_bounds.min.z, extent = std::max(in.world_bounds.size().z, 1e-9);
+      p.set("u_mist", glm::vec4(static_cast<float>(m.density), static_cast<float>(z0 + m.height * extent),
+                                static_cast<float>(m.softness * extent), static_cast<float>(m.roughness * extent)));
+      const double size = std::max(std::max(in.world_bounds.size().x, in.world_bounds.size().y), 1e-9);
+      p.set("u_mist_noise", static_cast<float>(2.0 / size));
+    }
+  }
+
   void uploadObjectParams(const FrameInputs& in) {
     std::vector<gpu::ObjectParams> params(in.objects.size());
     const double pixels_per_unit_at_1 = 0.5 * in.height / std::tan(glm::radians(in.camera.fov_y_deg) * 0.5);
@@ -145,8 +191,12 @@ class InkPass final : public RenderPass {
       p.soft_width = static_cast<float>(l.soft_width);
       p.silhouette = static_cast<float>(l.silhouette);
       p.depth_edges = static_cast<float>(l.depth_edges);
-      p.line_flags =
-          (l.enabled ? gpu::kLinesOn : 0u) | (small ? gpu::kNormalOnly : 0u) | (l.thin ? gpu::kThinLines : 0u);
+      p.line_flags = (l.enabled ? gpu::kLinesOn : 0u) | (small ? gpu::kNormalOnly : 0u) |
+                     (l.thin ? gpu::kThinLines : 0u) | (l.strokes() ? gpu::kStrokes : 0u);
+      p.stroke_half_width = l.strokes() ? static_cast<float>(0.5 * l.width) : 0.0f;
+      p.stroke_taper = static_cast<float>(l.taper);
+      p.stroke_far = static_cast<float>(l.far_width);
+      p.valley_ink = static_cast<float>(l.valley_ink);
       p.tones = glm::vec4(sh.tones[0], sh.tones[1], sh.tones[2], sh.tones[3]);
       p.thresholds = glm::vec4(sh.thresholds[0], sh.thresholds[1], sh.thresholds[2], sh.thresholds[3]);
       p.tone5 = static_cast<float>(sh.tones[4]);
@@ -185,10 +235,14 @@ class InkPass final : public RenderPass {
   bool debug_outputs_ = false;
   std::vector<std::string> defines_;
   Program program_;
+  std::optional<Program> lines_;  //!< the stroke centres, when some object draws strokes
+  std::vector<std::string> line_defines_;
   VertexArray vao_;
   Buffer params_;
   std::size_t capacity_ = 0;
   Framebuffer target_;
+  Framebuffer strokes_;                   //!< the lines pass's target (it writes no colour: it stamps)
+  Texture2D stroke_ink_;                  //!< R32UI: the strokes' ink × 255, by atomic max
   std::optional<Texture2D> value_noise_;  //!< the border's and mist's noise
   std::optional<std::uint64_t> noise_seed_;
 };

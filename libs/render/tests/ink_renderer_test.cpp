@@ -10,6 +10,7 @@
 #include <fstream>
 #include <map>
 #include <memory>
+#include <numbers>
 #include <set>
 #include <sstream>
 
@@ -579,6 +580,11 @@ TEST_F(Variants, EveryCombinationTheSceneKeysCanProduceCompiles) {
   // The tests' debug outputs on top of every other define.
   ASSERT_NO_THROW(Program({"fullscreen.vert", "ink.frag"},
                           {"LINES", "SHADING", "WRINKLE", "CANVAS", "BORDER", "MIST", "DEBUG_OUTPUTS"}));
+  // Strokes: the ink pass reading them, and the lines stage with one or many objects.
+  ASSERT_NO_THROW(
+      Program({"fullscreen.vert", "ink.frag"}, {"LINES", "STROKES", "SHADING", "BORDER", "MIST", "DEBUG_OUTPUTS"}));
+  ASSERT_NO_THROW(Program({"fullscreen.vert", "ink_lines.frag"}, {"BORDER", "MIST"}));
+  ASSERT_NO_THROW(Program({"fullscreen.vert", "ink_lines.frag"}, {"SINGLE_OBJECT"}));
   // G-buffer: SURFACE × WRINKLE × curvature kinds; ink: LINES × SHADING × WRINKLE ×
   // SINGLE_OBJECT × CANVAS; canvas: two patterns × tiles (one or more objects) or splat,
   // and static's two; diffusion: one.
@@ -714,6 +720,121 @@ TEST_F(Look, ThinLinesKeepTheCrestsOfEquationOnesBands) {
   EXPECT_LT(thin_lines, thick_lines / 3);
   EXPECT_GT(thin_lines, 0);
   EXPECT_EQ(thin_outside, 0);
+}
+
+// Mean width of the strokes (pixels with ink above 0.25, so a stroke's antialiased edge
+// counts as half a pixel on each side): twice their area over their perimeter,
+// which for a stroke of width w and length L ≫ w is (2wL) / (2L + 2w) ≈ w.
+double meanStrokeWidth(const std::vector<double>& ink, int width, int height) {
+  auto dark = [&](int x, int y) {
+    return x >= 0 && y >= 0 && x < width && y < height && ink[static_cast<std::size_t>(y) * width + x] > 0.25;
+  };
+  double area = 0, perimeter = 0;
+  for (int y = 0; y < height; ++y) {
+    for (int x = 0; x < width; ++x) {
+      if (!dark(x, y)) continue;
+      ++area;
+      perimeter += !dark(x - 1, y) + !dark(x + 1, y) + !dark(x, y - 1) + !dark(x, y + 1);
+    }
+  }
+  return perimeter > 0 ? 2.0 * area / perimeter : 0.0;
+}
+
+// The hill of the test above drawn with strokes: lines, not a disc, as wide as asked
+// (measured in the picture, independently of how the shader draws them), only where Eq. 1
+// passes its threshold, and a lines pass that exists only when strokes are asked for.
+TEST_F(Look, StrokesAreLinesOfTheWidthAskedForOnAHill) {
+  const mesh::Mesh hill = test::heightGrid(121, 121, 0.05, [](double x, double y) {
+    const double dx = x - 3.0, dy = y - 3.0;
+    return 1.5 * std::exp(-(dx * dx + dy * dy) / 2.0) + 0.004 * std::sin(7.0 * x) * std::cos(5.0 * y);
+  });
+  const json top = {{"output", {{"fade", 0.0}}}};
+  std::map<double, std::vector<double>> ink;
+  std::map<double, image::Image> weight;
+  image::Image positions;
+  for (const double width : {0.0, 2.0, 5.0}) {
+    const scene::Scene s = sceneWith(
+        {{"lines", {{"width", width}, {"taper", 1.0}, {"depth_edges", 0.0}}}, {"shading", {{"enabled", false}}}}, top);
+    InkRenderer r(s, prepare(s, hill));
+    r.setDebugOutputs(true);
+    const bool strokes = r.variants().at("ink").size() > 1;
+    EXPECT_EQ(strokes, width > 0) << "the lines pass is built only for strokes";
+    ink[width] = inkOf(r.render(sceneCamera(s, r.worldBounds(), 1.0, {-30, 35, 1.2}), 240, 240).colour(0).download(3),
+                       s.output.paper);
+    weight[width] = r.passTarget("ink")->colour(1).download(2);
+    positions = r.worldPositions();
+  }
+  int object = 0, band = 0, stroked = 0, stroke_off_band = 0;
+  for (int y = 0; y < 240; ++y) {
+    for (int x = 0; x < 240; ++x) {
+      if (positions.at(x, y, 3) < 0.5f) continue;
+      ++object;
+      const std::size_t i = static_cast<std::size_t>(y) * 240 + x;
+      const bool in_band = weight[0.0].at(x, y, 0) > 0.0f;
+      band += weight[0.0].at(x, y, 0) > 0.5f;
+      stroked += ink[2.0][i] > 0.5;
+      // A stroke may spill its half-width (1 px) past the band, no further.
+      bool near_band = false;
+      for (int dy = -1; dy <= 1; ++dy) {
+        for (int dx = -1; dx <= 1; ++dx) {
+          const int u = std::clamp(x + dx, 0, 239), v = std::clamp(y + dy, 0, 239);
+          near_band = near_band || weight[0.0].at(u, v, 0) > 0.0f;
+        }
+      }
+      stroke_off_band += ink[2.0][i] > 0.5 && !in_band && !near_band;
+    }
+  }
+  ASSERT_GT(object, 10000);
+  EXPECT_GT(band, object / 20) << "Eq. 1 draws a band";
+  EXPECT_GT(stroked, 100);
+  EXPECT_LT(stroked, band / 2) << "strokes are lines, not the band";
+  EXPECT_EQ(stroke_off_band, 0);
+  const double w2 = meanStrokeWidth(ink[2.0], 240, 240), w5 = meanStrokeWidth(ink[5.0], 240, 240);
+  EXPECT_GT(w2, 1.0);
+  EXPECT_LT(w2, 3.0);
+  EXPECT_NEAR(w5 / w2, 2.5, 0.6) << "width follows the key: " << w2 << " and " << w5 << " px";
+  EXPECT_LT(w5, 6.5);
+}
+
+// Parallel ridges and valleys of one profile z = a·cos(x), seen across: both have the same
+// |k|, so Eq. 1 draws them alike; strokes put `valley_ink` of the ridges' ink in the valleys.
+TEST_F(Look, ValleyStrokesCarryValleyInkOfTheRidges) {
+  const double a = 0.25;
+  const mesh::Mesh waves = test::heightGrid(161, 81, 0.1, [&](double x, double) { return a * std::cos(x); });
+  const scene::Scene s = sceneWith(
+      {{"lines",
+        {{"width", 3.0}, {"curve_factor", 2.0}, {"valley_ink", 0.4}, {"silhouette", 0.0}, {"depth_edges", 0.0}}},
+       {"shading", {{"enabled", false}}}},
+      {{"output", {{"fade", 0.0}}}});
+  InkRenderer r(s, prepare(s, waves));
+  const std::vector<double> ink = inkOf(
+      r.render(sceneCamera(s, r.worldBounds(), 1.0, {0, 60, 1.0}), 320, 240).colour(0).download(3), s.output.paper);
+  const image::Image positions = r.worldPositions();
+  const double x0 = r.worldBounds().min.x;  // where the grid's x = 0 landed (the mesh is recentred)
+  std::vector<double> ridge, valley;
+  for (int y = 0; y < 240; ++y) {
+    for (int x = 0; x < 320; ++x) {
+      if (positions.at(x, y, 3) < 0.5f) continue;
+      // Away from the grid's cut edges, which draw lines of their own.
+      const double gx = positions.at(x, y, 0) - x0, gy = positions.at(x, y, 1) - r.worldBounds().min.y;
+      if (gx < 1.0 || gx > 15.0 || gy < 1.0 || gy > 7.0) continue;
+      // Phase of the profile at this pixel, in (−π, π]: 0 on a ridge, ±π in a valley.
+      const double phase = std::remainder(gx, 2.0 * std::numbers::pi);
+      const double v = ink[static_cast<std::size_t>(y) * 320 + x];
+      if (std::abs(phase) < 0.25) ridge.push_back(v);
+      if (std::abs(phase) > std::numbers::pi - 0.25) valley.push_back(v);
+    }
+  }
+  ASSERT_GT(ridge.size(), 500u);
+  ASSERT_GT(valley.size(), 500u);
+  // The 95th percentile: the strokes' own ink, not the paper between them.
+  auto p95 = [](std::vector<double> v) {
+    std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() * 95 / 100), v.end());
+    return v[v.size() * 95 / 100];
+  };
+  const double ridge_ink = p95(ridge), valley_ink = p95(valley);
+  EXPECT_GT(ridge_ink, 0.5);
+  EXPECT_NEAR(valley_ink / ridge_ink, 0.4, 0.1);
 }
 
 }  // namespace

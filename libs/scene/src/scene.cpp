@@ -1,5 +1,6 @@
 #include "shanshui/scene/scene.h"
 
+#include <algorithm>
 #include <cctype>
 #include <fstream>
 
@@ -26,39 +27,35 @@ std::filesystem::path Scene::resolve(const std::string& relative) const {
   return p.is_absolute() ? p : base_dir / p;
 }
 
+namespace {
+template <typename Pred>
+bool anyObject(const std::vector<Object>& objects, Pred pred) {
+  return std::any_of(objects.begin(), objects.end(), pred);
+}
+}  // namespace
+
 bool Scene::usesWrinkles() const {
-  for (const Object& o : objects) {
-    if (o.wrinkled()) return true;
-  }
-  return false;
+  return anyObject(objects, [](const Object& o) { return o.wrinkled(); });
 }
 
 bool Scene::usesLines() const {
-  for (const Object& o : objects) {
-    if (o.lines.enabled) return true;
-  }
-  return false;
+  return anyObject(objects, [](const Object& o) { return o.lines.enabled; });
+}
+
+bool Scene::usesStrokes() const {
+  return anyObject(objects, [](const Object& o) { return o.lines.strokes(); });
 }
 
 bool Scene::hasAnimation() const {
-  for (const Object& o : objects) {
-    if (o.animated()) return true;
-  }
-  return false;
+  return anyObject(objects, [](const Object& o) { return o.animated(); });
 }
 
 bool Scene::dissolvesBorders() const {
-  for (const Object& o : objects) {
-    if (o.dissolvesBorder()) return true;
-  }
-  return false;
+  return anyObject(objects, [](const Object& o) { return o.dissolvesBorder(); });
 }
 
 bool Scene::usesShading() const {
-  for (const Object& o : objects) {
-    if (o.shading.enabled) return true;
-  }
-  return false;
+  return anyObject(objects, [](const Object& o) { return o.shading.enabled; });
 }
 
 namespace {

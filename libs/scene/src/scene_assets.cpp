@@ -45,8 +45,9 @@ ObjectAsset prepareAsset(mesh::Mesh m, const Object& o, const std::string& where
   if (!wrinkled) m.uvs.clear();
   if (m.normals.size() != m.positions.size()) m.normals = mesh::vertexNormals(m);
   if (o.lines.enabled) {  // the feature size serves both curvature sources
-    const mesh::VertexCurvature c =
+    mesh::VertexCurvature c =
         o.lines.curvature == CurvatureSource::Quadric ? mesh::estimateCurvatureByFit(m) : mesh::estimateCurvature(m);
+    mesh::smoothOverOneRing(m, c.magnitude, o.lines.smoothing);
     asset.feature_size = mesh::curvatureFeatureSize(m, c);
     if (perVertex(o.lines.curvature)) {
       asset.curvature.resize(c.magnitude.size());
@@ -76,7 +77,7 @@ LoadedObject AssetCache::get(const Scene& scene, std::size_t index) {
   const std::filesystem::path source = scene.resolve(o.mesh.empty() ? o.dem : o.mesh);
   const std::string key = source.string() + "|" + std::to_string(o.z_scale) + "|" + std::to_string(o.max_vertices) +
                           "|" + std::to_string(o.recentre) + "|" + std::to_string(object_curvature) +
-                          std::to_string(curvature) + "|" +
+                          std::to_string(curvature) + "|" + std::to_string(o.lines.smoothing) + "|" +
                           (wrinkled ? (o.wrinkle.uv == UvSource::Mesh ? "uv-mesh" : "uv-planar") : "no-uv");
   std::shared_ptr<const ObjectAsset>& slot = meshes_[key];
   std::shared_ptr<const image::Image> wrinkle;

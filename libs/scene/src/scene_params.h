@@ -115,6 +115,21 @@ void describe(V& v, LineParams& p) {
              "keep only the crest of each band past the threshold (curvature peaks across it): strokes, not "
              "filled regions"},
             p.thin);
+  v.integer({"smoothing",
+             "one-ring averaging sweeps of the per-vertex curvature on load (quadric, cotangent): lines at the "
+             "scale of landforms, not of the mesh's finest roughness",
+             kRebuild, "sweeps"},
+            p.smoothing, {0, 200});
+  v.number({"width",
+            "strokes instead of Eq. 1's bands: crests of the curvature (ridges, valleys), outlines and thinned "
+            "silhouettes drawn this wide near the camera at full strength; 0 = Eq. 1",
+            Effect::Uniform, "pixels"},
+           p.width, {0, 12});
+  v.number({"taper", "width of a crest just past the threshold, relative to one of twice its curvature"}, p.taper,
+           kUnit);
+  v.number({"far_width", "stroke width at the far side of the scene, relative to the near side"}, p.far_width, kUnit);
+  v.number({"valley_ink", "ink of concave crests (valleys, crevices), relative to ridges and outlines"}, p.valley_ink,
+           kUnit);
 }
 
 template <typename V>

@@ -238,6 +238,7 @@ TEST(Scene, RebuildKeysAreTheOnesThatChangeVariantsOrFiles) {
                                           "objects.*.recentre",
                                           "objects.*.lines.enabled",
                                           "objects.*.lines.curvature",
+                                          "objects.*.lines.smoothing",
                                           "objects.*.shading.enabled",
                                           "objects.*.wrinkle.texture",
                                           "objects.*.wrinkle.uv",

@@ -37,4 +37,10 @@ VertexCurvature estimateCurvatureByFit(const Mesh& mesh);
 //! percentile in (0, 100); returns 0 for a flat mesh.
 double curvatureFeatureSize(const Mesh& mesh, const VertexCurvature& curvature, double percentile = 90.0);
 
+//! `iterations` Jacobi sweeps of the one-ring mean (each vertex and its edge neighbours,
+//! equal weights) over a per-vertex field: curvature at the scale of major landforms rather
+//! than of the mesh's finest roughness. Keeps constants; on a regular grid it keeps linear
+//! fields at interior vertices. The field's size must be the vertex count.
+void smoothOverOneRing(const Mesh& mesh, std::vector<float>& field, int iterations);
+
 }  // namespace shanshui::mesh

@@ -54,6 +54,16 @@ struct LineParams {
   //! Keep only the crest of each band past the threshold (non-maximum suppression of the
   //! curvature across it): lines instead of filled regions.
   bool thin = false;
+  //! One-ring smoothing sweeps of the per-vertex curvature on load: lines at the scale of
+  //! landforms instead of the mesh's finest roughness.
+  int smoothing = 0;
+  //! Strokes instead of Eq. 1's bands: the curvature's crests, outlines and thinned
+  //! silhouettes drawn as lines this many pixels wide (near, strongest); 0 = Eq. 1.
+  double width = 0.0;
+  double taper = 0.35;      //!< width of a crest just past the threshold, relative to a strong one
+  double far_width = 0.45;  //!< width at the far side of the scene, relative to the near side
+  double valley_ink = 0.5;  //!< ink of concave crests (valleys), relative to ridges and outlines
+  bool strokes() const { return enabled && width > 0; }
 };
 
 //! Interior shading (seed 001 Eqs. 2, 3, 5; SPEC.md section 7).
@@ -231,6 +241,7 @@ struct Scene {
   std::filesystem::path resolve(const std::string& relative) const;
   bool usesWrinkles() const;
   bool usesLines() const;
+  bool usesStrokes() const;  //!< some object draws its lines as strokes
   bool usesShading() const;
   bool hasAnimation() const;
   bool dissolvesBorders() const;

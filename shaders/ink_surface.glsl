@@ -1,0 +1,103 @@
+// What the image passes over the G-buffer share (ink.frag, ink_lines.frag): the G-buffer's
+// targets, positions rebuilt from depth, and how much of a surface point the atmosphere
+// (distance fade, mist) and the dissolving border leave standing. Include after
+// ink_objects.glsl.
+#if defined(BORDER) || defined(MIST)
+// Tiled fractal value noise in [0, 1] (libs/noise's erosion noise, 4 coarsest cells per
+// tile): one filtered fetch costs a fraction of procedural noise on a software rasteriser.
+layout(binding = 3) uniform sampler2D u_value_noise;
+#endif
+
+// The G-buffer's colour targets are read as images: llvmpipe's image load is about a third
+// of the cost of a texel fetch (the ink pass ~10 % cheaper, measured side by side). The
+// depth buffer cannot be an image and stays a texture.
+layout(rgba16, binding = 0) readonly uniform image2D u_normal_curvature;  // encoded: see ink_gbuffer.frag
+layout(rgba8, binding = 1) readonly uniform image2D u_surface_id;
+layout(binding = 2) uniform sampler2D u_depth;
+uniform mat4 u_inverse_view_projection;
+uniform vec3 u_eye;
+uniform vec2 u_near_far;     // of the projection, for linear depth
+uniform float u_fade;        // strength, [0, 1]
+uniform vec2 u_fade_range;   // distances where the fade starts and is full
+#ifdef MIST
+uniform vec4 u_mist;         // density, z of the full mist's top, thinning band, noise amplitude (world units)
+uniform float u_mist_noise;  // noise tiles per world unit
+#endif
+
+vec3 worldPosition(ivec2 p, float depth) {
+  vec2 ndc = (vec2(p) + 0.5) / vec2(textureSize(u_depth, 0)) * 2.0 - 1.0;
+  vec4 w = u_inverse_view_projection * vec4(ndc, depth * 2.0 - 1.0, 1.0);
+  return w.xyz / w.w;
+}
+
+// Distance along the view axis from a depth-buffer value; background is infinitely far.
+float viewDepth(float d) {
+  if (d >= 1.0) return 3.0e38;
+  float n = u_near_far.x, f = u_near_far.y;
+  return n * f / (f - d * (f - n));
+}
+
+// The largest depth-buffer value in the 3×3 block around p but its two off corners, from
+// two gathers (four texel fetches would cost twice as much on a software rasteriser).
+float farthestNeighbour(ivec2 p) {
+  vec2 texel = 1.0 / vec2(textureSize(u_depth, 0));
+  vec2 centre = (vec2(p) + 0.5) * texel;
+  vec4 a = textureGather(u_depth, centre + 0.5 * texel);  // p, p+x, p+y, p+x+y
+  vec4 b = textureGather(u_depth, centre - 0.5 * texel);  // p−x−y, p−x, p−y, p
+  return max(max(max(a.x, a.y), max(a.z, a.w)), max(max(b.x, b.y), max(b.z, b.w)));
+}
+
+// The G-buffer's encoded curvature k / (1 + k) at q (monotone in k), 0 on the background.
+float curvatureCode(ivec2 q) {
+  if (texelFetch(u_depth, q, 0).r >= 1.0) return 0.0;
+  return imageLoad(u_normal_curvature, q).w;
+}
+
+// k / (1 + k) back to k; the largest code stands for 65534, not infinity (no 0 · ∞).
+float decodeCurvature(float code) {
+  return code / (1.0 - min(code, 65534.0 / 65535.0));
+}
+
+#ifdef BORDER
+// How much of the object is left at `position` (1 inside, 0 at its horizontal border): the
+// distance to the border over the falloff width, pulled inwards by up to `roughness` widths
+// of noise, so the edge is an irregular wash, never a straight cut, and always paper.
+float borderPresence(ObjectParams o, vec3 position) {
+  if (o.border_width <= 0.0) return 1.0;
+  vec4 w = vec4(position, 1.0);
+  vec2 m = vec2(dot(o.world_to_model_x, w), dot(o.world_to_model_y, w));
+  vec2 inside = o.half_extent.xy - abs(m);
+  float t = min(inside.x, inside.y) / o.border_width;
+  if (t >= 1.0 + o.border_roughness) return 1.0;  // beyond the band the noise can reach: no noise
+  // About one coarse noise cell per border width.
+  float n = texture(u_value_noise, m / o.border_width * 0.25).r;
+  return smoothstep(0.0, 1.0, t - o.border_roughness * n);
+}
+#endif
+
+#ifdef MIST
+// Mist at `position`: full below u_mist.y, thinning over u_mist.z above it, the band broken
+// by noise so it lies in banks.
+float mistAt(vec3 position) {
+  // Noise moves the band by at most u_mist.w: outside that, no noise is needed.
+  float h0 = (position.z - u_mist.y) / u_mist.z, reach = u_mist.w / u_mist.z;
+  if (h0 >= 1.0 + reach) return 0.0;
+  if (h0 <= -reach) return u_mist.x;
+  float n = 2.0 * texture(u_value_noise, position.xy * u_mist_noise).g - 1.0;
+  float h = h0 + reach * n;
+  return u_mist.x * (1.0 - smoothstep(0.0, 1.0, h));
+}
+#endif
+
+// How much of the ink at `position` stands against the paper: 1 − the distance fade, times
+// 1 − the mist, times what the border leaves. The picture is paper + (ink − paper) · this.
+float presence(ObjectParams o, vec3 position) {
+  float f = 1.0 - u_fade * smoothstep(u_fade_range.x, u_fade_range.y, distance(u_eye, position));
+#ifdef MIST
+  f *= 1.0 - mistAt(position);
+#endif
+#ifdef BORDER
+  f *= borderPresence(o, position);
+#endif
+  return f;
+}
