@@ -106,7 +106,7 @@ class InkPass final : public RenderPass {
     glBindImageTexture(1, g.colour(1).id(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA8);
     glBindTextureUnit(2, g.depth().id());
     if (value_noise_) glBindTextureUnit(3, value_noise_->id());
-    if (lines_ && in.scene.usesStrokes()) {
+    if (lines_) {  // built exactly when some object draws strokes
       if (stroke_ink_.width() != target_.width() || stroke_ink_.height() != target_.height()) {
         strokes_ = Framebuffer(target_.width(), target_.height(), {GL_R8}, false);
         stroke_ink_ = Texture2D(target_.width(), target_.height(), GL_R32UI);

@@ -49,9 +49,15 @@ std::vector<scene::LoadedObject> prepare(const scene::Scene& s, const mesh::Mesh
   return {{std::make_shared<const scene::ObjectAsset>(scene::prepareAsset(m, s.objects[0])), std::move(wrinkle)}};
 }
 
+// The value below which a fraction q of v lies (v not empty).
+double quantile(std::vector<double> v, double q) {
+  const std::size_t k = std::min(v.size() - 1, static_cast<std::size_t>(q * static_cast<double>(v.size())));
+  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(k), v.end());
+  return v[k];
+}
+
 double median(std::vector<double> v) {
-  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2), v.end());
-  return v[v.size() / 2];
+  return quantile(std::move(v), 0.5);
 }
 
 // Curvature the G-buffer holds (dimensionless) at object pixels away from the silhouette.
@@ -686,14 +692,20 @@ TEST_F(Look, MistLeavesTheLowGroundWhiteAndTheTopsAlone) {
   EXPECT_GT(high, 2000);
 }
 
+// A Gaussian hill 1.5 high (σ = 1) on a 6 × 6 plain with a few thousandths of roughness: the
+// smooth shape Eq. 1's normalisation fills.
+mesh::Mesh roughHill() {
+  return test::heightGrid(121, 121, 0.05, [](double x, double y) {
+    const double dx = x - 3.0, dy = y - 3.0;
+    return 1.5 * std::exp(-(dx * dx + dy * dy) / 2.0) + 0.004 * std::sin(7.0 * x) * std::cos(5.0 * y);
+  });
+}
+
 // A smooth Gaussian hill with a little roughness: Eq. 1 past its threshold covers a broad
 // band of it; `thin` keeps only the crests, a small share of it, and only pixels Eq. 1
 // also draws.
 TEST_F(Look, ThinLinesKeepTheCrestsOfEquationOnesBands) {
-  const mesh::Mesh hill = test::heightGrid(121, 121, 0.05, [](double x, double y) {
-    const double dx = x - 3.0, dy = y - 3.0;
-    return 1.5 * std::exp(-(dx * dx + dy * dy) / 2.0) + 0.004 * std::sin(7.0 * x) * std::cos(5.0 * y);
-  });
+  const mesh::Mesh hill = roughHill();
   std::map<bool, image::Image> weight;
   image::Image positions;
   for (const bool thin : {false, true}) {
@@ -744,10 +756,7 @@ double meanStrokeWidth(const std::vector<double>& ink, int width, int height) {
 // (measured in the picture, independently of how the shader draws them), only where Eq. 1
 // passes its threshold, and a lines pass that exists only when strokes are asked for.
 TEST_F(Look, StrokesAreLinesOfTheWidthAskedForOnAHill) {
-  const mesh::Mesh hill = test::heightGrid(121, 121, 0.05, [](double x, double y) {
-    const double dx = x - 3.0, dy = y - 3.0;
-    return 1.5 * std::exp(-(dx * dx + dy * dy) / 2.0) + 0.004 * std::sin(7.0 * x) * std::cos(5.0 * y);
-  });
+  const mesh::Mesh hill = roughHill();
   const json top = {{"output", {{"fade", 0.0}}}};
   std::map<double, std::vector<double>> ink;
   std::map<double, image::Image> weight;
@@ -828,11 +837,7 @@ TEST_F(Look, ValleyStrokesCarryValleyInkOfTheRidges) {
   ASSERT_GT(ridge.size(), 500u);
   ASSERT_GT(valley.size(), 500u);
   // The 95th percentile: the strokes' own ink, not the paper between them.
-  auto p95 = [](std::vector<double> v) {
-    std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() * 95 / 100), v.end());
-    return v[v.size() * 95 / 100];
-  };
-  const double ridge_ink = p95(ridge), valley_ink = p95(valley);
+  const double ridge_ink = quantile(ridge, 0.95), valley_ink = quantile(valley, 0.95);
   EXPECT_GT(ridge_ink, 0.5);
   EXPECT_NEAR(valley_ink / ridge_ink, 0.4, 0.1);
 }
