@@ -9,6 +9,6 @@
 
 in vec2 g_offset;
 flat in vec4 g_impulse;
-layout(location = 0) out float o_canvas;
+layout(location = 0) out vec2 o_canvas;  // grain; no marks (blended additively)
 
-void main() { o_canvas = g_impulse.x * canvasKernel(g_offset, g_impulse.yzw) * u_kernel_misc.w; }
+void main() { o_canvas = vec2(g_impulse.x * canvasKernel(g_offset, g_impulse.yzw) * u_kernel_misc.w, 0.0); }

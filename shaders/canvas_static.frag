@@ -15,7 +15,7 @@ uniform uint u_seed;
 #ifdef CANVAS_TILE
 uniform int u_cells;
 #endif
-layout(location = 0) out float o_canvas;
+layout(location = 0) out vec2 o_canvas;  // grain; no marks
 
 void main() {
   vec2 p = gl_FragCoord.xy;
@@ -41,5 +41,5 @@ void main() {
       }
     }
   }
-  o_canvas = sum * u_kernel_misc.w;
+  o_canvas = vec2(sum * u_kernel_misc.w, 0.0);
 }

@@ -18,7 +18,8 @@ uniform vec3 u_paper;
 layout(r32ui, binding = 3) readonly uniform uimage2D u_stroke_ink;
 #endif
 #ifdef CANVAS
-layout(r32f, binding = 2) readonly uniform image2D u_canvas;  // unit-variance paper noise
+// The paper: unit-variance grain, and its marks (fibres, spots, mottle) as a brightness change.
+layout(rg32f, binding = 2) readonly uniform image2D u_canvas;
 uniform float u_canvas_contrast;
 #endif
 
@@ -28,10 +29,11 @@ layout(location = 1) out vec2 o_line;  // weight, col_i
 layout(location = 2) out float o_tone;
 #endif
 
-// The paper's grain over the finished colour: brightness × (1 + contrast · noise).
+// The paper over the finished colour: brightness × (1 + contrast · grain) × (1 + marks).
 vec4 onPaper(ivec2 p, vec3 colour) {
 #ifdef CANVAS
-  colour *= 1.0 + u_canvas_contrast * imageLoad(u_canvas, p).r;
+  vec2 paper = imageLoad(u_canvas, p).rg;
+  colour *= (1.0 + u_canvas_contrast * paper.r) * (1.0 + paper.g);
 #endif
   return vec4(clamp(colour, 0.0, 1.0), 1.0);
 }

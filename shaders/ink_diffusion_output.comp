@@ -4,7 +4,7 @@
 // through. One invocation per pair of columns (a texel of u_after, which holds two pixels:
 // x in channel x & 1) and STRIP_ROWS rows.
 //
-// CANVAS: the paper's grain, × (1 + contrast · canvas noise), then goes over everything,
+// CANVAS: the paper, × (1 + contrast · grain)(1 + marks), then goes over everything,
 // so every pixel is written. Without it the pass has copied the picture into u_out first,
 // and only the pixels whose ink changed are written: none in the areas u_active leaves out
 // (no ink above the residual and no stroke within n + d), and an RGBA8 store costs
@@ -16,7 +16,7 @@ layout(rg32f, binding = 1) readonly uniform image2D u_after;
 layout(rgba8, binding = 2) writeonly uniform image2D u_out;
 uniform vec3 u_paper;
 #ifdef CANVAS
-layout(r32f, binding = 4) readonly uniform image2D u_canvas;
+layout(rg32f, binding = 4) readonly uniform image2D u_canvas;  // grain, marks
 uniform float u_canvas_contrast;
 #else
 layout(r8ui, binding = 5) readonly uniform uimage2D u_active;  // one texel per AREA_W × AREA_H pixels
@@ -44,7 +44,8 @@ void main() {
 #endif
       c -= u_paper * (after[i] - before);
 #ifdef CANVAS
-      c *= 1.0 + u_canvas_contrast * imageLoad(u_canvas, p).r;
+      vec2 paper = imageLoad(u_canvas, p).rg;
+      c *= (1.0 + u_canvas_contrast * paper.r) * (1.0 + paper.g);
 #endif
       imageStore(u_out, p, vec4(clamp(c, 0.0, 1.0), colour.a));
     }

@@ -26,7 +26,9 @@ double canvasKernel(const CanvasNoiseOptions& o, double dx, double dy, double e0
   const double a = canvasBandwidth(o);
   if (o.silk) {
     const double omega = o.isotropic ? 2 * kPi * e0 : o.omega0;
-    return (1 - o.mix) * gabor(dx, dy, a, o.F0, omega) + o.mix * gabor(dy, dx, a, o.F0, omega);
+    // The twin at swapped coordinates with −ω runs at ω + 90°: the weft across the warp
+    // (with ω itself it would run at 90° − ω, along the warp at 45°).
+    return (1 - o.mix) * gabor(dx, dy, a, o.F0, omega) + o.mix * gabor(dy, dx, a, o.F0, -omega);
   }
   const double f = o.perlin_frequency / r;
   return std::exp(-kPi * a * a * (dx * dx + dy * dy)) * perlin(dx * f + 256 * e0, dy * f + 256 * e1, 256 * e2);

@@ -89,7 +89,13 @@ WarpError warpingError(const WarpView& previous, const WarpView& current) {
   return out;
 }
 
-std::vector<double> radialPowerSpectrum(const image::Image& img) {
+namespace {
+
+// The periodogram of a one-channel image as radialPowerSpectrum describes it, calling
+// visit(fx, fy, power) for every bin but the mean (fx, fy in cycles per pixel, in
+// (−1/2, 1/2]).
+template <typename Visit>
+void visitPeriodogram(const image::Image& img, Visit visit) {
   const int w = img.width, h = img.height;
   double sum = 0;
   for (float v : img.pixels) sum += v;
@@ -105,20 +111,56 @@ std::vector<double> radialPowerSpectrum(const image::Image& img) {
     }
   cv::Mat f;
   cv::dft(m, f, cv::DFT_COMPLEX_OUTPUT);
-  const auto bins = static_cast<std::size_t>(std::min(w, h) / 2);
-  std::vector<double> power(bins, 0.0), count(bins, 0.0);
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
+      if (x == 0 && y == 0) continue;
       const double fx = (x <= w / 2 ? x : x - w) / static_cast<double>(w),
                    fy = (y <= h / 2 ? y : y - h) / static_cast<double>(h);
-      const auto b = static_cast<std::size_t>(std::hypot(fx, fy) * std::min(w, h));
-      if (b == 0 || b >= bins) continue;  // the mean and beyond Nyquist
       const cv::Vec2d c = f.at<cv::Vec2d>(y, x);
-      power[b] += (c[0] * c[0] + c[1] * c[1]) / window_energy;
-      count[b] += 1;
+      visit(fx, fy, (c[0] * c[0] + c[1] * c[1]) / window_energy);
     }
+}
+
+}  // namespace
+
+std::vector<double> radialPowerSpectrum(const image::Image& img) {
+  const int rings = std::min(img.width, img.height);
+  const auto bins = static_cast<std::size_t>(rings / 2);
+  std::vector<double> power(bins, 0.0), count(bins, 0.0);
+  visitPeriodogram(img, [&](double fx, double fy, double p) {
+    const auto b = static_cast<std::size_t>(std::hypot(fx, fy) * rings);
+    if (b == 0 || b >= bins) return;  // the lowest ring and beyond Nyquist
+    power[b] += p;
+    count[b] += 1;
+  });
   for (std::size_t b = 1; b < bins; ++b) power[b] = count[b] > 0 ? power[b] / count[b] : 0.0;
   return power;
+}
+
+double powerShareAbove(const image::Image& img, double frequency) {
+  double above = 0, total = 0;
+  visitPeriodogram(img, [&](double fx, double fy, double p) {
+    total += p;
+    if (std::hypot(fx, fy) > frequency) above += p;
+  });
+  return total > 0 ? above / total : 0.0;
+}
+
+std::vector<double> orientationShares(const image::Image& img, int sectors, double low, double high) {
+  std::vector<double> share(static_cast<std::size_t>(std::max(sectors, 1)), 0.0);
+  double total = 0;
+  visitPeriodogram(img, [&](double fx, double fy, double p) {
+    const double r = std::hypot(fx, fy);
+    if (r < low || r > high) return;
+    // The direction of the frequency vector, folded to [0°, 180°) and shifted half a sector
+    // so that sector 0 is centred on 0°.
+    double deg = std::atan2(fy, fx) * 180 / std::numbers::pi + 90.0 / static_cast<double>(share.size());
+    deg = std::fmod(std::fmod(deg, 180.0) + 180.0, 180.0);
+    share[std::min(share.size() - 1, static_cast<std::size_t>(deg / (180.0 / static_cast<double>(share.size()))))] += p;
+    total += p;
+  });
+  for (double& s : share) s = total > 0 ? s / total : 0.0;
+  return share;
 }
 
 namespace {

@@ -113,6 +113,7 @@ std::vector<std::string> CanvasPass::tilesDefines() const {
   // The block of clip ↔ model matrices holds the background and every object.
   std::vector<std::string> d{"SPACES=" + std::to_string(objects_ + 1)};
   if (objects_ == 1) d.emplace_back("SINGLE_OBJECT");
+  if (canvas_.hasMarks()) d.emplace_back("PAPER_MARKS");
   return d;
 }
 
@@ -214,7 +215,7 @@ void CanvasPass::setKernel(const Program& p, const noise::CanvasNoiseOptions& o)
 const Texture2D& CanvasPass::run(const std::vector<Item>& items, const Framebuffer& gbuffer, const OrbitCamera& camera,
                                  int width, int height, GpuTimer* timer) {
   if (target_.width() != width || target_.height() != height) {
-    target_ = Framebuffer(width, height, {GL_R32F}, false);
+    target_ = Framebuffer(width, height, {GL_RG32F}, false);
     static_key_.clear();
   }
   const noise::CanvasNoiseOptions o = noiseOptions(height);
@@ -342,8 +343,23 @@ void CanvasPass::runTiles(const std::vector<Item>& items, const Framebuffer& gbu
   tiles_.set("u_seed", seed_);
   tiles_.set("u_tile_scale", static_cast<float>(kTileRange));
   tiles_.set("u_tile_mask", tile_.width() - 1);
+  if (canvas_.hasMarks()) setMarks(height, canvas_.patch * o.radius);
   glBindVertexArray(empty_vao_.id());
   glDrawArrays(GL_TRIANGLES, 0, 3);
+}
+
+void CanvasPass::setMarks(int height, double lattice_pixels) const {
+  // Lengths are pixels at 1024 high. Fibres and spots hang on the grain's lattice points
+  // (`lattice_pixels` apart on screen): a point's chance of one is the density per 100²
+  // pixels times the screen area per point that shows its marks. A surface meets about
+  // 2.5 points per spacing² of screen (two layers of points, two levels), measured on a
+  // plane facing the camera (CanvasGl.RicePaperIsQuietPaperWithFibresAndSpots).
+  const double scale = height / 1024.0;
+  const double per_point = (lattice_pixels / (100 * scale)) * (lattice_pixels / (100 * scale)) / 2.5;
+  tiles_.set("u_fibre", glm::vec4(std::min(1.0, canvas_.fibres * per_point), 0.5 * canvas_.fibre_length * scale,
+                                  canvas_.fibre_contrast, 0.9 * std::max(scale, 0.5)));
+  tiles_.set("u_spot", glm::vec3(std::min(1.0, canvas_.spots * per_point), 0.35, 2.0 * std::max(scale, 0.5)));
+  tiles_.set("u_mottle", glm::vec2(canvas_.mottle, kMottlePixels * scale));
 }
 
 void CanvasPass::runSplat(const std::vector<Item>& items, const Texture2D& depth, const OrbitCamera& camera, int width,
@@ -432,7 +448,7 @@ class CanvasStage final : public RenderPass {
 
 std::string canvasStructure(const scene::Scene& s) {
   return std::to_string(static_cast<int>(s.canvas.type)) + std::to_string(static_cast<int>(s.canvas.pattern())) +
-         std::to_string(static_cast<int>(s.canvas.method));
+         std::to_string(static_cast<int>(s.canvas.method)) + (s.canvas.hasMarks() ? "m" : "");
 }
 
 std::unique_ptr<RenderPass> makeCanvasPass(const PassSetup& setup) {

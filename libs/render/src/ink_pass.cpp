@@ -134,7 +134,7 @@ class InkPass final : public RenderPass {
     ink.set("u_light_dir", glm::vec3(glm::normalize(in.scene.light.direction)));
     ink.set("u_paper", glm::vec3(in.scene.output.paper));
     if (grainHere(in.scene)) {
-      glBindImageTexture(2, images.canvas->id(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_R32F);
+      glBindImageTexture(2, images.canvas->id(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_RG32F);
       ink.set("u_canvas_contrast", static_cast<float>(in.scene.canvas.contrast));
     }
     glDrawArrays(GL_TRIANGLES, 0, 3);

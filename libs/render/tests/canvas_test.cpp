@@ -12,6 +12,7 @@
 #include <vector>
 
 #include <nlohmann/json.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include "gl_test.h"
 #include "shanshui/noise/gabor.h"
@@ -53,8 +54,8 @@ struct PlaneScene {
   OrbitCamera camera(double zoom = 1.6, double azimuth = 0.0) const {
     return sceneCamera(s, renderer->worldBounds(), 1.0, {azimuth, 89.0, zoom});
   }
-  image::Image canvasAt(const OrbitCamera& cam) {
-    renderer->render(cam, kSize, kSize);
+  image::Image canvasAt(const OrbitCamera& cam, int size = kSize) {
+    renderer->render(cam, size, size);
     return renderer->passTarget("canvas")->colour(0).download(1);
   }
 };
@@ -436,6 +437,102 @@ TEST_F(CanvasGl, TheCanvasSetsTheInkAbsorbency) {
   for (std::size_t i = 0; i < flat.pixels.size(); ++i)
     diff = std::max(diff, static_cast<double>(std::abs(flat.pixels[i] - varied.pixels[i])));
   EXPECT_GT(diff, 2.0 / 255);
+}
+
+// A blank plane's picture (red channel) and the canvas's marks at size × size.
+struct Paper {
+  image::Image picture, marks;
+};
+
+Paper paperOf(const json& canvas, int size) {
+  PlaneScene p(canvas);
+  p.renderer->render(p.camera(), size, size);
+  Paper out{p.renderer->passTarget("ink")->colour(0).download(1), image::Image(size, size, 1)};
+  const image::Image both = p.renderer->passTarget("canvas")->colour(0).download(2);
+  for (std::size_t i = 0; i < out.marks.pixels.size(); ++i) out.marks.pixels[i] = both.pixels[2 * i + 1];
+  return out;
+}
+
+// The connected regions of an image below `threshold` of at least `min_area` pixels, each
+// as its area and elongation (√ of the ratio of its second moments' principal values).
+struct Region {
+  int area = 0;
+  double elongation = 1.0;
+};
+
+std::vector<Region> darkRegions(const image::Image& img, float threshold, int min_area) {
+  cv::Mat mask(img.height, img.width, CV_8U);
+  for (int y = 0; y < img.height; ++y)
+    for (int x = 0; x < img.width; ++x) mask.at<std::uint8_t>(y, x) = img.at(x, y, 0) < threshold ? 255 : 0;
+  cv::Mat labels, stats, centroids;
+  const int n = cv::connectedComponentsWithStats(mask, labels, stats, centroids, 8, CV_32S);
+  std::vector<Region> out;
+  for (int label = 1; label < n; ++label) {
+    if (stats.at<int>(label, cv::CC_STAT_AREA) < min_area) continue;
+    const cv::Moments m = cv::moments(labels == label, true);
+    const double a = m.mu20 / m.m00, b = m.mu11 / m.m00, c = m.mu02 / m.m00;
+    const double root = std::sqrt(0.25 * (a - c) * (a - c) + b * b);
+    const double major = 0.5 * (a + c) + root, minor = std::max(0.5 * (a + c) - root, 1.0 / 12);  // a pixel's own
+    out.push_back({static_cast<int>(m.m00), std::sqrt(major / minor)});
+  }
+  return out;
+}
+
+double medianElongation(std::vector<Region> regions) {
+  if (regions.empty()) return 0.0;
+  std::sort(regions.begin(), regions.end(),
+            [](const Region& a, const Region& b) { return a.elongation < b.elongation; });
+  return regions[regions.size() / 2].elongation;
+}
+
+TEST_F(CanvasGl, RicePaperIsQuietPaperWithFibresAndSpots) {
+  // Issue 22's sandpaper: the grain alone at its old contrast (0.06) puts half the paper's
+  // power above 0.2 cycles per pixel. The default paper keeps the grain faint and adds a
+  // cloudy tone, fibres and spots.
+  constexpr int kPaper = 768;
+  const double per_100 = kPaper * kPaper / 1e4;  // 100 × 100 pixel squares in the frame
+  const Paper sand =
+      paperOf({{"type", "rice_paper"}, {"contrast", 0.06}, {"fibres", 0}, {"spots", 0}, {"mottle", 0}}, kPaper);
+  const Paper paper = paperOf({{"type", "rice_paper"}}, kPaper);
+  EXPECT_GT(powerShareAbove(sand.picture, 0.2), 0.4);
+  EXPECT_LT(powerShareAbove(paper.picture, 0.2), 0.3);
+  // Paper-like contrast: a few per cent of the paper's brightness.
+  double mean = 0;
+  for (float v : paper.picture.pixels) mean += v / static_cast<double>(paper.picture.pixels.size());
+  const double contrast = spectrumPeak(paper.picture).contrast / mean;
+  EXPECT_GT(contrast, 0.005);
+  EXPECT_LT(contrast, 0.04);
+  // Fibres: thin dark threads, about as many as asked for (0.8 per 100² pixels).
+  const std::vector<Region> fibres = darkRegions(paper.marks, -0.06f, 6);
+  EXPECT_GT(fibres.size() / per_100, 0.8 * 0.5);
+  EXPECT_LT(fibres.size() / per_100, 0.8 * 2.0);
+  EXPECT_GT(medianElongation(fibres), 3.0);
+  // Spots alone: small round marks, about as many as asked for.
+  const Paper spotted = paperOf({{"type", "rice_paper"}, {"fibres", 0}, {"spots", 1.0}, {"mottle", 0}}, kPaper);
+  const std::vector<Region> spots = darkRegions(spotted.marks, -0.1f, 1);
+  EXPECT_GT(spots.size() / per_100, 0.5);
+  EXPECT_LT(spots.size() / per_100, 2.0);
+  EXPECT_LT(medianElongation(spots), 1.6);
+  for (const Region& r : spots) EXPECT_LE(r.area, 20);
+  // Without marks the canvas has none.
+  for (float v : sand.marks.pixels) ASSERT_EQ(v, 0.0f);
+}
+
+TEST_F(CanvasGl, SilkWeavePeaksAtWarpAndWeft) {
+  // The default silk (threads at 0.3 cycles per pixel, well outside the kernel's bandwidth)
+  // puts most of its power in the sectors of the warp (ω0) and the weft (ω0 + 90°). At the
+  // old default, 0.1, the threads were inside the bandwidth and the four sectors held 23-28 %
+  // each; the weft, then drawn at swapped coordinates with ω0 itself, ran along the warp at
+  // ω0 = 45°.
+  for (const double orientation : {0.0, 45.0}) {
+    SCOPED_TRACE(orientation);
+    PlaneScene p({{"type", "silk"}, {"orientation", orientation}});
+    const std::vector<double> s = orientationShares(p.canvasAt(p.camera(), 512), 4);
+    const std::size_t warp = orientation == 0.0 ? 0 : 1;
+    EXPECT_GT(s[warp], 0.3);
+    EXPECT_GT(s[warp + 2], 0.3);
+    EXPECT_GT(s[warp] + s[warp + 2], 0.8);
+  }
 }
 
 }  // namespace

@@ -201,11 +201,16 @@ TEST_F(InkGpu, InPlaceEqualsASeparateOutput) {
   const glm::vec3 paper(kPaper[0], kPaper[1], kPaper[2]);
   const image::Image img = picture(47, 37, 8, true);
   const Texture2D absorbency = Texture2D::fromImage(absorbencyImage(47, 37, 9), GL_R8);
-  image::Image noise(47, 37, 1);
+  // The canvas: unit-variance grain, and marks of a few per cent.
+  image::Image noise(47, 37, 4, 1.0f);
   std::mt19937 rng(10);
   std::normal_distribution<float> g(0.0f, 1.0f);
-  for (float& v : noise.pixels) v = g(rng);
-  const Texture2D grain = Texture2D::fromImage(noise, GL_R32F);
+  for (int y = 0; y < 37; ++y)
+    for (int x = 0; x < 47; ++x) {
+      noise.at(x, y, 0) = g(rng);
+      noise.at(x, y, 1) = 0.03f * g(rng);
+    }
+  const Texture2D grain = Texture2D::fromImage(noise, GL_RG32F);
   ink::DiffusionOptions o;
   o.iterations = 3;
   o.ring_steps = 2;

@@ -34,6 +34,11 @@ bool anyObject(const std::vector<Object>& objects, Pred pred) {
 }
 }  // namespace
 
+bool Canvas::hasMarks() const {
+  if (type == CanvasType::None || type == CanvasType::Static || method != CanvasMethod::Tiles) return false;
+  return pattern() == CanvasPattern::RicePaper && (fibres > 0 || spots > 0 || mottle > 0);
+}
+
 bool Scene::usesWrinkles() const {
   return anyObject(objects, [](const Object& o) { return o.wrinkled(); });
 }

@@ -283,10 +283,31 @@ void describe(V& v, Canvas& c) {
       {"orientation", "ω0, the thread direction; the second silk noise runs across it", Effect::Uniform, "degrees"},
       c.orientation_deg, {-360, 360});
   v.boolean({"isotropic", "each kernel gets a random direction (a felt rather than a weave)"}, c.isotropic);
-  v.number({"mix", "silk: weight of the noise with swapped coordinates (0: threads one way only)"}, c.mix, kUnit);
+  v.number({"mix", "silk: weight of the weft, the noise across the threads (0: threads one way only)"}, c.mix, kUnit);
   v.number({"perlin_frequency", "rice paper: Perlin cycles across one kernel radius"}, c.perlin_frequency, {0, 64});
   v.number({"impulses", "N′, kernels per kernel disc: more is smoother and costs more"}, c.impulses,
            noise::kImpulsesRange);
+  v.number({"fibres",
+            "rice paper: about this many fibres per 100 × 100 pixels, thin curved threads pinned to the "
+            "surfaces like the grain (the `tiles` method; 0 draws none)",
+            Effect::Uniform, "per 100² pixels"},
+           c.fibres, {0, 4});
+  v.number({"fibre_length",
+            "mean length of a fibre (they range over 0.6-1.4 times it); fibres hang on the grain's lattice, so "
+            "past about 2 × `patch` × `grain` they are cut short",
+            Effect::Uniform, "pixels at 1024 high"},
+           c.fibre_length, {4, 256});
+  v.number({"fibre_contrast", "brightness change along a fibre's middle: most fibres darken, some lighten"},
+           c.fibre_contrast, kUnit);
+  v.number({"spots",
+            "rice paper: about this many dark impurity spots (1-4 pixels across) per 100 × 100 pixels (the "
+            "`tiles` method)",
+            Effect::Uniform, "per 100² pixels"},
+           c.spots, {0, 4});
+  v.number({"mottle",
+            "rice paper: contrast of the paper's cloudy tone, patches about a fibre length across (the `tiles` "
+            "method; 0: none)"},
+           c.mottle, kUnit);
 }
 
 template <typename V>

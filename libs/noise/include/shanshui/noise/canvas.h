@@ -1,6 +1,6 @@
 // The paper canvas's noise kernel (seed 001 Eqs. 9-17, SPEC.md section 8) and its
 // statistics: one kernel per impulse, rice paper (a Perlin-textured Gaussian) or silk (a
-// Gabor kernel mixed with its coordinate-swapped twin). shaders/canvas_kernel.glsl is the
+// Gabor kernel mixed with its twin at ω + 90°, the weft). shaders/canvas_kernel.glsl is the
 // GLSL twin; the canvas pass divides by canvasSigma() so the paper has unit variance.
 #pragma once
 
@@ -12,7 +12,7 @@ struct CanvasNoiseOptions {
   double F0 = 0.1;                //!< silk: cycles per length unit
   double omega0 = 0.0;            //!< silk: radians
   bool isotropic = false;         //!< silk: random orientation per impulse
-  double mix = 0.5;               //!< silk: weight of the swapped twin
+  double mix = 0.5;               //!< silk: weight of the twin across the threads (the weft)
   double perlin_frequency = 1.5;  //!< rice paper: Perlin cycles per radius
   double impulses = 64.0;         //!< N′
 };

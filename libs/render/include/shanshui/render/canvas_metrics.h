@@ -56,6 +56,16 @@ struct SpectrumPeak {
 //! element 0 (the mean) is 0.
 std::vector<double> radialPowerSpectrum(const image::Image& img);
 
+//! The share of a one-channel image's power (the same periodogram, mean left out) at
+//! frequencies above `frequency` cycles per pixel: how much of a paper is fine static.
+double powerShareAbove(const image::Image& img, double frequency);
+
+//! The shares of a one-channel image's power between `low` and `high` cycles per pixel that
+//! lie in each of `sectors` equal sectors of orientation over [0°, 180°), sector 0 centred
+//! on 0° (frequency vectors along x: stripes across x). A weave puts its power in the
+//! sectors of its warp and weft; an isotropic paper spreads it evenly.
+std::vector<double> orientationShares(const image::Image& img, int sectors, double low = 0.0, double high = 0.5);
+
 //! The peak of the radially averaged power spectrum (Hann-windowed) of a one-channel image,
 //! and its contrast.
 SpectrumPeak spectrumPeak(const image::Image& img);

@@ -48,7 +48,8 @@ class CanvasPass {
   //! The defines of each program built.
   std::vector<std::string> variants() const;
 
-  //! Draws the canvas of the view into the target (width × height, R32F) and returns it.
+  //! Draws the canvas of the view into the target (width × height, RG32F: the grain's unit-
+  //! variance noise, and the paper's marks as a brightness change) and returns it.
   //! `gbuffer` is the G-buffer of the frame (depth, and the object ids in colour 1). The
   //! static canvas is drawn only when the size or the parameters change.
   const Texture2D& run(const std::vector<Item>& items, const Framebuffer& gbuffer, const OrbitCamera& camera, int width,
@@ -80,6 +81,8 @@ class CanvasPass {
   static constexpr int kTileCells = 32;
   //! Most kernel evaluations (texels × N′) spent on drawing a tile: twice the default's.
   static constexpr double kTileWork = 2.0 * 1024 * 1024 * 32;
+  //! Spacing of the rice paper mottle's lattice, pixels at 1024 high: patches about this big.
+  static constexpr double kMottlePixels = 96.0;
   //! The tile stores v / kTileRange, clamped to [-1, 1] (σ = 1).
   static constexpr double kTileRange = 4.0;
 
@@ -90,6 +93,9 @@ class CanvasPass {
   void updateTile(const noise::CanvasNoiseOptions& o);
   void runTiles(const std::vector<Item>& items, const Framebuffer& gbuffer, const OrbitCamera& camera, int width,
                 int height, const noise::CanvasNoiseOptions& o);
+  //! The rice paper marks' uniforms, for an output `height` tall whose grain lattice is
+  //! `lattice_pixels` apart on screen.
+  void setMarks(int height, double lattice_pixels) const;
   void runSplat(const std::vector<Item>& items, const Texture2D& depth, const OrbitCamera& camera, int width,
                 int height, const noise::CanvasNoiseOptions& o);
   std::vector<std::string> definesFor(int invocations) const;

@@ -19,8 +19,8 @@ namespace shanshui::render {
 
 //! The paper under the ink, beyond its colour: an absorbency image (one channel, tiled over
 //! the picture) read through clamp(offset + scale · value, 0, 1), and optionally the
-//! canvas grain (unit-variance noise the size of the picture) that multiplies the result
-//! by 1 + contrast · grain.
+//! canvas (RG32F the size of the picture: unit-variance grain, and the paper's marks as a
+//! brightness change) that multiplies the result by (1 + contrast · grain)(1 + marks).
 struct PaperTexture {
   const Texture2D* absorbency = nullptr;
   glm::vec2 absorbency_map{1.0f, 0.0f};  //!< scale, offset

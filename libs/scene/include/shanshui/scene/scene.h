@@ -181,15 +181,24 @@ struct Canvas {
   CanvasPattern static_pattern = CanvasPattern::RicePaper;  //!< what `static` shows
   CanvasMethod method = CanvasMethod::Tiles;                //!< rice paper and silk only
   double patch = 2.0;                                       //!< tiles: anchor spacing in kernel radii
-  double contrast = 0.06;         //!< paper brightness × (1 + contrast · unit-variance noise)
+  double contrast = 0.015;        //!< paper brightness × (1 + contrast · unit-variance noise)
   double absorbency = 1.0;        //!< how much the canvas varies the ink absorbency
   double grain = 6.0;             //!< kernel radius r (the quads' half side)
-  double frequency = 0.1;         //!< F0, Gabor cycles per pixel
+  double frequency = 0.3;         //!< F0, Gabor cycles per pixel
   double orientation_deg = 0.0;   //!< ω0, the weave direction
   bool isotropic = false;         //!< random orientation per impulse instead of ω0
   double mix = 0.5;               //!< weight of the swapped-coordinate Gabor (silk)
   double perlin_frequency = 1.5;  //!< rice paper: Perlin cycles per grain radius
   double impulses = 32.0;         //!< N′, expected impulses per kernel disc
+  // Marks of the paper over the grain (the tiles method): fibres, impurity spots, mottle.
+  double fibres = 0.8;          //!< fibres per 100 × 100 pixels (rice paper)
+  double fibre_length = 24.0;   //!< mean fibre length, pixels at 1024 high
+  double fibre_contrast = 0.3;  //!< brightness change along a fibre's middle
+  double spots = 0.08;          //!< impurity spots per 100 × 100 pixels (rice paper)
+  double mottle = 0.02;         //!< contrast of the paper's cloudy low-frequency tone (rice paper)
+
+  //! Whether the canvas draws rice paper's marks (the tiles method only).
+  bool hasMarks() const;
 
   //! The pattern drawn: rice paper or silk (static: static_pattern); meaningless for None.
   CanvasPattern pattern() const {
