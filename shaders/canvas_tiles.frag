@@ -10,7 +10,8 @@
 // surface. The lattice spacing doubles with distance: the two octaves around P's are
 // blended. Each corner's copy is read at the nearest texel (the tile has several texels per
 // pixel). Background pixels take the view ray's exit through the dome around the scene as
-// their point, in world space.
+// their point, in world space. PAPER_MARKS adds rice paper's fibres, spots and mottle in
+// the second channel, as a change of brightness.
 layout(binding = 0) uniform sampler2D u_depth;    // the G-buffer's
 layout(binding = 1) uniform sampler2D u_surface;  // a: object id (index + 1) / 255
 // Zero mean, a power of two on a side, wrapped by a mask. An image: reading a texel costs a
