@@ -106,11 +106,13 @@ float mottleLevel(vec3 P, int level, int space) {
 }
 #endif
 
-// Adds one corner's tile copy: lattice point c, its clip coordinates, its weight w (the
-// level's times the barycentric `bary`); and, with marks, its fibre or spot to `marks`.
-void addCorner(ivec3 c, vec4 clip, float w, float bary, uint level_seed, vec2 pixel, inout float sum,
+// Adds one corner's tile copy: lattice point c, its clip coordinates, its weight (the
+// level's `level_weight` times the barycentric `bary`); and, with marks, its fibre or spot
+// to `marks`.
+void addCorner(ivec3 c, vec4 clip, float level_weight, float bary, uint level_seed, vec2 pixel, inout float sum,
                inout float sum_w2, inout float marks) {
   if (clip.w <= 0.0) return;
+  float w = level_weight * bary;
   vec2 a = (clip.xy / clip.w * 0.5 + 0.5) * u_viewport;
   uint h = cornerHash(level_seed, c);
   // The nearest texel (the tile has several texels per pixel, and wraps by a mask).
@@ -118,9 +120,8 @@ void addCorner(ivec3 c, vec4 clip, float w, float bary, uint level_seed, vec2 pi
   sum += w * (imageLoad(u_tile, texel & u_tile_mask).r);
   sum_w2 += w * w;
 #ifdef PAPER_MARKS
-  // The level's share is its weight squared (cos² + sin² = 1).
-  float level_share = bary > 0.0 ? w * w / (bary * bary) : 0.0;
-  marks += level_share * smoothstep(0.0, 0.25, bary) * pointMarks(pixel, a, h);
+  // The level's share of the marks is its weight squared (cos² + sin² = 1).
+  marks += level_weight * level_weight * smoothstep(0.0, 0.25, bary) * pointMarks(pixel, a, h);
 #endif
 }
 
@@ -133,11 +134,10 @@ void addLevel(vec3 P, int level, float weight, int space, mat4 to_clip, vec2 pix
   vec4 clip = to_clip * vec4(vec3(t.c) * spacing, 1.0);
   mat3x4 axes = mat3x4(to_clip[0], to_clip[1], to_clip[2]) * spacing;
   uint level_seed = noiseHash(u_seed + uint(space) * 0x68E31DA4u + uint(level + 512) * 0x1B56C4E9u);
-  vec4 w = weight * t.w;
-  addCorner(t.c, clip, w.x, t.w.x, level_seed, pixel, sum, sum_w2, marks);
-  addCorner(t.c + t.i1, clip + axes * vec3(t.i1), w.y, t.w.y, level_seed, pixel, sum, sum_w2, marks);
-  addCorner(t.c + t.i2, clip + axes * vec3(t.i2), w.z, t.w.z, level_seed, pixel, sum, sum_w2, marks);
-  addCorner(t.c + 1, clip + axes * vec3(1.0), w.w, t.w.w, level_seed, pixel, sum, sum_w2, marks);
+  addCorner(t.c, clip, weight, t.w.x, level_seed, pixel, sum, sum_w2, marks);
+  addCorner(t.c + t.i1, clip + axes * vec3(t.i1), weight, t.w.y, level_seed, pixel, sum, sum_w2, marks);
+  addCorner(t.c + t.i2, clip + axes * vec3(t.i2), weight, t.w.z, level_seed, pixel, sum, sum_w2, marks);
+  addCorner(t.c + 1, clip + axes * vec3(1.0), weight, t.w.w, level_seed, pixel, sum, sum_w2, marks);
 }
 
 // The view ray's exit through the dome around the scene (world space), and its clip w.

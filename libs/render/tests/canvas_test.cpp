@@ -469,7 +469,9 @@ std::vector<Region> darkRegions(const image::Image& img, float threshold, int mi
   std::vector<Region> out;
   for (int label = 1; label < n; ++label) {
     if (stats.at<int>(label, cv::CC_STAT_AREA) < min_area) continue;
-    const cv::Moments m = cv::moments(labels == label, true);
+    const cv::Rect box(stats.at<int>(label, cv::CC_STAT_LEFT), stats.at<int>(label, cv::CC_STAT_TOP),
+                       stats.at<int>(label, cv::CC_STAT_WIDTH), stats.at<int>(label, cv::CC_STAT_HEIGHT));
+    const cv::Moments m = cv::moments(labels(box) == label, true);
     const double a = m.mu20 / m.m00, b = m.mu11 / m.m00, c = m.mu02 / m.m00;
     const double root = std::sqrt(0.25 * (a - c) * (a - c) + b * b);
     const double major = 0.5 * (a + c) + root, minor = std::max(0.5 * (a + c) - root, 1.0 / 12);  // a pixel's own

@@ -704,17 +704,35 @@ mesh::Mesh roughHill() {
 // A smooth Gaussian hill with a little roughness: Eq. 1 past its threshold covers a broad
 // band of it; `thin` keeps only the crests, a small share of it, and only pixels Eq. 1
 // also draws.
+// The hill drawn at 240² from the line tests' view, with the debug outputs: the picture's
+// ink, the line weight, the world positions, and whether the lines pass was built.
+struct HillLines {
+  std::vector<double> ink;
+  image::Image weight, positions;
+  bool strokes = false;
+};
+
+HillLines drawHillLines(const scene::Scene& s, const mesh::Mesh& hill) {
+  InkRenderer r(s, prepare(s, hill));
+  r.setDebugOutputs(true);
+  HillLines out;
+  out.strokes = r.variants().at("ink").size() > 1;
+  out.ink = inkOf(r.render(sceneCamera(s, r.worldBounds(), 1.0, {-30, 35, 1.2}), 240, 240).colour(0).download(3),
+                  s.output.paper);
+  out.weight = r.passTarget("ink")->colour(1).download(2);
+  out.positions = r.worldPositions();
+  return out;
+}
+
 TEST_F(Look, ThinLinesKeepTheCrestsOfEquationOnesBands) {
   const mesh::Mesh hill = roughHill();
   std::map<bool, image::Image> weight;
   image::Image positions;
   for (const bool thin : {false, true}) {
-    const scene::Scene s = sceneWith({{"lines", {{"thin", thin}, {"silhouette", 0.0}, {"depth_edges", 0.0}}}});
-    InkRenderer r(s, prepare(s, hill));
-    r.setDebugOutputs(true);
-    r.render(sceneCamera(s, r.worldBounds(), 1.0, {-30, 35, 1.2}), 240, 240);
-    weight[thin] = r.passTarget("ink")->colour(1).download(2);
-    positions = r.worldPositions();
+    HillLines drawn =
+        drawHillLines(sceneWith({{"lines", {{"thin", thin}, {"silhouette", 0.0}, {"depth_edges", 0.0}}}}), hill);
+    weight[thin] = std::move(drawn.weight);
+    positions = std::move(drawn.positions);
   }
   int object = 0, thick_lines = 0, thin_lines = 0, thin_outside = 0;
   for (int y = 0; y < 240; ++y) {
@@ -762,16 +780,14 @@ TEST_F(Look, StrokesAreLinesOfTheWidthAskedForOnAHill) {
   std::map<double, image::Image> weight;
   image::Image positions;
   for (const double width : {0.0, 2.0, 5.0}) {
-    const scene::Scene s = sceneWith(
-        {{"lines", {{"width", width}, {"taper", 1.0}, {"depth_edges", 0.0}}}, {"shading", {{"enabled", false}}}}, top);
-    InkRenderer r(s, prepare(s, hill));
-    r.setDebugOutputs(true);
-    const bool strokes = r.variants().at("ink").size() > 1;
-    EXPECT_EQ(strokes, width > 0) << "the lines pass is built only for strokes";
-    ink[width] = inkOf(r.render(sceneCamera(s, r.worldBounds(), 1.0, {-30, 35, 1.2}), 240, 240).colour(0).download(3),
-                       s.output.paper);
-    weight[width] = r.passTarget("ink")->colour(1).download(2);
-    positions = r.worldPositions();
+    HillLines drawn = drawHillLines(sceneWith({{"lines", {{"width", width}, {"taper", 1.0}, {"depth_edges", 0.0}}},
+                                               {"shading", {{"enabled", false}}}},
+                                              top),
+                                    hill);
+    EXPECT_EQ(drawn.strokes, width > 0) << "the lines pass is built only for strokes";
+    ink[width] = std::move(drawn.ink);
+    weight[width] = std::move(drawn.weight);
+    positions = std::move(drawn.positions);
   }
   int object = 0, band = 0, stroked = 0, stroke_off_band = 0;
   for (int y = 0; y < 240; ++y) {
