@@ -137,7 +137,7 @@ int main(int argc, char** argv) {
     nlohmann::json stats;
     stats["scene"] = input;
     stats["device"] = context->description();
-    stats["size"] = {sc.output.width, sc.output.height};
+    stats["size"] = {sc.output.pixelWidth(), sc.output.pixelHeight()};
     stats["triangles"] = renderer.triangleCount();
     stats["passes_built"] = renderer.passesBuilt();
     stats["variants"] = renderer.variants();

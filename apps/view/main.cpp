@@ -222,8 +222,7 @@ int main(int argc, char** argv) {
 
     ViewState state;
     auto resetCamera = [&](int width, int height) {
-      state.camera = render::sceneCamera(sc, renderer->worldBounds(), static_cast<double>(width) / height,
-                                         render::frameKey(sc, 0, 1, 0.0));
+      state.camera = renderer->camera(render::frameKey(sc, 0, 1, 0.0), static_cast<double>(width) / height);
     };
     resetCamera(s.width, s.height);
 

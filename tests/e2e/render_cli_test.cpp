@@ -1,4 +1,6 @@
 // End-to-end: shanshui-render on scene files, its statistics, and scene-file errors.
+#include <algorithm>
+#include <filesystem>
 #include <fstream>
 #include <set>
 
@@ -128,6 +130,52 @@ TEST(RenderCli, SetChangesTheRenderedPicture) {
   double ink_a = 0, ink_b = 0;
   for (std::size_t i = 0; i < a.pixels.size(); ++i) ink_a += 1 - a.pixels[i], ink_b += 1 - b.pixels[i];
   EXPECT_GT(ink_b, ink_a * 1.02) << "a larger curve factor draws more line ink";
+}
+
+// The darkest pixel's grey and the share of pixels darker than half of white.
+std::pair<float, double> darkness(const image::Image& img) {
+  float darkest = 1.0f;
+  std::size_t dark = 0;
+  for (int y = 0; y < img.height; ++y) {
+    for (int x = 0; x < img.width; ++x) {
+      const float g = (img.at(x, y, 0) + img.at(x, y, 1) + img.at(x, y, 2)) / 3.0f;
+      darkest = std::min(darkest, g);
+      dark += g < 0.5f;
+    }
+  }
+  return {darkest, static_cast<double>(dark) / (static_cast<double>(img.width) * img.height)};
+}
+
+TEST(RenderCli, EverySampleSceneAndALoneDemRenderInTheirFormat) {
+  test::TempDir dir;
+  int scenes = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(test::sourceDir() / "samples/scenes")) {
+    if (entry.path().extension() != ".json") continue;
+    ++scenes;
+    SCOPED_TRACE(entry.path().filename().string());
+    const json scene = readJson(entry.path());
+    const bool scroll = scene.contains("output") && scene["output"].value("format", "free") == "vertical_scroll";
+    const auto out = dir / (entry.path().stem().string() + ".png");
+    const auto r = run(bin("shanshui-render") + " " + quote(entry.path()) + " -o " + quote(out) +
+                       " --size 160x120 --set objects.0.max_vertices=20000");
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    const image::Image img = image::loadImage(out);
+    EXPECT_EQ(img.height, 120);
+    EXPECT_EQ(img.width, scroll ? 48 : 160) << "a hanging scroll is 0.4 as wide as it is tall";
+    const auto [darkest, dark_share] = darkness(img);
+    EXPECT_LT(darkest, 0.35f) << "some ink";
+    EXPECT_LT(dark_share, 0.25) << "mostly paper";
+  }
+  EXPECT_GE(scenes, 4) << "the default and the three distances";
+  // A DEM alone gets the sample's style: strokes, rice paper, mist, a dissolving border.
+  const auto r = run(bin("shanshui-render") + " " + quote(test::sourceDir() / "samples/terrain/mount_st_helens.dem") +
+                     " -o " + quote(dir / "lone.png") + " --size 160x120 --stats " + quote(dir / "lone.json") +
+                     " --set objects.0.max_vertices=20000");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const json s = readJson(dir / "lone.json");
+  EXPECT_EQ(s["passes_built"], json({"gbuffer", "canvas", "ink"}));
+  EXPECT_EQ(s["variants"]["ink"][0], "LINES STROKES SHADING CANVAS SINGLE_OBJECT BORDER MIST");
+  EXPECT_LT(darkness(image::loadImage(dir / "lone.png")).first, 0.35f);
 }
 
 int lineCount(const std::string& s) {

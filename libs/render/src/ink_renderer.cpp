@@ -31,20 +31,62 @@ GLenum minFilter(scene::TextureFilter f) {
 
 }  // namespace
 
-OrbitCamera sceneCamera(const scene::Scene& s, const mesh::Bounds& world_bounds, double aspect,
-                        const scene::CameraKey& key) {
-  const scene::Camera& c = s.camera;
-  OrbitCamera cam = frameBounds(world_bounds, key.azimuth_deg, key.elevation_deg, c.fov_y_deg, aspect, key.zoom);
-  cam.target += world_bounds.centre();
-  const double radius = std::max(0.5 * glm::length(world_bounds.size()), 1e-6);
-  if (c.target || c.distance > 0) {
-    if (c.target) cam.target = *c.target;
-    if (c.distance > 0) cam.distance = c.distance / key.zoom;
-    // The planes enclose the bounds seen from wherever the camera now is.
-    const double to_centre = glm::length(cam.eye() - world_bounds.centre());
-    cam.near_plane = std::max(to_centre - radius * 1.01, std::max(cam.distance, to_centre) * 1e-4);
-    cam.far_plane = to_centre + radius * 1.01;
+namespace {
+
+// What a preset fixes: elevation, vertical field of view, framing. High distance has no
+// elevation of its own: it stands on the ground and looks up.
+struct PresetView {
+  double elevation_deg, fov_y_deg;
+  scene::Framing framing;
+};
+
+PresetView presetView(const scene::Camera& c, const scene::CameraKey& key) {
+  switch (c.preset) {
+    case scene::CameraPreset::High:
+      return {0.0, 40.0, scene::Framing::Fill};
+    case scene::CameraPreset::Deep:
+      return {40.0, 35.0, scene::Framing::Fill};
+    case scene::CameraPreset::Level:
+      return {6.0, 22.0, scene::Framing::Fill};
+    case scene::CameraPreset::None:
+      break;
   }
+  return {key.elevation_deg, c.fov_y_deg, c.framing};
+}
+
+// Up to 4096 of the mesh's vertices, evenly strided, and its highest one: enough for the
+// relief's grid and its summit.
+std::vector<glm::dvec3> reliefSample(const mesh::Mesh& m) {
+  std::vector<glm::dvec3> out;
+  if (m.positions.empty()) return out;
+  const std::size_t stride = std::max<std::size_t>(1, m.positions.size() / 4096);
+  for (std::size_t i = 0; i < m.positions.size(); i += stride) out.push_back(m.positions[i]);
+  out.push_back(*std::max_element(m.positions.begin(), m.positions.end(),
+                                  [](const glm::dvec3& p, const glm::dvec3& q) { return p.z < q.z; }));
+  return out;
+}
+
+}  // namespace
+
+OrbitCamera sceneCamera(const scene::Scene& s, const mesh::Bounds& world_bounds, double aspect,
+                        const scene::CameraKey& key, const Relief* relief, const mesh::Bounds* inked) {
+  const scene::Camera& c = s.camera;
+  const PresetView v = presetView(c, key);
+  const mesh::Bounds& framed = inked ? *inked : world_bounds;
+  OrbitCamera cam;
+  if (c.preset == scene::CameraPreset::High) {
+    const glm::dvec3 lo = world_bounds.min, hi = world_bounds.max, mid = world_bounds.centre();
+    const Relief floor({lo, {hi.x, hi.y, lo.z}, {mid.x, mid.y, hi.z}});
+    cam = highDistance(relief && !relief->empty() ? *relief : floor, key.azimuth_deg, v.fov_y_deg, key.zoom);
+  } else if (v.framing == scene::Framing::Fill) {
+    cam = fillBounds(framed, key.azimuth_deg, v.elevation_deg, v.fov_y_deg, aspect, key.zoom);
+  } else {
+    cam = frameBounds(world_bounds, key.azimuth_deg, v.elevation_deg, v.fov_y_deg, aspect, key.zoom);
+    cam.target += world_bounds.centre();
+  }
+  if (c.target) cam.target = *c.target;
+  if (c.distance > 0) cam.distance = c.distance / key.zoom;
+  cam.enclose(world_bounds);  // the whole scene, seen from wherever the camera now is
   return cam;
 }
 
@@ -88,6 +130,7 @@ InkRenderer::InkRenderer(const scene::Scene& s, const std::vector<scene::LoadedO
     g.model_bounds = a.bounds;
     g.model_feature_size = a.feature_size;
     g.max_triangle_area = maxTriangleArea(a.mesh);
+    relief_points_.push_back(reliefSample(a.mesh));
     if (o.wrinkled()) {
       SHANSHUI_CHECK(objects[i].wrinkle != nullptr);
       g.wrinkle = Texture2D::tiledFromImage(*objects[i].wrinkle, GL_R8);
@@ -163,6 +206,7 @@ void InkRenderer::setScene(const scene::Scene& s) {
 
 void InkRenderer::setObjects(const scene::Scene& s) {
   world_bounds_ = {glm::dvec3(std::numeric_limits<double>::max()), glm::dvec3(std::numeric_limits<double>::lowest())};
+  inked_bounds_ = world_bounds_;
   for (std::size_t i = 0; i < objects_.size(); ++i) {
     SceneObjectGpu& g = objects_[i];
     const glm::dmat4 t = s.objects[i].transform.matrix();
@@ -175,6 +219,12 @@ void InkRenderer::setObjects(const scene::Scene& s) {
       const GLint filter = static_cast<GLint>(minFilter(s.objects[i].wrinkle.filter));
       glTextureParameteri(g.wrinkle->id(), GL_TEXTURE_MIN_FILTER, filter);
     }
+    // A dissolving border leaves paper over its falloff band: the inked part is the model
+    // box with that band taken off its horizontal sides.
+    const scene::Object& o = s.objects[i];
+    const glm::dvec3 half = 0.5 * g.model_bounds.size();
+    const double band = o.dissolvesBorder() ? o.border.width * std::min(half.x, half.y) : 0.0;
+    const glm::dvec3 inset(band, band, 0.0);
     for (int c = 0; c < 8; ++c) {
       const glm::dvec3 corner((c & 1) ? g.model_bounds.max.x : g.model_bounds.min.x,
                               (c & 2) ? g.model_bounds.max.y : g.model_bounds.min.y,
@@ -182,8 +232,18 @@ void InkRenderer::setObjects(const scene::Scene& s) {
       const glm::dvec3 w(t * glm::dvec4(corner, 1.0));
       world_bounds_.min = glm::min(world_bounds_.min, w);
       world_bounds_.max = glm::max(world_bounds_.max, w);
+      const glm::dvec3 side((c & 1) ? -1.0 : 1.0, (c & 2) ? -1.0 : 1.0, 0.0);
+      const glm::dvec3 wi(t * glm::dvec4(corner + side * inset, 1.0));
+      inked_bounds_.min = glm::min(inked_bounds_.min, wi);
+      inked_bounds_.max = glm::max(inked_bounds_.max, wi);
     }
   }
+  std::vector<glm::dvec3> points;
+  for (std::size_t i = 0; i < objects_.size(); ++i) {
+    const glm::dmat4 t = s.objects[i].transform.matrix();
+    for (const glm::dvec3& p : relief_points_[i]) points.emplace_back(t * glm::dvec4(p, 1.0));
+  }
+  relief_ = Relief(points);
 }
 
 std::string InkRenderer::requestKey(const OrbitCamera& c, int width, int height) const {
@@ -263,8 +323,8 @@ image::Image InkRenderer::normalsAndCurvature() const {
 }
 
 image::Image InkRenderer::renderImage(const scene::CameraKey& key, FrameStats* stats, double time) {
-  const int w = scene_.output.width, h = scene_.output.height;
-  const OrbitCamera cam = sceneCamera(scene_, world_bounds_, static_cast<double>(w) / h, key);
+  const int w = scene_.output.pixelWidth(), h = scene_.output.pixelHeight();
+  const OrbitCamera cam = camera(key, static_cast<double>(w) / h);
   const Framebuffer& fb = render(cam, w, h, stats, true, time);
   return fb.colour(0).download(3);
 }

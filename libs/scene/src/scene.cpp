@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <fstream>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -33,6 +34,11 @@ bool anyObject(const std::vector<Object>& objects, Pred pred) {
   return std::any_of(objects.begin(), objects.end(), pred);
 }
 }  // namespace
+
+int Output::pixelWidth() const {
+  if (format == Format::Free) return width;
+  return std::max(1, static_cast<int>(std::lround(kScrollAspect * height)));
+}
 
 bool Canvas::hasMarks() const {
   if (type == CanvasType::None || type == CanvasType::Static || method != CanvasMethod::Tiles) return false;
@@ -177,7 +183,19 @@ Scene loadSceneInput(const std::filesystem::path& path, const std::vector<std::s
                     ": expected a scene (.json), a mesh (.obj .ply .off) or a heightfield "
                     "(.dem .asc .png .tif)");
   }
-  json j = {{"objects", json::array({{{mesh ? "mesh" : "dem", path.string()}, {"name", path.stem().string()}}})}};
+  // The sample scene's style: strokes, its tones, rice paper; a DEM is a piece of land seen
+  // from above into its ranges with mist in its valleys, a mesh an object filling the frame.
+  json object = {{mesh ? "mesh" : "dem", path.string()},
+                 {"name", path.stem().string()},
+                 {"lines", {{"width", 3.5}}},
+                 {"shading", {{"tones", {0.3, 0.5, 0.68, 0.85, 1.0}}}}};
+  json j = {{"objects", json::array({object})}, {"canvas", {{"type", "rice_paper"}}}};
+  if (mesh) {
+    j["camera"] = {{"framing", "fill"}};
+  } else {
+    j["camera"] = {{"preset", "deep"}};
+    j["mist"] = {{"density", 0.75}, {"height", 0.12}, {"softness", 0.35}};
+  }
   for (const std::string& o : overrides) applyOverride(j, o);
   return parseScene(j, path.filename().string(), ".");
 }

@@ -1,6 +1,7 @@
 #include "shanshui/scene/scene_assets.h"
 
 #include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cmath>
 
@@ -13,6 +14,16 @@
 #include "shanshui/terrain/terrain_mesh.h"
 
 namespace shanshui::scene {
+
+namespace {
+
+bool isImageHeightfield(const std::filesystem::path& p) {
+  std::string ext = p.extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return ext == ".png" || ext == ".tif" || ext == ".tiff";
+}
+
+}  // namespace
 
 void planarUvs(mesh::Mesh& m) {
   const mesh::Bounds b = mesh::bounds(m);
@@ -33,9 +44,48 @@ image::Image wrinkleLuma(const image::Image& img) {
   return out;
 }
 
+namespace {
+
+UpAxis upAxis(const Object& o, const mesh::Mesh& m) {
+  if (o.up != UpAxis::Auto) return o.up;
+  if (!o.dem.empty()) return UpAxis::Z;
+  // A flat piece of land (or anything much thinner along one axis) lies on its thin axis,
+  // whichever tool wrote it; any other mesh follows the OBJ/PLY convention of Y up.
+  const glm::dvec3 e = mesh::bounds(m).size();
+  for (int axis = 0; axis < 3; ++axis) {
+    if (e[axis] < 0.5 * std::min(e[(axis + 1) % 3], e[(axis + 2) % 3])) {
+      return axis == 0 ? UpAxis::X : axis == 1 ? UpAxis::Y : UpAxis::Z;
+    }
+  }
+  return UpAxis::Y;
+}
+
+void makeZUp(mesh::Mesh& m, UpAxis up) {
+  // Rotations (determinant +1), so faces keep their winding: Y-up (x, y, z) -> (x, -z, y),
+  // X-up (x, y, z) -> (y, z, x).
+  auto turn = [up](auto v) -> decltype(v) {
+    if (up == UpAxis::Y) return {v.x, -v.z, v.y};
+    if (up == UpAxis::X) return {v.y, v.z, v.x};
+    return v;
+  };
+  if (up == UpAxis::Z || up == UpAxis::Auto) return;
+  for (glm::dvec3& p : m.positions) p = turn(p);
+  for (glm::vec3& n : m.normals) n = turn(n);
+}
+
+double imageCellSize(const terrain::Heightfield& h) {
+  const auto [lo, hi] = h.elevationRange();
+  const int cells = std::max(h.columns, h.rows) - 1;
+  if (!(hi > lo) || cells < 1) return 1.0;
+  return kImageReliefRatio * (hi - lo) / cells;
+}
+
+}  // namespace
+
 ObjectAsset prepareAsset(mesh::Mesh m, const Object& o, const std::string& where) {
   ObjectAsset asset;
   const bool wrinkled = !o.wrinkle.texture.empty() && o.shading.enabled;
+  makeZUp(m, upAxis(o, m));
   if (o.recentre) mesh::recentre(m);
   if (wrinkled && o.wrinkle.uv == UvSource::Planar) planarUvs(m);
   if (wrinkled && m.uvs.size() != m.positions.size()) {
@@ -76,7 +126,8 @@ LoadedObject AssetCache::get(const Scene& scene, std::size_t index) {
   const int curvature = o.lines.enabled ? static_cast<int>(o.lines.curvature) : -1;
   const std::filesystem::path source = scene.resolve(o.mesh.empty() ? o.dem : o.mesh);
   const std::string key = source.string() + "|" + std::to_string(o.z_scale) + "|" + std::to_string(o.max_vertices) +
-                          "|" + std::to_string(o.recentre) + "|" + std::to_string(object_curvature) +
+                          "|" + std::to_string(o.cell_size) + "|" + std::to_string(static_cast<int>(o.up)) + "|" +
+                          std::to_string(o.recentre) + "|" + std::to_string(object_curvature) +
                           std::to_string(curvature) + "|" + std::to_string(o.lines.smoothing) + "|" +
                           (wrinkled ? (o.wrinkle.uv == UvSource::Mesh ? "uv-mesh" : "uv-planar") : "no-uv");
   std::shared_ptr<const ObjectAsset>& slot = meshes_[key];
@@ -102,9 +153,16 @@ LoadedObject AssetCache::get(const Scene& scene, std::size_t index) {
         terrain::TerrainMeshOptions topt;
         topt.z_scale = o.z_scale;
         topt.max_vertices = o.max_vertices;
-        asset->mesh = terrain::heightfieldToMesh(terrain::loadHeightfield(source), topt, nullptr, source.string());
+        terrain::HeightfieldOptions hopt;
+        hopt.cell_size = o.cell_size;
+        terrain::Heightfield field = terrain::loadHeightfield(source, hopt);
+        if (o.cell_size == 0 && isImageHeightfield(source)) field.cell_x = field.cell_y = imageCellSize(field);
+        asset->mesh = terrain::heightfieldToMesh(field, topt, nullptr, source.string());
       } else {
+        // Every component is drawn (a teapot's lid and spout); only parameterisation
+        // needs a single disc.
         mesh::RepairOptions ropt;
+        ropt.components = mesh::ComponentPolicy::KeepAll;
         asset->mesh = mesh::repairMesh(mesh::readPolygonSoup(source), ropt, nullptr, source.string());
       }
     } catch (const Error& e) {

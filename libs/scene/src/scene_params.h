@@ -73,6 +73,16 @@ inline constexpr std::array<Named<CanvasMethod>, 2> kCanvasMethods{
 inline constexpr std::array<Named<BorderMode>, 3> kBorderModes{
     {{"auto", BorderMode::Auto}, {"dissolve", BorderMode::Dissolve}, {"keep", BorderMode::Keep}}};
 
+inline constexpr std::array<Named<UpAxis>, 4> kUpAxes{
+    {{"auto", UpAxis::Auto}, {"x", UpAxis::X}, {"y", UpAxis::Y}, {"z", UpAxis::Z}}};
+inline constexpr std::array<Named<CameraPreset>, 4> kCameraPresets{{{"none", CameraPreset::None},
+                                                                    {"high", CameraPreset::High},
+                                                                    {"deep", CameraPreset::Deep},
+                                                                    {"level", CameraPreset::Level}}};
+inline constexpr std::array<Named<Framing>, 2> kFramings{{{"sphere", Framing::Sphere}, {"fill", Framing::Fill}}};
+inline constexpr std::array<Named<Format>, 2> kFormats{
+    {{"free", Format::Free}, {"vertical_scroll", Format::VerticalScroll}}};
+
 constexpr Effect kRebuild = Effect::Rebuild;
 
 template <typename V>
@@ -202,6 +212,16 @@ void describe(V& v, Object& o) {
   v.number({"z_scale", "dem only: vertical exaggeration", kRebuild}, o.z_scale, {0, 1000, true});
   v.integer({"max_vertices", "dem only: the grid is decimated to at most this many vertices", kRebuild}, o.max_vertices,
             {4, 100000000});
+  v.number({"cell_size",
+            "dem only: metres between samples; 0: from the file's header, and an image (PNG, TIFF: no header) "
+            "gets cells that make its larger side 8 times its relief",
+            kRebuild, "metres"},
+           o.cell_size, {0, 1e6});
+  v.choice({"up",
+            "the model axis that points up in the world; `auto`: z for DEMs, y for meshes (what most modelling "
+            "tools write)",
+            kRebuild},
+           o.up, kUpAxes);
   v.boolean(
       {"recentre", "move the mesh so its bounding-box centre is the model origin (keeps UTM-sized coordinates precise)",
        kRebuild},
@@ -243,6 +263,15 @@ void describe(V& v, Camera& c) {
   v.number({"elevation", "above the horizon", Effect::Uniform, "degrees"}, c.elevation_deg, kElevation);
   v.number({"fov", "vertical field of view", Effect::Uniform, "degrees"}, c.fov_y_deg, {1, 170});
   v.number({"zoom", "> 1 moves closer"}, c.zoom, kZoom);
+  v.choice({"preset",
+            "the three distances of landscape painting: `high` looks up at the highest peak from its foot, "
+            "`deep` looks from above into ranges behind ranges, `level` looks across the ranges from near the "
+            "ground; each sets the elevation, field of view and framing (azimuth and zoom stay); `none`: as given"},
+           c.preset, kCameraPresets);
+  v.choice({"framing",
+            "how distance 0 frames the scene: `sphere`, its bounding sphere (room on every side); `fill`, its "
+            "bounding box filling the frame from this angle"},
+           c.framing, kFramings);
   v.list(
       {"path", "keys for `--frames`: frames spread evenly over them, angles linear, zoom geometric"}, c.path,
       {0, 100000},
@@ -340,6 +369,10 @@ template <typename V>
 void describe(V& v, Output& o) {
   v.integer({"width", "`--size WxH` overrides", Effect::Uniform, "pixels"}, o.width, {1, 16384});
   v.integer({"height", "`--size WxH` overrides", Effect::Uniform, "pixels"}, o.height, {1, 16384});
+  v.choice({"format",
+            "`free`: width × height; `vertical_scroll`: a hanging scroll `height` tall and 0.4 of it wide "
+            "(`width` is not used)"},
+           o.format, kFormats);
   v.vec3({"paper", "paper colour behind and under the ink", Effect::Uniform, "RGB"}, o.paper, kUnit, Vec::Color);
   v.number({"fade", "distance fade: far surfaces move towards the paper by up to this much"}, o.fade, kUnit);
 }

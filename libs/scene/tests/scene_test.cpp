@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "shanshui/core/error.h"
+#include "shanshui/image/image_io.h"
 #include "shanshui/scene/scene_assets.h"
 #include "test_support.h"
 
@@ -235,6 +236,8 @@ TEST(Scene, RebuildKeysAreTheOnesThatChangeVariantsOrFiles) {
                                           "objects.*.dem",
                                           "objects.*.z_scale",
                                           "objects.*.max_vertices",
+                                          "objects.*.cell_size",
+                                          "objects.*.up",
                                           "objects.*.recentre",
                                           "objects.*.lines.enabled",
                                           "objects.*.lines.curvature",
@@ -318,6 +321,126 @@ TEST(Scene, AMeshOrDemBecomesAOneObjectScene) {
   EXPECT_EQ(s.objects[0].z_scale, 2.0);
   EXPECT_EQ(loadSceneInput("m.obj").objects[0].mesh, "m.obj");
   EXPECT_THROW(loadSceneInput("notes.txt"), Error);
+}
+
+TEST(Scene, ALoneMeshOrDemGetsTheSampleStyleAndAFramedView) {
+  const Scene dem = loadSceneInput("peaks/hill.png");
+  const Scene plain = parseScene(kMinimal, "s.json", ".");
+  EXPECT_GT(dem.objects[0].lines.width, 0.0) << "strokes, not Eq. 1's bands";
+  EXPECT_NE(dem.objects[0].shading.tones, plain.objects[0].shading.tones) << "the sample's tones";
+  EXPECT_EQ(dem.canvas.type, CanvasType::RicePaper);
+  EXPECT_EQ(dem.camera.preset, CameraPreset::Deep);
+  EXPECT_TRUE(dem.mist.enabled());
+  EXPECT_TRUE(dem.objects[0].dissolvesBorder());
+  const Scene mesh = loadSceneInput("teapot.obj", {"camera.elevation=10"});
+  EXPECT_EQ(mesh.camera.preset, CameraPreset::None);
+  EXPECT_EQ(mesh.camera.framing, Framing::Fill);
+  EXPECT_EQ(mesh.camera.elevation_deg, 10.0);
+  EXPECT_FALSE(mesh.mist.enabled()) << "mist is a DEM's: it would hide a lone object's foot";
+  EXPECT_FALSE(mesh.objects[0].dissolvesBorder());
+  // The defaults of a scene file stay the plain ones.
+  EXPECT_EQ(plain.canvas.type, CanvasType::None);
+  EXPECT_EQ(plain.camera.preset, CameraPreset::None);
+  EXPECT_EQ(plain.camera.framing, Framing::Sphere);
+}
+
+TEST(Scene, AVerticalScrollIsTallAndFortyPercentWide) {
+  json j = kMinimal;
+  j["output"] = {{"width", 900}, {"height", 1000}, {"format", "vertical_scroll"}};
+  const Scene s = parseScene(j, "s.json", ".");
+  EXPECT_EQ(s.output.pixelHeight(), 1000);
+  EXPECT_EQ(s.output.pixelWidth(), 400);
+  j["output"]["format"] = "free";
+  EXPECT_EQ(parseScene(j, "s.json", ".").output.pixelWidth(), 900);
+  j["output"]["format"] = "scroll";
+  EXPECT_NE(errorOf(j).find("output.format"), std::string::npos) << errorOf(j);
+}
+
+// A cone of height 3 standing on the axis `up` of its file (base radius 1).
+mesh::Mesh coneAlong(int up) {
+  mesh::Mesh m;
+  const int n = 24;
+  auto place = [up](double a, double b, double h) {
+    glm::dvec3 p;
+    p[up] = h;
+    p[(up + 1) % 3] = a;
+    p[(up + 2) % 3] = b;
+    return p;
+  };
+  for (int i = 0; i < n; ++i) {
+    const double t = 2 * 3.14159265358979 * i / n;
+    m.positions.push_back(place(std::cos(t), std::sin(t), 0));
+  }
+  m.positions.push_back(place(0, 0, 3));  // apex
+  m.positions.push_back(place(0, 0, 0));  // base centre
+  for (std::uint32_t i = 0; i < n; ++i) {
+    const std::uint32_t j = (i + 1) % n;
+    m.triangles.push_back({i, j, static_cast<std::uint32_t>(n)});
+    m.triangles.push_back({j, i, static_cast<std::uint32_t>(n + 1)});
+  }
+  return m;
+}
+
+double signedVolume(const mesh::Mesh& m) {
+  double v = 0;
+  for (const glm::uvec3& t : m.triangles) {
+    v += glm::dot(m.positions[t.x], glm::cross(m.positions[t.y], m.positions[t.z])) / 6.0;
+  }
+  return v;
+}
+
+TEST(SceneAssets, TheUpAxisBecomesZAndMeshesAreYUpByDefault) {
+  for (const auto& [file_up, key] :
+       std::vector<std::pair<int, std::string>>{{1, "auto"}, {1, "y"}, {0, "x"}, {2, "z"}}) {
+    SCOPED_TRACE(key);
+    const mesh::Mesh m = coneAlong(file_up);
+    json j = {{"objects", json::array({{{"mesh", "cone.obj"}, {"up", key}, {"recentre", false}}})}};
+    const ObjectAsset a = prepareAsset(m, parseScene(j, "s.json", ".").objects[0]);
+    EXPECT_NEAR(a.bounds.size().z, 3.0, 1e-9);
+    EXPECT_NEAR(a.bounds.size().x, 2.0, 1e-9);
+    EXPECT_NEAR(a.bounds.size().y, 2.0, 0.02);
+    EXPECT_NEAR(a.mesh.positions[24].z, 3.0, 1e-9) << "the apex is on top";
+    EXPECT_NEAR(signedVolume(a.mesh), signedVolume(m), 1e-9) << "a rotation: faces keep their winding";
+  }
+  // A flat piece of land lies on its thin axis whatever its file says.
+  mesh::Mesh land;
+  land.positions = {{0, 0, 0}, {10, 0.5, 0}, {0, 0.2, 10}, {10, 1, 10}};
+  land.triangles = {{0, 1, 2}, {1, 3, 2}};
+  json j = {{"objects", json::array({{{"mesh", "land.obj"}, {"recentre", false}}})}};
+  const ObjectAsset a = prepareAsset(land, parseScene(j, "s.json", ".").objects[0]);
+  EXPECT_NEAR(a.bounds.size().z, 1.0, 1e-9);
+}
+
+TEST(SceneAssets, AnImageDemGetsCellsFromItsReliefAndKeepsAGivenCellSize) {
+  test::TempDir dir;
+  image::Image h(101, 51, 1);
+  for (int y = 0; y < h.height; ++y) {
+    for (int x = 0; x < h.width; ++x) h.at(x, y, 0) = static_cast<float>((200.0 + 10.0 * x) / 65535.0);
+  }
+  image::saveImage(h, dir / "ramp.png", image::PixelDepth::UInt16);
+  AssetCache cache;
+  json j = {{"objects", json::array({{{"dem", "ramp.png"}, {"lines", {{"enabled", false}}}}})}};
+  Scene s = parseScene(j, "s.json", dir.path());
+  // Relief 1000 over 100 cells: the larger side is 8 times the relief.
+  const mesh::Bounds b = cache.get(s, 0).geometry->bounds;
+  EXPECT_NEAR(b.size().z, 1000.0, 1e-6);
+  EXPECT_NEAR(b.size().x, kImageReliefRatio * 1000.0, 1e-6);
+  EXPECT_NEAR(b.size().y, kImageReliefRatio * 1000.0 * 50 / 100, 1e-6);
+  s.objects[0].cell_size = 30.0;
+  EXPECT_NEAR(cache.get(s, 0).geometry->bounds.size().x, 3000.0, 1e-6);
+}
+
+TEST(SceneAssets, EveryComponentOfAMeshIsKeptForRendering) {
+  test::TempDir dir;
+  std::ofstream(dir / "two.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\n"
+                                    "v 5 0 0\nv 5.2 0 0\nv 5 0.2 0\nv 5 0 0.2\n"
+                                    "f 1 3 2\nf 1 2 4\nf 2 3 4\nf 3 1 4\n"
+                                    "f 5 7 6\nf 5 6 8\nf 6 7 8\nf 7 5 8\n";
+  AssetCache cache;
+  json j = {{"objects", json::array({{{"mesh", "two.obj"}, {"up", "z"}, {"lines", {{"enabled", false}}}}})}};
+  const ObjectAsset& a = *cache.get(parseScene(j, "s.json", dir.path()), 0).geometry;
+  EXPECT_EQ(a.mesh.positions.size(), 8u) << "the small lid is drawn too";
+  EXPECT_EQ(a.mesh.triangles.size(), 8u);
 }
 
 TEST(SceneAssets, PlanarUvsSpanTheLargerExtentAndLumaIsEquationFive) {

@@ -1,6 +1,8 @@
 // An orbit camera around a target, Z up (terrain convention: x east, y north, z up).
 #pragma once
 
+#include <vector>
+
 #include <glm/glm.hpp>
 
 #include "shanshui/mesh/mesh.h"
@@ -17,6 +19,9 @@ struct OrbitCamera {
   double far_plane = 100.0;
 
   glm::dvec3 eye() const;
+  //! Sets the near and far planes around the bounding sphere of `b` as seen from here (the
+  //! near plane at least 1e-4 of the way to it).
+  void enclose(const mesh::Bounds& b);
   glm::mat4 view() const;
   glm::mat4 projection(double aspect) const;
 };
@@ -27,5 +32,38 @@ struct OrbitCamera {
 //! enclose the sphere.
 OrbitCamera frameBounds(const mesh::Bounds& b, double azimuth_deg, double elevation_deg, double fov_y_deg = 35.0,
                         double aspect = 1.0, double zoom = 1.0);
+
+//! A camera, in the coordinates of `b`, whose view from the given azimuth and elevation
+//! holds the eight corners of `b` with a small margin and touches the frame on two sides
+//! (the box's picture centred in the other direction); zoom > 1 moves it closer.
+OrbitCamera fillBounds(const mesh::Bounds& b, double azimuth_deg, double elevation_deg, double fov_y_deg = 35.0,
+                       double aspect = 1.0, double zoom = 1.0);
+
+//! The scene's land seen from above, coarsely: its highest point, and the highest ground
+//! in each cell of a grid over its horizontal bounds. Enough to place a camera on the
+//! ground and aim it at a peak.
+class Relief {
+ public:
+  Relief() = default;
+  //! Points of the scene's surfaces (world coordinates); `cells` per side of the grid.
+  Relief(const std::vector<glm::dvec3>& points, int cells = 32);
+  bool empty() const { return top_.empty(); }
+  const mesh::Bounds& bounds() const { return bounds_; }
+  glm::dvec3 summit() const { return summit_; }
+  //! The highest ground in the cells within `radius` of (x, y); the lowest point of the
+  //! scene outside the grid or where no point fell.
+  double groundAt(glm::dvec2 xy, double radius) const;
+
+ private:
+  mesh::Bounds bounds_;
+  glm::dvec3 summit_{0.0};
+  int cells_ = 0;
+  std::vector<double> top_;  //!< cells_², row-major in y; NaN where no point fell
+};
+
+//! High distance (gao yuan): a camera standing on the ground, from the given azimuth
+//! around the highest peak, far enough that the summit is seen 18° above the horizon, and
+//! pitched up so the summit sits near the top of the frame. zoom > 1 narrows the field.
+OrbitCamera highDistance(const Relief& relief, double azimuth_deg, double fov_y_deg, double zoom);
 
 }  // namespace shanshui::render

@@ -30,9 +30,14 @@ struct FrameStats {
 };
 
 //! The camera of a scene for one view: orbit parameters from the scene (or a path key),
-//! target and distance framed on the world bounds when the scene leaves them out.
+//! target and distance framed on the world bounds when the scene leaves them out, the
+//! preset's elevation, field of view and framing when it has one. The high-distance preset
+//! stands on the ground of `relief` (without one: on the bounds' floor, aiming at the top
+//! of their centre); `fill` framing frames `inked` (the part of the bounds that is not
+//! dissolved into paper; default: all of them).
 OrbitCamera sceneCamera(const scene::Scene& s, const mesh::Bounds& world_bounds, double aspect,
-                        const scene::CameraKey& key);
+                        const scene::CameraKey& key, const Relief* relief = nullptr,
+                        const mesh::Bounds* inked = nullptr);
 
 //! The camera key of frame `index` of `count`: along camera.path when the scene has one,
 //! else the scene camera turned by orbit_deg · index / count around +Z.
@@ -74,6 +79,12 @@ class InkRenderer {
   const std::vector<std::string>& passesBuilt() const { return pass_names_; }
   const std::map<std::string, std::vector<std::string>>& variants() const { return variants_; }
   const mesh::Bounds& worldBounds() const { return world_bounds_; }
+  //! The scene's relief (world coordinates, from up to 4096 points of each object).
+  const Relief& relief() const { return relief_; }
+  //! sceneCamera() for this scene, its bounds and relief.
+  OrbitCamera camera(const scene::CameraKey& key, double aspect) const {
+    return sceneCamera(scene_, world_bounds_, aspect, key, &relief_, &inked_bounds_);
+  }
   std::size_t triangleCount() const;
 
   //! The last frame's images, for tests and debug views: "gbuffer" (colour 0: normal and
@@ -121,6 +132,9 @@ class InkRenderer {
   scene::Scene scene_;
   std::vector<SceneObjectGpu> objects_;
   mesh::Bounds world_bounds_;
+  mesh::Bounds inked_bounds_;  //!< world bounds less the dissolving borders' falloff bands
+  Relief relief_;
+  std::vector<std::vector<glm::dvec3>> relief_points_;  //!< per object, model coordinates
   std::vector<Built> passes_;
   std::vector<std::string> pass_names_;
   std::map<std::string, std::vector<std::string>> variants_;

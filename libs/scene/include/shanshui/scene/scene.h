@@ -116,11 +116,23 @@ struct BorderParams {
   double roughness = 1.2;
 };
 
+//! Which model axis points up. Terrain and shanshui's own files are Z-up; most modelling
+//! tools write OBJ/PLY Y-up. Auto: Z for DEMs, Y for meshes.
+enum class UpAxis { Auto, X, Y, Z };
+
+//! An image heightfield carries no cell size; it gets one that makes its larger side this
+//! many times its relief (Mount St Helens' tile is about 7, a 30 m Alps tile about 10).
+inline constexpr double kImageReliefRatio = 8.0;
+
 struct Object {
   std::string name;
-  std::string mesh;                   //!< .obj/.ply/.off relative to the scene file (exactly one of mesh, dem)
-  std::string dem;                    //!< heightfield (.dem, .asc, .png, .tif), meshed on load
-  double z_scale = 1.0;               //!< dem only: vertical exaggeration
+  std::string mesh;      //!< .obj/.ply/.off relative to the scene file (exactly one of mesh, dem)
+  std::string dem;       //!< heightfield (.dem, .asc, .png, .tif), meshed on load
+  double z_scale = 1.0;  //!< dem only: vertical exaggeration
+  //! dem only: metres between samples; 0 takes it from the file's header, and an image
+  //! (which has none) gets cells that make its larger side kImageReliefRatio × its relief.
+  double cell_size = 0.0;
+  UpAxis up = UpAxis::Auto;           //!< the model axis that is up in the world
   std::size_t max_vertices = 250000;  //!< dem only: grid decimation limit
   //! true: the mesh is moved so its bounding-box centre is the model origin.
   bool recentre = true;
@@ -152,6 +164,16 @@ struct CameraKey {
   double zoom = 1.0;
 };
 
+//! The three distances of landscape painting (Guo Xi): high distance looks up at a peak
+//! from its foot, deep distance looks from above into ranges behind ranges, level distance
+//! looks across far ranges from near the ground. A preset sets the elevation, field of
+//! view and framing; the azimuth and zoom stay the scene's.
+enum class CameraPreset { None, High, Deep, Level };
+
+//! How distance 0 frames the scene: its bounding sphere (the whole scene from any angle,
+//! with room around it), or its bounding box filling the frame from this angle.
+enum class Framing { Sphere, Fill };
+
 //! An orbit camera. Without a target it looks at the centre of the scene's bounds;
 //! distance 0 frames the bounds (zoom > 1 moves closer).
 struct Camera {
@@ -161,6 +183,8 @@ struct Camera {
   double elevation_deg = 25.0;
   double fov_y_deg = 35.0;
   double zoom = 1.0;
+  CameraPreset preset = CameraPreset::None;
+  Framing framing = Framing::Sphere;
   std::vector<CameraKey> path;  //!< optional; used by --frames
 };
 
@@ -228,9 +252,17 @@ struct Mist {
   bool enabled() const { return density > 0; }
 };
 
+//! The sheet: any size, or a hanging scroll (tall, kScrollAspect wide per unit of height).
+enum class Format { Free, VerticalScroll };
+inline constexpr double kScrollAspect = 0.4;
+
 struct Output {
   int width = 1024;
   int height = 768;
+  Format format = Format::Free;
+  //! The picture's size in pixels: width × height, or a vertical scroll `height` tall.
+  int pixelWidth() const;
+  int pixelHeight() const { return height; }
   glm::dvec3 paper{0.95, 0.93, 0.87};  //!< paper colour behind and under the ink, RGB
   //! Distance fade: far parts move towards the paper by up to this much (0 = off).
   double fade = 0.35;
@@ -287,7 +319,9 @@ Scene parseScene(const nlohmann::json& j, const std::string& origin, const std::
 Scene loadScene(const std::filesystem::path& path, const std::vector<std::string>& overrides = {});
 
 //! A scene file, or a mesh (.obj .ply .off) or heightfield (.dem .asc .png .tif .tiff)
-//! made into a one-object scene with every default; overrides apply to both.
+//! made into a one-object scene in the sample scene's style (strokes, rice paper; a DEM
+//! with the deep-distance camera and mist, a mesh filling the frame); overrides apply to
+//! both.
 Scene loadSceneInput(const std::filesystem::path& path, const std::vector<std::string>& overrides = {});
 
 //! Applies one KEY=VALUE override to raw scene JSON; array indices must exist.
