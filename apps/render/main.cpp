@@ -11,6 +11,7 @@
 #include "shanshui/image/image_io.h"
 #include "shanshui/render/gl_context.h"
 #include "shanshui/render/ink_renderer.h"
+#include "shanshui/render/look_metrics.h"
 #include "shanshui/scene/scene.h"
 #include "tool_main.h"
 
@@ -154,6 +155,17 @@ int main(int argc, char** argv) {
           {"index", i}, {"time", time}, {"file", path.string()}, {"frame_ms", fs.frame_ms}, {"cached", fs.cached}};
       f["passes"] = nlohmann::json::object();
       for (const auto& p : fs.passes) f["passes"][p.name] = p.gpu_ms;
+      if (!stats_path.empty()) {  // what a painter would look at (docs/render.md), on the scene's surfaces
+        image::Image subject(img.width, img.height, 1);
+        const image::Image positions = renderer.worldPositions();
+        for (std::size_t k = 0; k < subject.pixels.size(); ++k) subject.pixels[k] = positions.pixels[4 * k + 3];
+        const render::LookStatistics look = render::lookStatistics(img, sc.output.paper, &subject);
+        f["look"] = {{"paper_share", look.paper_share},
+                     {"dark_share", look.dark_share},
+                     {"dark_width_px", look.dark_width_px},
+                     {"far_near_ink", look.far_near_ink},
+                     {"longest_straight", look.longest_straight}};
+      }
       stats["frames"].push_back(f);
       if (frames > 1) std::fprintf(stderr, "\rframe %d/%d", i + 1, frames);
       std::printf("%s\n", path.string().c_str());

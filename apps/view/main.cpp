@@ -299,7 +299,13 @@ int main(int argc, char** argv) {
         }
       }
       if (width > 0 && height > 0) {
-        if (orbit != 0.0) state.camera.azimuth_deg += orbit;
+        if (orbit != 0.0) {
+          // The scene's camera turned, framed again from each azimuth as shanshui-render
+          // --orbit frames it (fill framing and presets depend on the angle).
+          scene::CameraKey key = render::frameKey(sc, 0, 1, 0.0);
+          key.azimuth_deg += orbit * frame;
+          state.camera = renderer->camera(key, static_cast<double>(width) / height);
+        }
         // Spinning objects run on the clock (scripted runs: 1/24 s per frame).
         const double time = frames > 0 ? frame / 24.0 : glfwGetTime();
         const render::Framebuffer& fb = renderer->render(state.camera, width, height, &stats, true, time);

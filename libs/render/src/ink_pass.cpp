@@ -155,10 +155,19 @@ class InkPass final : public RenderPass {
     p.set("u_eye", glm::vec3(camera.eye()));
     p.set("u_near_far", glm::vec2(static_cast<float>(camera.near_plane), static_cast<float>(camera.far_plane)));
     p.set("u_fade", static_cast<float>(in.scene.output.fade));
-    const double to_centre = glm::length(camera.eye() - in.world_bounds.centre());
-    const double radius = 0.5 * glm::length(in.world_bounds.size());
+    // Aerial perspective over the distances the scene spans from this eye: nothing at its
+    // nearest corner, full at its farthest, so the far third of the land is the lighter
+    // whatever the view (the sphere's ±radius left most of the land in the ramp's flat start).
+    double nearest = 1e300, farthest = 0.0;
+    for (int c = 0; c < 8; ++c) {
+      const mesh::Bounds& b = in.world_bounds;
+      const glm::dvec3 corner((c & 1) ? b.max.x : b.min.x, (c & 2) ? b.max.y : b.min.y, (c & 4) ? b.max.z : b.min.z);
+      const double d = glm::length(corner - camera.eye());
+      nearest = std::min(nearest, d);
+      farthest = std::max(farthest, d);
+    }
     p.set("u_fade_range",
-          glm::vec2(static_cast<float>(to_centre - 0.5 * radius), static_cast<float>(to_centre + radius)));
+          glm::vec2(static_cast<float>(nearest), static_cast<float>(std::max(farthest, nearest + 1e-6))));
     if (in.scene.mist.enabled()) {
       // Heights as fractions of the scene's vertical extent; noise cells about a tenth of
       // the scene's horizontal size.

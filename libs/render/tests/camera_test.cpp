@@ -43,8 +43,8 @@ TEST(Camera, FillBoundsHoldsEveryCornerAndTouchesTheFrameOnBothSidesOfOneAxis) {
     EXPECT_LE(std::max({-lo.x, -lo.y, hi.x, hi.y}), 0.94 + 1e-6) << "trial " << trial;
     const bool x_tight = std::abs(hi.x - 0.94) < 1e-4 && std::abs(lo.x + 0.94) < 1e-4;
     const bool y_tight = std::abs(hi.y - 0.94) < 1e-4 && std::abs(lo.y + 0.94) < 1e-4;
-    EXPECT_TRUE(x_tight || y_tight) << "trial " << trial << ": x [" << lo.x << ", " << hi.x << "] y [" << lo.y
-                                    << ", " << hi.y << "]";
+    EXPECT_TRUE(x_tight || y_tight) << "trial " << trial << ": x [" << lo.x << ", " << hi.x << "] y [" << lo.y << ", "
+                                    << hi.y << "]";
     EXPECT_NEAR(lo.x + hi.x, 0.0, 1e-4) << "trial " << trial;
     EXPECT_NEAR(lo.y + hi.y, 0.0, 1e-4) << "trial " << trial;
   }
@@ -104,8 +104,8 @@ TEST(Camera, HighDistanceStandsOnTheGroundOutsideTheLandAndSeesTheSummitHighInTh
       EXPECT_LT(cam.elevation_deg, 0.0) << "the view tilts up";
       // Outside the land's bounds, on the side the azimuth names.
       EXPECT_TRUE(eye.x < -5 || eye.x > 5 || eye.y < -5 || eye.y > 5) << eye.x << ", " << eye.y;
-      const double side = glm::dot(glm::dvec2(eye) - peak, glm::dvec2(std::cos(glm::radians(az)),
-                                                                        std::sin(glm::radians(az))));
+      const double side =
+          glm::dot(glm::dvec2(eye) - peak, glm::dvec2(std::cos(glm::radians(az)), std::sin(glm::radians(az))));
       EXPECT_GT(side, 0.0);
       // The summit is in the frame's upper part, centred across.
       const glm::dvec3 s = project(cam, aspect, relief.summit());

@@ -20,8 +20,10 @@
 #include "shanshui/core/error.h"
 #include "shanshui/image/image_io.h"
 #include "shanshui/ink/diffusion.h"
+#include "shanshui/noise/perlin.h"
 #include "shanshui/render/gl_context.h"
 #include "shanshui/render/ink_object_params.h"
+#include "shanshui/render/look_metrics.h"
 #include "shanshui/render/shader_library.h"
 #include "shanshui/scene/scene.h"
 #include "shanshui/scene/scene_assets.h"
@@ -699,6 +701,74 @@ mesh::Mesh roughHill() {
     const double dx = x - 3.0, dy = y - 3.0;
     return 1.5 * std::exp(-(dx * dx + dy * dy) / 2.0) + 0.004 * std::sin(7.0 * x) * std::cos(5.0 * y);
   });
+}
+
+// A ridged fractal range, 8 × 6: five octaves of Perlin noise folded into crests.
+mesh::Mesh fractalRange() {
+  return test::heightGrid(161, 121, 0.05, [](double x, double y) {
+    double h = 0, amplitude = 1, frequency = 0.35;
+    for (int k = 0; k < 5; ++k) {
+      h += amplitude * (1.0 - std::abs(noise::perlin(frequency * x, frequency * y, 0.5 + k)));
+      amplitude *= 0.5;
+      frequency *= 2.0;
+    }
+    return 0.6 * h * h;
+  });
+}
+
+// The sample scene's style (strokes, light tones that leave the lit slopes white, aerial
+// perspective 0.6, rice paper) on a lone terrain mesh with a DEM's dissolving border and
+// mist, from the deep-distance preset, at 768x576.
+LookStatistics paintLook(const mesh::Mesh& land, const json& extra = json::object(), const char* border = "dissolve") {
+  json top = {{"camera", {{"preset", "deep"}, {"azimuth", -60}}},
+              {"output", {{"fade", 0.6}}},
+              {"canvas", {{"type", "rice_paper"}}},
+              {"mist", {{"density", 0.75}, {"height", 0.12}, {"softness", 0.35}}}};
+  top.update(extra, true);
+  const scene::Scene s = sceneWith({{"lines", {{"width", 3.5}}},
+                                    {"shading", {{"tones", {0.5, 0.66, 0.8, 0.92, 1.0}}}},
+                                    {"border", {{"mode", border}}}},
+                                   top);
+  InkRenderer r(s, prepare(s, land));
+  const image::Image picture = r.render(r.camera({-60, 25, 1.0}, 768.0 / 576), 768, 576).colour(0).download(3);
+  // SHANSHUI_LOOK_DIR=DIR keeps the pictures, to be judged by eye beside the numbers.
+  if (const char* dir = std::getenv("SHANSHUI_LOOK_DIR")) {
+    static int count = 0;
+    image::saveImage(picture, std::filesystem::path(dir) / ("look_" + std::to_string(count++) + ".png"));
+  }
+  image::Image subject(768, 576, 1);
+  const image::Image positions = r.worldPositions();
+  for (std::size_t i = 0; i < subject.pixels.size(); ++i) subject.pixels[i] = positions.pixels[4 * i + 3];
+  return lookStatistics(picture, s.output.paper, &subject);
+}
+
+// Issue 22's bounds on synthetic terrains in the sample's style: no straight edge longer
+// than a quarter of the width (the tile's cut edges are gone), dark strokes at most 5 px
+// wide on average (lines, not filled regions), and the far third of the land lighter than
+// the near third (aerial perspective).
+TEST_F(Look, SyntheticTerrainsReadAsPaintingsByTheNumbers) {
+  for (const auto& [name, land] : std::vector<std::pair<std::string, mesh::Mesh>>{{"hill on a plain", roughHill()},
+                                                                                  {"fractal range", fractalRange()}}) {
+    SCOPED_TRACE(name);
+    const LookStatistics look = paintLook(land);
+    std::printf("%s: paper %.3f, dark share %.4f, dark width %.2f px, longest straight %.3f\n", name.c_str(),
+                look.paper_share, look.dark_share, look.dark_width_px, look.longest_straight);
+    EXPECT_LT(look.longest_straight, 0.25);
+    EXPECT_LE(look.dark_width_px, 5.0);
+    EXPECT_GT(look.dark_share, 0.0) << "some dark strokes";
+    EXPECT_GT(look.paper_share, 0.5) << "mostly bare paper";
+    // Aerial perspective alone: no mist (it whitens the low near ground) and a kept border
+    // (the dissolving one whitens the near band, which covers more rows than the far one).
+    // On the range, land of one kind fills every third; the hill's far third is its
+    // shadowed crown and its near third the lit plain, so there the ratio measures the
+    // light (1.36), not the distance, and is only printed.
+    const LookStatistics clear = paintLook(land, {{"mist", {{"density", 0.0}}}}, "keep");
+    std::printf("%s, mist off, border kept: far/near ink %.3f\n", name.c_str(), clear.far_near_ink);
+    EXPECT_GT(clear.far_near_ink, 0.0);
+    if (name == "fractal range") {
+      EXPECT_LE(clear.far_near_ink, 0.7);
+    }
+  }
 }
 
 // A smooth Gaussian hill with a little roughness: Eq. 1 past its threshold covers a broad

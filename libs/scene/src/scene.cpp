@@ -183,13 +183,14 @@ Scene loadSceneInput(const std::filesystem::path& path, const std::vector<std::s
                     ": expected a scene (.json), a mesh (.obj .ply .off) or a heightfield "
                     "(.dem .asc .png .tif)");
   }
-  // The sample scene's style: strokes, its tones, rice paper; a DEM is a piece of land seen
+  // The sample scene's style: strokes, light tones that leave lit slopes white, strong aerial
+  // perspective, rice paper; a DEM is a piece of land seen
   // from above into its ranges with mist in its valleys, a mesh an object filling the frame.
   json object = {{mesh ? "mesh" : "dem", path.string()},
                  {"name", path.stem().string()},
                  {"lines", {{"width", 3.5}}},
-                 {"shading", {{"tones", {0.3, 0.5, 0.68, 0.85, 1.0}}}}};
-  json j = {{"objects", json::array({object})}, {"canvas", {{"type", "rice_paper"}}}};
+                 {"shading", {{"tones", {0.5, 0.66, 0.8, 0.92, 1.0}}}}};
+  json j = {{"objects", json::array({object})}, {"canvas", {{"type", "rice_paper"}}}, {"output", {{"fade", 0.6}}}};
   if (mesh) {
     j["camera"] = {{"framing", "fill"}};
   } else {

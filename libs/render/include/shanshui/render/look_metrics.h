@@ -1,0 +1,35 @@
+// What a painter would look at, as numbers (issue 22 item 7): how much of the sheet is
+// bare paper, how wide the dark strokes are, whether far land is lighter than near land,
+// and whether a straight cut edge shows. They back the eye; they do not replace it.
+#pragma once
+
+#include <glm/glm.hpp>
+
+#include "shanshui/image/image.h"
+
+namespace shanshui::render {
+
+struct LookStatistics {
+  //! Share of the picture's pixels within paper tone: ink below 0.1, where ink is
+  //! 1 − luminance / the paper's luminance (clamped to [0, 1]).
+  double paper_share = 0.0;
+  //! Mean width of the dark marks (ink above 0.5): their area over the length of their
+  //! skeleton (OpenCV's Zhang–Suen thinning), in pixels; 0 when there are none.
+  double dark_width_px = 0.0;
+  double dark_share = 0.0;  //!< share of the picture's pixels that are dark marks
+  //! Mean ink of the subject's top third of rows over its bottom third: far over near for a
+  //! view from above the land. The subject is the mask where given, else the pixels
+  //! carrying ink above 0.1; 0 when the bottom third carries none.
+  double far_near_ink = 0.0;
+  //! Longest straight segment of the ink's edges (Canny, probabilistic Hough with gaps of
+  //! at most 2 pixels), as a fraction of the picture's width.
+  double longest_straight = 0.0;
+};
+
+//! The statistics of an RGB picture (values in [0, 1], row 0 at the top) painted on
+//! `paper`. `subject`, when given, is one channel of the picture's size, > 0.5 where the
+//! scene's surfaces are.
+LookStatistics lookStatistics(const image::Image& rgb, const glm::dvec3& paper,
+                              const image::Image* subject = nullptr);
+
+}  // namespace shanshui::render
