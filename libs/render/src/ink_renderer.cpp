@@ -29,10 +29,6 @@ GLenum minFilter(scene::TextureFilter f) {
   return GL_NEAREST_MIPMAP_NEAREST;
 }
 
-}  // namespace
-
-namespace {
-
 // What a preset fixes: elevation, vertical field of view, framing. High distance has no
 // elevation of its own: it stands on the ground and looks up.
 struct PresetView {

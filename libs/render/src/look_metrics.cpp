@@ -46,9 +46,7 @@ LookStatistics lookStatistics(const image::Image& rgb, const glm::dvec3& paper, 
   }
 
   // The subject's rows, split in thirds.
-  auto inSubject = [&](int x, int y) {
-    return subject ? subject->at(x, y, 0) > 0.5f : ink.at<float>(y, x) > 0.1f;
-  };
+  auto inSubject = [&](int x, int y) { return subject ? subject->at(x, y, 0) > 0.5f : ink.at<float>(y, x) > 0.1f; };
   int first = h, last = -1;
   for (int y = 0; y < h; ++y) {
     for (int x = 0; x < w; ++x) {

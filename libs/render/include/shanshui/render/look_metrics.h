@@ -29,7 +29,6 @@ struct LookStatistics {
 //! The statistics of an RGB picture (values in [0, 1], row 0 at the top) painted on
 //! `paper`. `subject`, when given, is one channel of the picture's size, > 0.5 where the
 //! scene's surfaces are.
-LookStatistics lookStatistics(const image::Image& rgb, const glm::dvec3& paper,
-                              const image::Image* subject = nullptr);
+LookStatistics lookStatistics(const image::Image& rgb, const glm::dvec3& paper, const image::Image* subject = nullptr);
 
 }  // namespace shanshui::render
