@@ -14,9 +14,79 @@ uniform float u_repeat;        // texture repetitions per UV unit
 #ifdef OBJECT_CURVATURE
 in float v_curvature;
 #endif
-#ifdef SCREEN_CURVATURE
+#if defined(SCREEN_CURVATURE) || defined(WRINKLE_SLOPE)
 in vec3 v_world;
+#endif
+#ifdef SCREEN_CURVATURE
 uniform float u_feature_size;  // world units
+#endif
+#ifdef WRINKLE_SLOPE
+uniform float u_tile_px;  // a texture tile spans 1-2 times this many pixels
+uniform float u_angle;    // radians: the texture's v axis turned from the fall line
+
+uint slopeHash(uvec2 p) {
+  uint h = p.x * 0x8da6b343u ^ p.y * 0xd8163841u;
+  h ^= h >> 15;
+  h *= 0x2c1b3c6du;
+  h ^= h >> 12;
+  return h;
+}
+
+// The wrinkle texture at one octave: q are tile coordinates (one unit per tile), turned by
+// m about the nearest points of a half-tile lattice (each with its own random offset into
+// the texture) and blended between the four, so a turn that changes across the surface
+// bends the strokes instead of sliding the texture from a far origin.
+float wrinkleOctave(vec2 q, mat2 m, float lod) {
+  vec2 cell = q * 2.0, base = floor(cell), f = cell - base;
+  vec2 w = f * f * (3.0 - 2.0 * f);
+  float sum = 0.0;
+  for (int i = 0; i < 4; ++i) {
+    vec2 corner = base + vec2(i & 1, i >> 1);
+    uint h = slopeHash(uvec2(ivec2(corner) + 32768));
+    vec2 offset = vec2(h & 0xffffu, h >> 16) / 65536.0;
+    float weight = ((i & 1) != 0 ? w.x : 1.0 - w.x) * ((i >> 1) != 0 ? w.y : 1.0 - w.y);
+    vec2 t = m * (q - corner * 0.5) + offset;
+    sum += weight * textureLod(u_wrinkle, t, lod).r;
+  }
+  return sum;
+}
+
+// Eq. 5's luma with the texture's v axis down the fall line: the fall line (the steepest
+// descent on the surface, +Z up) is carried into UV space through the UVs' screen
+// derivatives, and the tile's size on screen is held between u_tile_px and twice it by
+// blending the two octaves around it (the nearer weighs more), so the strokes keep their
+// size as the camera zooms and stay on the surface as it moves.
+float slopeWrinkle(vec3 n) {
+  vec3 dpx = dFdx(v_world), dpy = dFdy(v_world);
+  vec2 dux = dFdx(v_uv), duy = dFdy(v_uv);
+  float det = dux.x * duy.y - duy.x * dux.y;
+  if (!(abs(det) > 1e-30)) return texture(u_wrinkle, v_uv * u_repeat).r;
+  vec3 tu = (dpx * duy.y - dpy * dux.y) / det;  // dP/du
+  vec3 tv = (dpy * dux.x - dpx * duy.x) / det;  // dP/dv
+  vec3 down = vec3(0.0, 0.0, -1.0) + n.z * n;   // -Z less its normal part
+  float uu = dot(tu, tu), uv = dot(tu, tv), vv = dot(tv, tv);
+  float gram = uu * vv - uv * uv;
+  vec2 d = gram > 0.0 ? vec2(vv * dot(down, tu) - uv * dot(down, tv), uu * dot(down, tv) - uv * dot(down, tu)) / gram
+                      : vec2(0.0);
+  // On flat ground there is no fall line: the strokes run along v there.
+  float steep = smoothstep(0.02, 0.15, length(down));
+  vec2 dir = length(d) > 0.0 ? normalize(d) : vec2(0.0, 1.0);
+  dir = mix(vec2(0.0, 1.0), dir, steep);
+  dir = length(dir) > 1e-6 ? normalize(dir) : vec2(0.0, 1.0);
+  float c = cos(u_angle), s = sin(u_angle);
+  dir = vec2(c * dir.x - s * dir.y, s * dir.x + c * dir.y);
+  mat2 m = mat2(dir.y, dir.x, -dir.x, dir.y);  // takes dir to (0, 1): rows (dir.y, -dir.x), (dir.x, dir.y)
+  float scale = log2(max(u_tile_px * sqrt(abs(det)), 1e-30));  // log2 of tiles' UV size at u_tile_px
+  float level = floor(scale), blend = scale - level;
+  float size0 = exp2(level), size1 = 2.0 * size0;
+  // One mip level per octave, from the footprint of a pixel in texels (turning does not
+  // change it): explicit-gradient fetches cost llvmpipe a level computation each.
+  float texels = float(textureSize(u_wrinkle, 0).x) * max(length(dux), length(duy));
+  float lod0 = log2(max(texels / size0, 1e-30));
+  float a = wrinkleOctave(v_uv / size0, m, lod0);
+  float b = wrinkleOctave(v_uv / size1, m, lod0 - 1.0);
+  return mix(a, b, blend);
+}
 #endif
 #ifdef SURFACE
 in vec2 v_noise_uv;
@@ -47,7 +117,9 @@ void main() {
   noise = texture(u_noise, v_noise_uv).rg;
 #endif
   float wrinkle = 1.0;
-#ifdef WRINKLE
+#if defined(WRINKLE_SLOPE)
+  wrinkle = slopeWrinkle(n);
+#elif defined(WRINKLE)
   wrinkle = texture(u_wrinkle, v_uv * u_repeat).r;
 #endif
   o_surface_id = vec4(noise, wrinkle, u_object_id);

@@ -1,7 +1,8 @@
 #version 450 core
 // G-buffer pass. Only what the variant needs is interpolated (llvmpipe pays per varying):
 // normal always; erosion-noise coordinates (SURFACE), UVs (WRINKLE), per-vertex curvature
-// (OBJECT_CURVATURE), world position for screen-space derivatives (SCREEN_CURVATURE).
+// (OBJECT_CURVATURE), world position for screen-space derivatives (SCREEN_CURVATURE,
+// WRINKLE_SLOPE).
 layout(location = 0) in vec3 a_position;
 layout(location = 1) in vec3 a_normal;
 #ifdef WRINKLE
@@ -12,7 +13,7 @@ out vec2 v_uv;
 layout(location = 3) in float a_curvature;
 out float v_curvature;
 #endif
-#ifdef SCREEN_CURVATURE
+#if defined(SCREEN_CURVATURE) || defined(WRINKLE_SLOPE)
 out vec3 v_world;
 #endif
 #ifdef SURFACE
@@ -35,7 +36,7 @@ void main() {
 #ifdef OBJECT_CURVATURE
   v_curvature = a_curvature;
 #endif
-#ifdef SCREEN_CURVATURE
+#if defined(SCREEN_CURVATURE) || defined(WRINKLE_SLOPE)
   v_world = world.xyz;
 #endif
 #ifdef SURFACE

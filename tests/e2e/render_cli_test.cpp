@@ -51,7 +51,7 @@ TEST(RenderCli, StatsListThePassesBuiltAndTheirGpuTimePerFrame) {
   EXPECT_EQ(s["variants"]["ink"], json({"LINES STROKES SHADING WRINKLE CANVAS SINGLE_OBJECT BORDER MIST",
                                         "lines: SINGLE_OBJECT BORDER MIST"}));
   EXPECT_EQ(s["variants"]["canvas"].size(), 2u) << "one and 32 geometry-shader invocations, rice paper";
-  EXPECT_EQ(s["variants"]["gbuffer"], json({"SURFACE WRINKLE OBJECT_CURVATURE"}));
+  EXPECT_EQ(s["variants"]["gbuffer"], json({"SURFACE WRINKLE WRINKLE_SLOPE OBJECT_CURVATURE"}));
   ASSERT_EQ(s["frames"].size(), 3u);
   for (const json& f : s["frames"]) {
     EXPECT_FALSE(f["cached"].get<bool>());
@@ -110,7 +110,7 @@ TEST(RenderCli, LinesOnlyAndShadingOnlyBuildOnlyTheirShaderCode) {
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const json b = readJson(dir / "b.json");
   EXPECT_EQ(b["variants"]["ink"], json({"SHADING WRINKLE CANVAS SINGLE_OBJECT BORDER MIST"}));
-  EXPECT_EQ(b["variants"]["gbuffer"], json({"SURFACE WRINKLE"}));  // no curvature of either kind
+  EXPECT_EQ(b["variants"]["gbuffer"], json({"SURFACE WRINKLE WRINKLE_SLOPE"}));  // no curvature of either kind
   // Eq. 1's bands instead of strokes: no lines stage, no stroke code.
   r = run(base + " -o " + quote(dir / "c.png") + " --stats " + quote(dir / "c.json") +
           " --set objects.0.lines.width=0");

@@ -21,6 +21,7 @@ std::vector<std::string> objectDefines(const scene::Scene& s, const scene::Objec
   std::vector<std::string> d;
   if (s.usesShading()) d.emplace_back("SURFACE");
   if (o.wrinkled()) d.emplace_back("WRINKLE");
+  if (o.wrinkled() && o.wrinkle.mapping == scene::WrinkleMapping::Slope) d.emplace_back("WRINKLE_SLOPE");
   if (o.lines.enabled) d.emplace_back(scene::perVertex(o.lines.curvature) ? "OBJECT_CURVATURE" : "SCREEN_CURVATURE");
   return d;
 }
@@ -146,6 +147,10 @@ class GbufferPass final : public RenderPass {
         glBindTextureUnit(1, g.wrinkle->id());
         p.set("u_wrinkle", 1);
         p.set("u_repeat", static_cast<float>(o.wrinkle.repeat));
+        if (o.wrinkle.mapping == scene::WrinkleMapping::Slope) {
+          p.set("u_tile_px", static_cast<float>(o.wrinkle.tile_px * in.height / 1024.0));
+          p.set("u_angle", static_cast<float>(glm::radians(o.wrinkle.angle_deg)));
+        }
       }
       // Front to back, so hidden fragments fail the depth test before they are shaded.
       const glm::dvec3 forward = glm::inverse(glm::dmat3(model)) * (in.camera.target - in.camera.eye());

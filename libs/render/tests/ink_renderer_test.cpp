@@ -188,6 +188,103 @@ std::vector<float> wrinkleLuma(InkRenderer& r, const OrbitCamera& cam, int size)
   return out;
 }
 
+// The G-buffer's wrinkle luma on a plane tilted so it falls towards -(cos φ, sin φ), with
+// a texture of 8 stripes per tile that vary along u (strokes along v): the direction
+// (world x, y) across which the luma varies most, from the structure tensor of its
+// gradient, and its wavelength in pixels, 2π √(var / mean |∇|²) for a sinusoid.
+struct StripeMeasure {
+  double across_deg = 0.0;  //!< angle of the luma's gradient from the fall line, [0, 90]
+  double wavelength_px = 0.0;
+};
+
+StripeMeasure measureStripes(const std::string& mapping, double fall_deg, double zoom) {
+  const double phi = glm::radians(fall_deg);
+  const mesh::Mesh plane =
+      test::heightGrid(81, 81, 0.05, [&](double x, double y) { return 0.5 * (x * std::cos(phi) + y * std::sin(phi)); });
+  auto stripes = std::make_shared<image::Image>(64, 64, 1);
+  for (int y = 0; y < 64; ++y) {
+    for (int x = 0; x < 64; ++x) {
+      stripes->at(x, y, 0) = static_cast<float>(0.5 + 0.5 * std::sin(2 * std::numbers::pi * 8 * (x + 0.5) / 64));
+    }
+  }
+  const json object = {{"up", "z"},
+                       {"wrinkle",
+                        {{"texture", "stripes.png"},
+                         {"uv", "planar"},
+                         {"mapping", mapping},
+                         {"repeat", 3},
+                         {"tile_px", 512},
+                         {"filter", "trilinear"}}}};
+  const scene::Scene s = sceneWith(object);
+  InkRenderer r(s, prepare(s, plane, stripes));
+  const int size = 256;
+  r.render(sceneCamera(s, r.worldBounds(), 1.0, {-100, 70, zoom}), size, size);
+  const image::Image surface = r.passTarget("gbuffer")->colour(1).download(4), pos = r.worldPositions();
+  if (const char* dir = std::getenv("SHANSHUI_LOOK_DIR")) {
+    image::Image luma(size, size, 1);
+    for (int y = 0; y < size; ++y)
+      for (int x = 0; x < size; ++x) luma.at(x, y, 0) = surface.at(x, y, 2);
+    image::saveImage(luma, std::filesystem::path(dir) / ("stripes_" + mapping + "_" + std::to_string(int(fall_deg)) +
+                                                         "_" + std::to_string(int(zoom * 10)) + ".png"));
+  }
+  glm::dmat2 tensor(0.0);
+  double sum = 0, sum2 = 0, grad2 = 0;
+  int n = 0;
+  for (int y = size / 4; y < 3 * size / 4; ++y) {  // the middle, away from the plane's edges
+    for (int x = size / 4; x < 3 * size / 4; ++x) {
+      if (pos.at(x, y, 3) < 0.5f || pos.at(x + 1, y, 3) < 0.5f || pos.at(x, y + 1, 3) < 0.5f) continue;
+      const double l = surface.at(x, y, 2);
+      const glm::dvec2 dl(surface.at(x + 1, y, 2) - l, surface.at(x, y + 1, 2) - l);
+      const glm::dvec2 p0(pos.at(x, y, 0), pos.at(x, y, 1));
+      const glm::dmat2 a(glm::dvec2(pos.at(x + 1, y, 0), pos.at(x + 1, y, 1)) - p0,
+                         glm::dvec2(pos.at(x, y + 1, 0), pos.at(x, y + 1, 1)) - p0);
+      const glm::dvec2 g = glm::inverse(glm::transpose(a)) * dl;  // dl = aᵀ g
+      tensor += glm::outerProduct(g, g);
+      sum += l;
+      sum2 += l * l;
+      grad2 += glm::dot(dl, dl);
+      ++n;
+    }
+  }
+  StripeMeasure m;
+  // The tensor's main axis: angle θ with tan 2θ = 2 J_xy / (J_xx − J_yy).
+  const double theta = 0.5 * std::atan2(2 * tensor[0][1], tensor[0][0] - tensor[1][1]);
+  const double between = std::abs(std::remainder(theta - phi, std::numbers::pi));
+  m.across_deg = glm::degrees(std::min(between, std::numbers::pi - between));
+  const double mean = sum / n, var = sum2 / n - mean * mean;
+  m.wavelength_px = 2 * std::numbers::pi * std::sqrt(var / (grad2 / n));
+  return m;
+}
+
+// Cun strokes follow the slope: with `slope` the luma varies across the fall line (its
+// strokes run down it) whichever way the plane falls; with `uv` it varies along world x
+// whatever the plane does. And their size on screen stays within the two octaves' range
+// as the camera zooms, where the UV-mapped stripes grow with the zoom.
+TEST_F(Ink, SlopeWrinklesRunDownTheFallLineAtASizeFixedOnScreen) {
+  for (const double fall : {0.0, 60.0, 135.0}) {
+    SCOPED_TRACE(fall);
+    const StripeMeasure slope = measureStripes("slope", fall, 1.0);
+    std::printf("fall %.0f°: gradient %.1f° from the fall line\n", fall, slope.across_deg);
+    EXPECT_GT(slope.across_deg, 80.0) << "the gradient runs across the fall line";
+  }
+  EXPECT_LT(measureStripes("uv", 0.0, 1.0).across_deg, 10.0) << "UV stripes ignore the slope: they vary along x";
+  std::vector<double> slope_px, uv_px;
+  for (const double zoom : {1.0, 1.7, 2.9}) {
+    slope_px.push_back(measureStripes("slope", 0.0, zoom).wavelength_px);
+    uv_px.push_back(measureStripes("uv", 0.0, zoom).wavelength_px);
+  }
+  std::printf("stripe wavelength at zoom 1, 1.7, 2.9: slope %.1f %.1f %.1f px, uv %.1f %.1f %.1f px\n", slope_px[0],
+              slope_px[1], slope_px[2], uv_px[0], uv_px[1], uv_px[2]);
+  // 8 stripes per tile, tiles of 0.71-1.41 × 128 px (tile_px 512 at 256 high) weighed most.
+  for (const double px : slope_px) {
+    EXPECT_GT(px, 128.0 / 8 / 2);
+    EXPECT_LT(px, 128.0 / 8 * 2);
+  }
+  EXPECT_LT(*std::max_element(slope_px.begin(), slope_px.end()) / *std::min_element(slope_px.begin(), slope_px.end()),
+            1.6);
+  EXPECT_GT(uv_px[2] / uv_px[0], 2.2) << "the UV mapping's stripes grow with the zoom";
+}
+
 TEST_F(Ink, WrinkleFilterAppliesLiveAndOnlyWhereTheTextureIsMinified) {
   // Random texels, so every mip level has detail to filter.
   auto noise = std::make_shared<image::Image>(64, 64, 1);

@@ -73,6 +73,8 @@ inline constexpr std::array<Named<CanvasMethod>, 2> kCanvasMethods{
 inline constexpr std::array<Named<BorderMode>, 3> kBorderModes{
     {{"auto", BorderMode::Auto}, {"dissolve", BorderMode::Dissolve}, {"keep", BorderMode::Keep}}};
 
+inline constexpr std::array<Named<WrinkleMapping>, 2> kWrinkleMappings{
+    {{"uv", WrinkleMapping::Uv}, {"slope", WrinkleMapping::Slope}}};
 inline constexpr std::array<Named<UpAxis>, 4> kUpAxes{
     {{"auto", UpAxis::Auto}, {"x", UpAxis::X}, {"y", UpAxis::Y}, {"z", UpAxis::Z}}};
 inline constexpr std::array<Named<CameraPreset>, 4> kCameraPresets{{{"none", CameraPreset::None},
@@ -187,6 +189,20 @@ void describe(V& v, WrinkleParams& p) {
             "where the texture is minified: one texel of the nearest mip level, bilinear in it, or trilinear "
             "(bench/ink_tradeoff.md)"},
            p.filter, kTextureFilters);
+  v.choice({"mapping",
+            "`uv`: the texture as the UVs lay it, `repeat` times per unit (seed 001); `slope`: turned per fragment "
+            "so its v axis runs down the fall line, at a fixed size on screen (two octaves blended as the camera "
+            "moves; `repeat` is not used)",
+            kRebuild},
+           p.mapping, kWrinkleMappings);
+  v.number({"tile_px",
+            "slope: a texture tile's size on screen: the two octaves drawn span half to twice it, the nearer "
+            "weighing more, so the strokes keep their size at every zoom",
+            Effect::Uniform, "pixels at 1024 high"},
+           p.tile_px, {8, 4096});
+  v.number({"angle", "slope: the texture's v axis turned this far from the fall line (align the scan's strokes)",
+            Effect::Uniform, "degrees"},
+           p.angle_deg, {-360, 360});
 }
 
 template <typename V>

@@ -245,6 +245,7 @@ TEST(Scene, RebuildKeysAreTheOnesThatChangeVariantsOrFiles) {
                                           "objects.*.shading.enabled",
                                           "objects.*.wrinkle.texture",
                                           "objects.*.wrinkle.uv",
+                                          "objects.*.wrinkle.mapping",
                                           "canvas.type",
                                           "canvas.static_pattern",
                                           "canvas.method"};

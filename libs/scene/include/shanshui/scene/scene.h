@@ -94,6 +94,11 @@ enum class UvSource {
 //! bilinear): one texel of the nearest mip level, bilinear in it, or trilinear.
 enum class TextureFilter { Nearest, Bilinear, Trilinear };
 
+//! How the wrinkle texture lies on the surface: as the UVs put it (seed 001), or turned per
+//! fragment so its strokes run down the fall line, at a size fixed on screen (two octaves
+//! of it blended, so it stays on the surface as the camera moves).
+enum class WrinkleMapping { Uv, Slope };
+
 //! Wrinkle (cun) texture mapping (seed 001 Eq. 5). No texture: no wrinkle code is built.
 struct WrinkleParams {
   std::string texture;            //!< image path relative to the scene file; empty = none
@@ -101,6 +106,9 @@ struct WrinkleParams {
   double repeat = 4.0;            //!< texture repetitions per UV unit
   UvSource uv = UvSource::Mesh;
   TextureFilter filter = TextureFilter::Nearest;
+  WrinkleMapping mapping = WrinkleMapping::Uv;
+  double tile_px = 384.0;  //!< slope: a texture tile's size on screen, pixels at 1024 high
+  double angle_deg = 0.0;  //!< slope: the texture's v axis turned this far from the fall line
 };
 
 //! How an object's horizontal border meets the paper: a DEM is a tile cut from a larger
