@@ -36,7 +36,8 @@ fuzz:
 	./scripts/fuzz.sh
 
 demo: build
-	$(BUILD)/bin/shanshui-demo --samples samples --out out
+	$(BUILD)/bin/shanshui-demo --samples samples --out out \
+	  $(if $(wildcard ../shared/data/textures/ink_landscape_scan.jpg),--reference ../shared/data/textures/ink_landscape_scan.jpg)
 	@echo
 	@echo "demo results in $(CURDIR)/out/ (a second run reuses every stage whose inputs are unchanged):"
 	@echo "  out/report.md            pictures, per-stage times and quality numbers, the stability table"

@@ -156,11 +156,18 @@ int main(int argc, char** argv) {
   app.add_option("--frames", frames, "frames of the orbit sequence")->check(CLI::Range(1, 3600))->capture_default_str();
   app.add_flag("--force", force, "run every stage even when its inputs are unchanged");
   app.add_flag("--quick", quick, "small sizes everywhere (for tests)");
+  std::string reference;
+  app.add_option("--reference", reference,
+                 "a real ink landscape (image) shown beside the paintings in the report; `make demo` passes "
+                 "../shared/data/textures/ink_landscape_scan.jpg when it is there");
   return shanshui::tools::runTool(app, argc, argv, [&] {
     const fs::path s(samples), o(out), assets = fs::path(out) / "assets";
     for (const fs::path& f :
          {s / "textures/rain_strokes_scan.png", s / "terrain/mount_st_helens.dem", s / "scenes/default.json"}) {
       if (!fs::exists(f)) throw shanshui::makeError(f.string(), ": not found (is --samples the samples directory?)");
+    }
+    if (!reference.empty() && !fs::is_regular_file(reference)) {
+      throw shanshui::makeError("--reference: ", reference, ": not found (expected an image file)");
     }
     fs::create_directories(assets);
     const fs::path bin = fs::canonical("/proc/self/exe").parent_path();
@@ -217,6 +224,27 @@ int main(int argc, char** argv) {
     stages.push_back(still);
     results.push_back(runner.run(orbit));
     stages.push_back(orbit);
+    // The three distances, from the sample scenes as they are (DEM, wrinkle texture).
+    const std::vector<std::string> distances = {"high", "deep", "level"};
+    for (const std::string& d : distances) {
+      const fs::path scene = s / "scenes" / (d + "_distance.json");
+      if (!fs::exists(scene)) throw shanshui::makeError(scene.string(), ": not found");
+      Stage st{d + "_distance",
+               "shanshui-render",
+               {scene.string(), "-o", (o / (d + ".png")).string(), "--stats", (o / (d + "_stats.json")).string()},
+               {scene, s / "terrain/mount_st_helens.dem", s / "textures/rain_strokes_wrinkle.png"},
+               {o / (d + ".png"), o / (d + "_stats.json")}};
+      if (quick) {
+        st.args.insert(st.args.end(), {"--set", "output.height=120", "--set", "output.width=160", "--set",
+                                       "objects.0.max_vertices=4000"});
+      }
+      results.push_back(runner.run(st));
+      stages.push_back(st);
+    }
+    if (!reference.empty()) {
+      fs::copy_file(reference, assets / ("reference" + fs::path(reference).extension().string()),
+                    fs::copy_options::overwrite_existing);
+    }
 
     // The stability suite (built with the tests), its table for the report; keyed by the
     // suite and every program it runs. --quick runs only its fast library cases.
@@ -300,7 +328,33 @@ int main(int argc, char** argv) {
       std::snprintf(name, sizeof name, frames > 1 ? "orbit_%04d.png" : "orbit.png", i);
       md << "![frame " << i << "](" << name << ") ";
     }
-    md << "\n\n## Stability\n\n";
+    md << "\n\n## The three distances, beside a real ink landscape\n\n";
+    md << "High distance (a hanging scroll), deep distance, level distance";
+    if (!reference.empty()) md << ", and the reference scan (`--reference`)";
+    md << ":\n\n![high](high.png) ![deep](deep.png) ![level](level.png)";
+    if (!reference.empty()) {
+      md << " ![reference](assets/reference" << fs::path(reference).extension().string() << ")";
+    }
+    md << "\n\nWhat a painter would look at, measured (`look` in `shanshui-render --stats`; docs/render.md): "
+          "share of paper-tone pixels, share and mean width of the dark marks, ink of the far third of the "
+          "land over the near third, longest straight edge over the width.\n\n"
+       << "| picture | paper share | dark share | dark width px | far / near ink | longest straight |\n"
+       << "|---|---|---|---|---|---|\n";
+    for (const std::string& name :
+         {std::string("mountain"), std::string("high"), std::string("deep"), std::string("level")}) {
+      const fs::path f = o / (name + "_stats.json");
+      const json st = fs::exists(f) ? json::parse(readFile(f), nullptr, false) : json();
+      md << "| " << name;
+      for (const char* key : {"paper_share", "dark_share", "dark_width_px", "far_near_ink", "longest_straight"}) {
+        const bool has = !st.is_discarded() && st.contains("frames") && !st["frames"].empty() &&
+                         st["frames"][0].contains("look") && st["frames"][0]["look"].contains(key);
+        char buf[32] = "—";
+        if (has) std::snprintf(buf, sizeof buf, "%.3g", st["frames"][0]["look"][key].get<double>());
+        md << " | " << buf;
+      }
+      md << " |\n";
+    }
+    md << "\n## Stability\n\n";
     if (have_suite && fs::exists(stability / "stability.md")) {
       std::string table = readFile(stability / "stability.md");
       table = table.substr(table.find('\n') + 1);  // without its title

@@ -315,7 +315,9 @@ std::map<std::string, std::string> demoStages(const std::string& output) {
 TEST(Cli, DemoRunsTheChainThenReusesWhatIsUpToDate) {
   test::TempDir dir;
   const std::filesystem::path samples = dir / "samples", out = dir / "out";
-  for (const char* f : {"textures/rain_strokes_scan.png", "terrain/mount_st_helens.dem", "scenes/default.json"}) {
+  for (const char* f : {"textures/rain_strokes_scan.png", "textures/rain_strokes_wrinkle.png",
+                        "terrain/mount_st_helens.dem", "scenes/default.json", "scenes/high_distance.json",
+                        "scenes/deep_distance.json", "scenes/level_distance.json"}) {
     std::filesystem::create_directories((samples / f).parent_path());
     std::filesystem::copy_file(test::sourceDir() / "samples" / f, samples / f);
   }
@@ -324,9 +326,11 @@ TEST(Cli, DemoRunsTheChainThenReusesWhatIsUpToDate) {
       "cd " + quote(dir.path()) + " && " + bin("shanshui-demo") + " --quick --frames 2 --samples samples --out out";
   auto r = run(demo);
   ASSERT_EQ(r.exit_code, 0) << r.output;
-  const std::map<std::string, std::string> all_ran = {
-      {"enhance", "running"}, {"quilt", "running"}, {"terrain", "running"},  {"param", "running"},
-      {"still", "running"},   {"orbit", "running"}, {"stability", "running"}};
+  const std::map<std::string, std::string> all_ran = {{"enhance", "running"},        {"quilt", "running"},
+                                                      {"terrain", "running"},        {"param", "running"},
+                                                      {"still", "running"},          {"orbit", "running"},
+                                                      {"high_distance", "running"},  {"deep_distance", "running"},
+                                                      {"level_distance", "running"}, {"stability", "running"}};
   EXPECT_EQ(demoStages(r.output), all_ran);
   for (const char* f : {"report.md", "mountain.png", "orbit_0000.png", "orbit_0001.png", "assets/wrinkle.png",
                         "assets/st_helens_uv.obj", "assets/checker.png", "assets/scan.png"}) {
@@ -334,6 +338,8 @@ TEST(Cli, DemoRunsTheChainThenReusesWhatIsUpToDate) {
   }
   const std::string report = readBytes(out / "report.md");
   EXPECT_NE(report.find("![mountain](mountain.png)"), std::string::npos);
+  EXPECT_NE(report.find("![high](high.png) ![deep](deep.png) ![level](level.png)"), std::string::npos);
+  EXPECT_NE(report.find("| deep | 0."), std::string::npos) << "the look statistics of each picture";
   EXPECT_NE(report.find("L2 stretch"), std::string::npos);
   EXPECT_EQ(report.find(dir.path().string()), std::string::npos) << "the report's links are relative";
   // The stability table of this run (its fast cases with --quick), on a fresh machine too.
@@ -357,7 +363,18 @@ TEST(Cli, DemoRunsTheChainThenReusesWhatIsUpToDate) {
                                                                       {"param", "reused"},
                                                                       {"still", "running"},
                                                                       {"orbit", "running"},
+                                                                      {"high_distance", "reused"},
+                                                                      {"deep_distance", "reused"},
+                                                                      {"level_distance", "reused"},
                                                                       {"stability", "reused"}}));
+
+  // A reference picture goes beside the paintings; a missing one is named before any work.
+  r = run(demo + " --reference samples/textures/rain_strokes_scan.png");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(readBytes(out / "report.md").find("![reference](assets/reference.png)"), std::string::npos);
+  r = run(demo + " --reference nowhere.jpg");
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.output.find("--reference: nowhere.jpg: not found"), std::string::npos) << r.output;
 
   // A missing sample is named.
   std::filesystem::remove(samples / "terrain/mount_st_helens.dem");
