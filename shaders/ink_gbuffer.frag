@@ -21,7 +21,7 @@ in vec3 v_world;
 uniform float u_feature_size;  // world units
 #endif
 #ifdef WRINKLE_SLOPE
-uniform float u_tile_px;  // a texture tile spans 1-2 times this many pixels
+uniform float u_tile_px;  // a texture tile's size on screen, pixels
 uniform float u_angle;    // radians: the texture's v axis turned from the fall line
 
 uint slopeHash(uvec2 p) {
@@ -53,9 +53,9 @@ float wrinkleOctave(vec2 q, mat2 m, float lod) {
 
 // Eq. 5's luma with the texture's v axis down the fall line: the fall line (the steepest
 // descent on the surface, +Z up) is carried into UV space through the UVs' screen
-// derivatives, and the tile's size on screen is held between u_tile_px and twice it by
-// blending the two octaves around it (the nearer weighs more), so the strokes keep their
-// size as the camera zooms and stay on the surface as it moves.
+// derivatives, and the tile's size on screen is held near u_tile_px by blending the two
+// power-of-two octaves around it (from half to twice it, the nearer weighing more), so the
+// strokes keep their size as the camera zooms and stay on the surface as it moves.
 float slopeWrinkle(vec3 n) {
   vec3 dpx = dFdx(v_world), dpy = dFdy(v_world);
   vec2 dux = dFdx(v_uv), duy = dFdy(v_uv);
