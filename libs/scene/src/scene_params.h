@@ -234,8 +234,8 @@ void describe(V& v, Object& o) {
             kRebuild, "metres"},
            o.cell_size, {0, 1e6});
   v.choice({"up",
-            "the model axis that points up in the world; `auto`: z for DEMs, y for meshes (what most modelling "
-            "tools write)",
+            "the model axis that points up in the world; `auto`: z for DEMs; a mesh much thinner along one axis "
+            "(a piece of land) lies on that axis, any other is y-up (what most modelling tools write)",
             kRebuild},
            o.up, kUpAxes);
   v.boolean(
