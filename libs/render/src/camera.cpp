@@ -14,9 +14,6 @@ double radians(double deg) {
   return deg * std::numbers::pi / 180.0;
 }
 
-glm::dvec3 corner(const mesh::Bounds& b, int i) {
-  return {(i & 1) ? b.max.x : b.min.x, (i & 2) ? b.max.y : b.min.y, (i & 4) ? b.max.z : b.min.z};
-}
 }  // namespace
 
 glm::dvec3 OrbitCamera::eye() const {
@@ -75,7 +72,7 @@ OrbitCamera fillBounds(const mesh::Bounds& b, double azimuth_deg, double elevati
   // the eye's place: each pair fixes how far back the eye must be and where it is centred.
   double a = -1e300, bb = -1e300, c = -1e300, d = -1e300;
   for (int i = 0; i < 8; ++i) {
-    const glm::dvec3 p = corner(b, i) - b.centre();
+    const glm::dvec3 p = b.corner(i) - b.centre();
     const double x = glm::dot(p, r), y = glm::dot(p, u), z = glm::dot(p, f);
     a = std::max(a, x - tx * z);
     bb = std::max(bb, -x - tx * z);
@@ -94,7 +91,7 @@ OrbitCamera fillBounds(const mesh::Bounds& b, double azimuth_deg, double elevati
     const double mid = 0.5 * (lo + hi);
     double most = -1e300, least = 1e300;
     for (int i = 0; i < 8; ++i) {
-      const glm::dvec3 p = corner(b, i) - b.centre();
+      const glm::dvec3 p = b.corner(i) - b.centre();
       const double s = (glm::dot(p, side) - mid) / (glm::dot(p, f) - ez);
       most = std::max(most, s);
       least = std::min(least, s);

@@ -160,9 +160,7 @@ class InkPass final : public RenderPass {
     // whatever the view (the sphere's ±radius left most of the land in the ramp's flat start).
     double nearest = 1e300, farthest = 0.0;
     for (int c = 0; c < 8; ++c) {
-      const mesh::Bounds& b = in.world_bounds;
-      const glm::dvec3 corner((c & 1) ? b.max.x : b.min.x, (c & 2) ? b.max.y : b.min.y, (c & 4) ? b.max.z : b.min.z);
-      const double d = glm::length(corner - camera.eye());
+      const double d = glm::length(in.world_bounds.corner(c) - camera.eye());
       nearest = std::min(nearest, d);
       farthest = std::max(farthest, d);
     }

@@ -221,15 +221,12 @@ void InkRenderer::setObjects(const scene::Scene& s) {
     const glm::dvec3 half = 0.5 * g.model_bounds.size();
     const double band = o.dissolvesBorder() ? o.border.width * std::min(half.x, half.y) : 0.0;
     const glm::dvec3 inset(band, band, 0.0);
+    const mesh::Bounds inked{g.model_bounds.min + inset, g.model_bounds.max - inset};
     for (int c = 0; c < 8; ++c) {
-      const glm::dvec3 corner((c & 1) ? g.model_bounds.max.x : g.model_bounds.min.x,
-                              (c & 2) ? g.model_bounds.max.y : g.model_bounds.min.y,
-                              (c & 4) ? g.model_bounds.max.z : g.model_bounds.min.z);
-      const glm::dvec3 w(t * glm::dvec4(corner, 1.0));
+      const glm::dvec3 w(t * glm::dvec4(g.model_bounds.corner(c), 1.0));
       world_bounds_.min = glm::min(world_bounds_.min, w);
       world_bounds_.max = glm::max(world_bounds_.max, w);
-      const glm::dvec3 side((c & 1) ? -1.0 : 1.0, (c & 2) ? -1.0 : 1.0, 0.0);
-      const glm::dvec3 wi(t * glm::dvec4(corner + side * inset, 1.0));
+      const glm::dvec3 wi(t * glm::dvec4(inked.corner(c), 1.0));
       inked_bounds_.min = glm::min(inked_bounds_.min, wi);
       inked_bounds_.max = glm::max(inked_bounds_.max, wi);
     }

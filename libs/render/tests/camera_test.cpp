@@ -31,8 +31,7 @@ TEST(Camera, FillBoundsHoldsEveryCornerAndTouchesTheFrameOnBothSidesOfOneAxis) {
     const OrbitCamera cam = fillBounds(b, az, el, fov, aspect);
     glm::dvec2 lo(1e9), hi(-1e9);
     for (int i = 0; i < 8; ++i) {
-      const glm::dvec3 p((i & 1) ? b.max.x : b.min.x, (i & 2) ? b.max.y : b.min.y, (i & 4) ? b.max.z : b.min.z);
-      const glm::dvec3 ndc = project(cam, aspect, p);
+      const glm::dvec3 ndc = project(cam, aspect, b.corner(i));
       ASSERT_GT(ndc.z, -1.0) << "corner in front of the near plane, trial " << trial;
       ASSERT_LT(ndc.z, 1.0) << "corner past the far plane, trial " << trial;
       lo = glm::min(lo, glm::dvec2(ndc));

@@ -1,7 +1,6 @@
 #include "shanshui/scene/scene_assets.h"
 
 #include <algorithm>
-#include <cctype>
 #include <chrono>
 #include <cmath>
 
@@ -14,16 +13,6 @@
 #include "shanshui/terrain/terrain_mesh.h"
 
 namespace shanshui::scene {
-
-namespace {
-
-bool isImageHeightfield(const std::filesystem::path& p) {
-  std::string ext = p.extension().string();
-  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return ext == ".png" || ext == ".tif" || ext == ".tiff";
-}
-
-}  // namespace
 
 void planarUvs(mesh::Mesh& m) {
   const mesh::Bounds b = mesh::bounds(m);
@@ -71,13 +60,6 @@ void makeZUp(mesh::Mesh& m, UpAxis up) {
   if (up == UpAxis::Z || up == UpAxis::Auto) return;
   for (glm::dvec3& p : m.positions) p = turn(p);
   for (glm::vec3& n : m.normals) n = turn(n);
-}
-
-double imageCellSize(const terrain::Heightfield& h) {
-  const auto [lo, hi] = h.elevationRange();
-  const int cells = std::max(h.columns, h.rows) - 1;
-  if (!(hi > lo) || cells < 1) return 1.0;
-  return kImageReliefRatio * (hi - lo) / cells;
 }
 
 }  // namespace
@@ -155,9 +137,9 @@ LoadedObject AssetCache::get(const Scene& scene, std::size_t index) {
         topt.max_vertices = o.max_vertices;
         terrain::HeightfieldOptions hopt;
         hopt.cell_size = o.cell_size;
-        terrain::Heightfield field = terrain::loadHeightfield(source, hopt);
-        if (o.cell_size == 0 && isImageHeightfield(source)) field.cell_x = field.cell_y = imageCellSize(field);
-        asset->mesh = terrain::heightfieldToMesh(field, topt, nullptr, source.string());
+        hopt.image_relief_ratio = kImageReliefRatio;
+        asset->mesh =
+            terrain::heightfieldToMesh(terrain::loadHeightfield(source, hopt), topt, nullptr, source.string());
       } else {
         // Every component is drawn (a teapot's lid and spout); only parameterisation
         // needs a single disc.

@@ -67,7 +67,16 @@ Heightfield loadHeightmapImage(const fs::path& path, const HeightfieldOptions& o
   h.source = path.filename().string() + ": " + std::to_string(h.columns) + "x" + std::to_string(h.rows) + " " +
              image::depthName(info.depth) + "-bit height map";
   if (options.cell_size <= 0) {
-    h.notes.push_back("image has no cell size; using 1 m per pixel (give --cell-size)");
+    const auto [lo, hi] = h.elevationRange();
+    const int cells = std::max(h.columns, h.rows) - 1;
+    if (options.image_relief_ratio > 0 && hi > lo && cells > 0) {
+      h.cell_x = h.cell_y = options.image_relief_ratio * (hi - lo) / cells;
+      h.notes.push_back("image has no cell size; using " + std::to_string(h.cell_x) +
+                        " m per pixel, which makes its larger side " + std::to_string(options.image_relief_ratio) +
+                        " times its relief");
+    } else {
+      h.notes.push_back("image has no cell size; using 1 m per pixel (give --cell-size)");
+    }
   }
   return h;
 }

@@ -34,6 +34,8 @@ struct Bounds {
   glm::dvec3 max{0.0};
   glm::dvec3 centre() const { return 0.5 * (min + max); }
   glm::dvec3 size() const { return max - min; }
+  //! Corner i of 8: bit 0 picks max.x, bit 1 max.y, bit 2 max.z.
+  glm::dvec3 corner(int i) const { return {(i & 1) ? max.x : min.x, (i & 2) ? max.y : min.y, (i & 4) ? max.z : min.z}; }
 };
 
 //! Axis-aligned bounds of the positions (all zero for an empty mesh).

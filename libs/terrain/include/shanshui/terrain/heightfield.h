@@ -37,8 +37,12 @@ struct Heightfield {
 
 struct HeightfieldOptions {
   //! Metres between samples. 0 takes it from the file (DEM and ASCII grid headers); images
-  //! carry none, so 0 means 1 m there. Overrides the file when given; (0, 1e6].
+  //! carry none, so 0 means 1 m there (or see image_relief_ratio). Overrides the file when
+  //! given; (0, 1e6].
   double cell_size = 0.0;
+  //! Images without cell_size: when above 0, cells that make the larger side this many
+  //! times the elevation range (a plausible landform) instead of 1 m.
+  double image_relief_ratio = 0.0;
   //! Largest east-west scale error accepted when a geographic grid (degrees) is converted
   //! to metres with one standard parallel at its centre; above it the grid is refused.
   double max_geographic_scale_error = 0.05;
