@@ -7,7 +7,7 @@ packages=(
   build-essential cmake pkg-config ninja-build
   libcgal-dev libeigen3-dev libcgal-demo
   libopencv-dev
-  libopenimageio-dev openimageio-tools libpng-dev libjpeg-dev
+  libopenimageio-dev openimageio-tools libpng-dev libjpeg-dev libisal-dev
   libglm-dev libglfw3-dev libepoxy-dev libegl-dev libgl-dev
   libegl-mesa0 libgl1-mesa-dri libglx-mesa0
   libimgui-dev libcli11-dev nlohmann-json3-dev libtinyobjloader-dev

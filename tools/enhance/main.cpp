@@ -1,5 +1,6 @@
 // shanshui-enhance: stretch the contrast of a scanned wrinkle (cun) sample (seed 001, Eq. 4).
 #include <cstdio>
+#include <utility>
 
 #include "shanshui/core/atomic_output.h"
 #include "shanshui/core/parse.h"
@@ -51,10 +52,10 @@ int main(int argc, char** argv) {
     }
 
     image::ImageInfo info;
-    const image::Image img = image::loadImage(input, &info);
+    image::Image img = image::loadImage(input, &info);
     if (info.alpha_only) throw makeError(input, ": the image has only an alpha channel; expected grey or colour");
     texsynth::EnhanceReport report;
-    const image::Image result = texsynth::enhanceContrast(img, options, &report, input);
+    const image::Image result = texsynth::enhanceContrast(std::move(img), options, &report, input);
     if (!outDepth) {
       outDepth = image::closestDepth(output, info.depth == image::PixelDepth::UInt8    ? image::PixelDepth::UInt8
                                              : info.depth == image::PixelDepth::UInt16 ? image::PixelDepth::UInt16

@@ -1,6 +1,7 @@
 // The direct PNG, JPEG and PNM codecs (src/codecs.h) against OpenImageIO as the oracle:
 // files written by one are read by the other to the same values, including the PNG
 // layouts shanshui never writes (palette, 1-bit grey, tRNS, interlaced).
+#include <cmath>
 #include <csetjmp>
 #include <cstdio>
 #include <fstream>
@@ -181,6 +182,18 @@ TEST(Codecs, ParallelPngWriterJoinsItsBandsIntoOneValidStream) {
     saveImage(img, dir / "bands.png", depth);
     EXPECT_LE(maxAbsDiff(readWithOiio(dir / "bands.png"), img), kSameCode) << depthName(depth);
     EXPECT_EQ(encodeImage(img, dir / "again.png", depth), encodeImage(img, dir / "again.png", depth));
+    // A smooth ramp compresses (matches and Huffman codes, not stored blocks) in every band.
+    const double levels = normalisationScale(depth);
+    Image ramp(1500, 900, 1);
+    for (int y = 0; y < ramp.height; ++y) {
+      for (int x = 0; x < ramp.width; ++x) {
+        ramp.at(x, y, 0) = static_cast<float>(std::floor(levels * (x + y) / (ramp.width + ramp.height)) / levels);
+      }
+    }
+    const std::string bytes = encodeImage(ramp, dir / "ramp.png", depth);
+    EXPECT_LT(bytes.size(), ramp.pixels.size() * (depth == PixelDepth::UInt16 ? 2 : 1) / 4) << depthName(depth);
+    saveImage(ramp, dir / "ramp.png", depth);
+    EXPECT_LE(maxAbsDiff(readWithOiio(dir / "ramp.png"), ramp), kSameCode) << depthName(depth);
   }
 }
 

@@ -3,9 +3,11 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <utility>
 #include <vector>
 
 #include "shanshui/core/error.h"
+#include "shanshui/core/parallel_for.h"
 #include "shanshui/image/convert.h"
 
 namespace shanshui::texsynth {
@@ -17,32 +19,50 @@ int colourChannels(const image::Image& img) {
   return img.hasAlpha() ? img.channels - 1 : img.channels;
 }
 
-// Counts values per 1/65535 bin; also rejects NaN and values outside [0, 1].
+// Counts values per 1/65535 bin; also rejects NaN and values outside [0, 1]. The pixels are
+// split into one share per core, each counted into its own bins, then summed.
 std::vector<std::uint64_t> histogram(const image::Image& img, const std::string& what) {
-  std::vector<std::uint64_t> bins(kBins, 0);
   const int colour = colourChannels(img);
   const std::size_t n = static_cast<std::size_t>(img.width) * img.height;
-  std::size_t outside = 0;
-  float lo = 0.0f, hi = 1.0f;
-  for (std::size_t p = 0; p < n; ++p) {
-    const float* px = &img.pixels[p * img.channels];
-    for (int c = 0; c < colour; ++c) {
-      const float v = px[c];
-      if (!(v >= 0.0f && v <= 1.0f)) {  // also catches NaN
-        if (std::isnan(v)) throw makeError(what, ": contains NaN values");
-        ++outside;
-        lo = std::min(lo, v);
-        hi = std::max(hi, v);
-        continue;
+  const int shares = static_cast<int>(std::min<std::size_t>(resolveThreads(0), std::max<std::size_t>(1, n >> 16)));
+  struct Share {
+    std::vector<std::uint64_t> bins = std::vector<std::uint64_t>(kBins, 0);
+    std::size_t outside = 0;
+    bool nan = false;
+    float lo = 0.0f, hi = 1.0f;
+  };
+  std::vector<Share> counted(shares);
+  parallelFor(shares, shares, [&](int i) {
+    Share& share = counted[i];
+    for (std::size_t p = n * i / shares; p < n * (i + 1) / shares; ++p) {
+      const float* px = &img.pixels[p * img.channels];
+      for (int c = 0; c < colour; ++c) {
+        const float v = px[c];
+        if (!(v >= 0.0f && v <= 1.0f)) {  // also catches NaN
+          share.nan = share.nan || std::isnan(v);
+          ++share.outside;
+          share.lo = std::min(share.lo, v);
+          share.hi = std::max(share.hi, v);
+          continue;
+        }
+        ++share.bins[static_cast<std::size_t>(v * (kBins - 1) + 0.5f)];  // lround for v in [0, 1], without libm
       }
-      ++bins[static_cast<std::size_t>(v * (kBins - 1) + 0.5f)];  // lround for v in [0, 1], without libm
     }
+  });
+  Share& all = counted[0];
+  for (int i = 1; i < shares; ++i) {
+    for (int b = 0; b < kBins; ++b) all.bins[b] += counted[i].bins[b];
+    all.outside += counted[i].outside;
+    all.nan = all.nan || counted[i].nan;
+    all.lo = std::min(all.lo, counted[i].lo);
+    all.hi = std::max(all.hi, counted[i].hi);
   }
-  if (outside > 0) {
-    throw makeError(what, ": ", outside, " values outside [0, 1] (min ", lo, ", max ", hi,
+  if (all.nan) throw makeError(what, ": contains NaN values");
+  if (all.outside > 0) {
+    throw makeError(what, ": ", all.outside, " values outside [0, 1] (min ", all.lo, ", max ", all.hi,
                     "); contrast enhancement expects values in [0, 1]");
   }
-  return bins;
+  return std::move(all.bins);
 }
 
 double binPercentile(const std::vector<std::uint64_t>& bins, std::uint64_t total, double p) {
@@ -68,7 +88,7 @@ ValueRange percentileRange(const image::Image& img, double low_percent, double h
   return {binPercentile(bins, total, low_percent), binPercentile(bins, total, high_percent)};
 }
 
-image::Image enhanceContrast(const image::Image& input, const EnhanceOptions& opts, EnhanceReport* report,
+image::Image enhanceContrast(image::Image input, const EnhanceOptions& opts, EnhanceReport* report,
                              const std::string& what) {
   if (input.empty()) throw makeError(what, ": empty image");
   checkUnit(opts.output_range.low, "output range c");
@@ -90,7 +110,7 @@ image::Image enhanceContrast(const image::Image& input, const EnhanceOptions& op
                     "; expected 0 <= low < high <= 100");
   }
 
-  image::Image img = opts.colour ? input : image::toGrey(input);
+  image::Image img = opts.colour || input.channels == 1 ? std::move(input) : image::toGrey(input);
   const std::vector<std::uint64_t> bins = histogram(img, what);
   const std::uint64_t total = static_cast<std::uint64_t>(img.width) * img.height * colourChannels(img);
 
@@ -114,13 +134,16 @@ image::Image enhanceContrast(const image::Image& input, const EnhanceOptions& op
   const float lo = std::min(c, d), hi = std::max(c, d);
   const int colour = colourChannels(img);
   const std::size_t n = static_cast<std::size_t>(img.width) * img.height;
-  for (std::size_t p = 0; p < n; ++p) {
-    float* px = &img.pixels[p * img.channels];
-    for (int ch = 0; ch < colour; ++ch) {
-      const float t = (px[ch] - a) * inv;
-      px[ch] = std::clamp(c * (1.0f - t) + d * t, lo, hi);
+  const int shares = resolveThreads(0);
+  parallelFor(shares, shares, [&](int i) {
+    for (std::size_t p = n * i / shares; p < n * (i + 1) / shares; ++p) {
+      float* px = &img.pixels[p * img.channels];
+      for (int ch = 0; ch < colour; ++ch) {
+        const float t = (px[ch] - a) * inv;
+        px[ch] = std::clamp(c * (1.0f - t) + d * t, lo, hi);
+      }
     }
-  }
+  });
   if (report) {
     // Counted on the histogram grid, like the percentiles: a value equal to b is not above b
     // even where float rounding puts it a hair over.

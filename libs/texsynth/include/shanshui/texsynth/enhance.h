@@ -34,8 +34,9 @@ struct EnhanceReport {
 
 //! Applies Eq. 4. `what` names the input in error messages (a file name). Throws Error for
 //! b <= a, values outside [0, 1], NaN, a sample whose percentile range collapses (no
-//! contrast), or bad options.
-image::Image enhanceContrast(const image::Image& img, const EnhanceOptions& opts, EnhanceReport* report = nullptr,
+//! contrast), or bad options. A grey image (or any image with `opts.colour`) passed as an
+//! rvalue is mapped in place, without a copy.
+image::Image enhanceContrast(image::Image img, const EnhanceOptions& opts, EnhanceReport* report = nullptr,
                              const std::string& what = "image");
 
 //! The low and high percentiles (in percent) of the colour channels of `img` (alpha left
