@@ -2,6 +2,8 @@
 #include <fstream>
 #include <map>
 #include <sstream>
+#include <string>
+#include <vector>
 
 #include <OpenImageIO/imageio.h>
 #include <nlohmann/json.hpp>
@@ -33,6 +35,28 @@ TEST(Cli, EveryProgramHasHelpWithAnExample) {
     const auto r = run(bin(p) + " --help");
     EXPECT_EQ(r.exit_code, 0) << p;
     EXPECT_NE(r.output.find("Example"), std::string::npos) << p << ": " << r.output;
+  }
+}
+
+// Start-up cost is the shared libraries a program loads (issue 20: ~260 each cost ~0.3 s
+// before anything ran). The dynamic loader lists them without running the program; the
+// heavy ones stay out of the programs that do not use them (OpenImageIO is a module loaded
+// on first use of another format; ximgproc drags in dnn and calib3d; only the programs
+// that draw load GL).
+TEST(Cli, EveryProgramLoadsOnlyTheLibrariesItUses) {
+  const std::vector<std::string> never = {"OpenImageIO", "opencv_dnn", "opencv_ximgproc", "opencv_calib3d", "libboost"};
+  const std::vector<std::string> gl = {"libepoxy", "libEGL", "libglfw"};
+  for (const char* p : {"shanshui-terrain", "shanshui-repair", "shanshui-render", "shanshui-view", "shanshui-enhance",
+                        "shanshui-quilt", "shanshui-param", "shanshui-demo"}) {
+    const auto r = run("LD_TRACE_LOADED_OBJECTS=1 " + bin(p));
+    ASSERT_EQ(r.exit_code, 0) << p;
+    EXPECT_LE(lines(r.output), 45) << p << " loads:\n" << r.output;
+    const std::string name = p;
+    const bool draws = name == "shanshui-render" || name == "shanshui-view" || name == "shanshui-param";  // --checker
+    for (const std::string& lib : never) EXPECT_EQ(r.output.find(lib), std::string::npos) << p << " loads " << lib;
+    for (const std::string& lib : draws ? std::vector<std::string>{} : gl) {
+      EXPECT_EQ(r.output.find(lib), std::string::npos) << p << " loads " << lib;
+    }
   }
 }
 

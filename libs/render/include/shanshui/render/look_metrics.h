@@ -14,7 +14,7 @@ struct LookStatistics {
   //! 1 − luminance / the paper's luminance (clamped to [0, 1]).
   double paper_share = 0.0;
   //! Mean width of the dark marks (ink above 0.5): their area over the length of their
-  //! skeleton (OpenCV's Zhang–Suen thinning), in pixels; 0 when there are none.
+  //! skeleton (zhangSuenSkeleton), in pixels; 0 when there are none.
   double dark_width_px = 0.0;
   double dark_share = 0.0;  //!< share of the picture's pixels that are dark marks
   //! Mean ink of the subject's top third of rows over its bottom third: far over near for a
@@ -30,5 +30,10 @@ struct LookStatistics {
 //! `paper`. `subject`, when given, is one channel of the picture's size, > 0.5 where the
 //! scene's surfaces are.
 LookStatistics lookStatistics(const image::Image& rgb, const glm::dvec3& paper, const image::Image* subject = nullptr);
+
+//! Zhang–Suen thinning of a mask (one channel, set where > 0.5): 1 on its skeleton, 0
+//! elsewhere; the pixels OpenCV's cv::ximgproc::thinning(THINNING_ZHANGSUEN) gives. The
+//! outermost rows and columns are never thinned, as there.
+image::Image zhangSuenSkeleton(const image::Image& mask);
 
 }  // namespace shanshui::render
