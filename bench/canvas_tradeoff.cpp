@@ -189,7 +189,10 @@ std::vector<double> planeSpectrum(const nlohmann::json& canvas, int n, int seeds
     const std::vector<scene::LoadedObject> plane_objects{
         {std::make_shared<const scene::ObjectAsset>(scene::prepareAsset(plane, ps.objects[0])), nullptr}};
     render::InkRenderer pr(ps, plane_objects);
-    pr.render(render::sceneCamera(ps, pr.worldBounds(), 1.0, {0, 89, 1.6}), n, n);
+    // Each seed from another distance, spread over one octave of zoom: a canvas whose grain
+    // scales with the surface between octaves (`pin`) is measured over its whole cycle.
+    const double zoom = 1.6 * std::exp2(static_cast<double>(seed - first) / seeds);
+    pr.render(render::sceneCamera(ps, pr.worldBounds(), 1.0, {0, 89, zoom}), n, n);
     const std::vector<double> ring = render::radialPowerSpectrum(pr.passTarget("canvas")->colour(0).download(1));
     for (std::size_t b = 0; b < mean.size(); ++b) mean[b] += ring[b] / seeds;
   }
@@ -231,32 +234,37 @@ void tilesSection(std::ostream& md, std::ostream& csv, bench::TradeoffPoints& po
   csv << "section,canvas,patch,silk_distance,rice_distance,orbit,dolly,pan,canvas_ms,gbuffer_ms,ratio\n";
   const nlohmann::json silk{{"type", "silk"}, {"grain", 24}, {"frequency", 0.06}, {"mix", 0.0}};
   const nlohmann::json rice{{"type", "rice_paper"}, {"grain", 24}};
-  auto with = [](nlohmann::json j, const char* method, double patch) {
+  auto with = [](nlohmann::json j, const char* method, double patch, const char* zoom) {
     j["method"] = method;
     j["patch"] = patch;
+    j["zoom"] = zoom;
     return j;
   };
-  const std::vector<double> silk_ref = planeSpectrum(with(silk, "splat", 2), n, seeds, 1);
-  const std::vector<double> rice_ref = planeSpectrum(with(rice, "splat", 2), n, seeds, 1);
+  const std::vector<double> silk_ref = planeSpectrum(with(silk, "splat", 2, "auto"), n, seeds, 1);
+  const std::vector<double> rice_ref = planeSpectrum(with(rice, "splat", 2, "auto"), n, seeds, 1);
   struct Row {
     std::string name, method;
     double patch;
+    std::string zoom;
   };
-  std::vector<Row> rows{{"splat (floor: other seeds)", "splat", 2}};
-  for (double patch : quick ? std::vector<double>{2, 4} : std::vector<double>{1, 1.5, 2, 3, 4}) {
-    rows.push_back({"tiles, patch " + std::to_string(patch).substr(0, 3), "tiles", patch});
+  std::vector<Row> rows{{"splat (floor: other seeds)", "splat", 2, "auto"}};
+  for (const char* zoom : {"screen", "surface"}) {
+    for (double patch : quick ? std::vector<double>{2, 4} : std::vector<double>{1, 1.5, 2, 3, 4}) {
+      rows.push_back({"tiles, patch " + std::to_string(patch).substr(0, 3) + ", zoom " + zoom, "tiles", patch, zoom});
+    }
   }
   for (const Row& row : rows) {
     const int first = row.method == "splat" ? 1 + seeds : 1;
-    const double silk_d =
-        spectrumDistance(planeSpectrum(with(silk, row.method.c_str(), row.patch), n, seeds, first), silk_ref);
-    const double rice_d =
-        spectrumDistance(planeSpectrum(with(rice, row.method.c_str(), row.patch), n, seeds, first), rice_ref);
+    const double silk_d = spectrumDistance(
+        planeSpectrum(with(silk, row.method.c_str(), row.patch, row.zoom.c_str()), n, seeds, first), silk_ref);
+    const double rice_d = spectrumDistance(
+        planeSpectrum(with(rice, row.method.c_str(), row.patch, row.zoom.c_str()), n, seeds, first), rice_ref);
     // Warping error on the sample scene.
     scene::Scene s = withKind(sc, row.method == "splat" ? Kind::Silk : Kind::TilesSilk);
     s.canvas.grain = 24;
     s.canvas.frequency = 0.06;
     s.canvas.patch = row.patch;
+    s.canvas.zoom = row.zoom == "surface" ? scene::CanvasZoom::Surface : scene::CanvasZoom::Screen;
     render::InkRenderer r(s, objects);
     const render::OrbitCamera base =
         render::sceneCamera(s, r.worldBounds(), static_cast<double>(w) / h, render::frameKey(s, 0, 1, 0.0));
@@ -276,6 +284,7 @@ void tilesSection(std::ostream& md, std::ostream& csv, bench::TradeoffPoints& po
     scene::Scene cs = sc;
     cs.canvas.method = row.method == "splat" ? scene::CanvasMethod::Splat : scene::CanvasMethod::Tiles;
     cs.canvas.patch = row.patch;
+    cs.canvas.zoom = row.zoom == "surface" ? scene::CanvasZoom::Surface : scene::CanvasZoom::Screen;
     render::InkRenderer cr(cs, objects);
     const render::OrbitCamera cam0 = render::sceneCamera(cs, cr.worldBounds(), static_cast<double>(cost_w) / cost_h,
                                                          render::frameKey(cs, 0, 1, 0.0));

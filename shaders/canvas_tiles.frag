@@ -28,6 +28,7 @@ uniform vec2 u_viewport;          // pixels
 uniform float u_texels_per_pixel;
 uniform int u_tile_mask;           // tile size − 1 (a power of two)
 uniform float u_patch_pixels;     // lattice spacing on screen: patch × r, pixels
+uniform float u_pin;              // 0: grain of fixed screen size; 1: it scales with the surface within an octave
 uniform vec4 u_dome;              // world centre, radius
 uniform vec3 u_eye;               // world
 uniform uint u_seed;
@@ -109,14 +110,14 @@ float mottleLevel(vec3 P, int level, int space) {
 // Adds one corner's tile copy: lattice point c, its clip coordinates, its weight (the
 // level's `level_weight` times the barycentric `bary`); and, with marks, its fibre or spot
 // to `marks`.
-void addCorner(ivec3 c, vec4 clip, float level_weight, float bary, uint level_seed, vec2 pixel, inout float sum,
-               inout float sum_w2, inout float marks) {
+void addCorner(ivec3 c, vec4 clip, float level_weight, float bary, uint level_seed, vec2 pixel, float texels_per_pixel,
+               inout float sum, inout float sum_w2, inout float marks) {
   if (clip.w <= 0.0) return;
   float w = level_weight * bary;
   vec2 a = (clip.xy / clip.w * 0.5 + 0.5) * u_viewport;
   uint h = cornerHash(level_seed, c);
   // The nearest texel (the tile has several texels per pixel, and wraps by a mask).
-  ivec2 texel = ivec2(floor((pixel - a) * u_texels_per_pixel)) + ivec2(h & 0xFFFFu, h >> 16);
+  ivec2 texel = ivec2(floor((pixel - a) * texels_per_pixel)) + ivec2(h & 0xFFFFu, h >> 16);
   sum += w * (imageLoad(u_tile, texel & u_tile_mask).r);
   sum_w2 += w * w;
 #ifdef PAPER_MARKS
@@ -126,18 +127,21 @@ void addCorner(ivec3 c, vec4 clip, float level_weight, float bary, uint level_se
 }
 
 // Adds the tile copies of lattice level `level` (spacing 2^level model units) at P, with
-// weight `weight` in all.
-void addLevel(vec3 P, int level, float weight, int space, mat4 to_clip, vec2 pixel, inout float sum,
+// weight `weight` in all. `offset` is P's continuous level minus `level` (in [−1, 1)): the
+// copies' grain is read 2^(offset·pin) times finer, so with `pin` 1 it grows and shrinks
+// with the surface between the level's octaves, as a texture pinned to it would.
+void addLevel(vec3 P, int level, float offset, float weight, int space, mat4 to_clip, vec2 pixel, inout float sum,
               inout float sum_w2, inout float marks) {
   float spacing = exp2(float(level));
+  float texels_per_pixel = u_texels_per_pixel * exp2(offset * u_pin);
   Tetrahedron t = kuhn(P, spacing);
   vec4 clip = to_clip * vec4(vec3(t.c) * spacing, 1.0);
   mat3x4 axes = mat3x4(to_clip[0], to_clip[1], to_clip[2]) * spacing;
   uint level_seed = noiseHash(u_seed + uint(space) * 0x68E31DA4u + uint(level + 512) * 0x1B56C4E9u);
-  addCorner(t.c, clip, weight, t.w.x, level_seed, pixel, sum, sum_w2, marks);
-  addCorner(t.c + t.i1, clip + axes * vec3(t.i1), weight, t.w.y, level_seed, pixel, sum, sum_w2, marks);
-  addCorner(t.c + t.i2, clip + axes * vec3(t.i2), weight, t.w.z, level_seed, pixel, sum, sum_w2, marks);
-  addCorner(t.c + 1, clip + axes * vec3(1.0), weight, t.w.w, level_seed, pixel, sum, sum_w2, marks);
+  addCorner(t.c, clip, weight, t.w.x, level_seed, pixel, texels_per_pixel, sum, sum_w2, marks);
+  addCorner(t.c + t.i1, clip + axes * vec3(t.i1), weight, t.w.y, level_seed, pixel, texels_per_pixel, sum, sum_w2, marks);
+  addCorner(t.c + t.i2, clip + axes * vec3(t.i2), weight, t.w.z, level_seed, pixel, texels_per_pixel, sum, sum_w2, marks);
+  addCorner(t.c + 1, clip + axes * vec3(1.0), weight, t.w.w, level_seed, pixel, texels_per_pixel, sum, sum_w2, marks);
 }
 
 // The view ray's exit through the dome around the scene (world space), and its clip w.
@@ -186,8 +190,8 @@ void main() {
   float lower = floor(level), theta = 1.5707963 * (level - lower);
   float sum = 0.0, sum_w2 = 0.0, marks = 0.0;
   mat4 to_clip = u_spaces[space].to_clip;
-  addLevel(P, int(lower), cos(theta), space, to_clip, pixel, sum, sum_w2, marks);
-  addLevel(P, int(lower) + 1, sin(theta), space, to_clip, pixel, sum, sum_w2, marks);
+  addLevel(P, int(lower), level - lower, cos(theta), space, to_clip, pixel, sum, sum_w2, marks);
+  addLevel(P, int(lower) + 1, level - lower - 1.0, sin(theta), space, to_clip, pixel, sum, sum_w2, marks);
   float grain = sum_w2 > 0.0 ? sum * inversesqrt(sum_w2) * u_tile_scale : 0.0;
 #ifdef PAPER_MARKS
   if (u_mottle.x > 0.0) {

@@ -338,6 +338,7 @@ void CanvasPass::runTiles(const std::vector<Item>& items, const Framebuffer& gbu
   tiles_.set("u_viewport", glm::vec2(width, height));
   tiles_.set("u_texels_per_pixel", texels_per_pixel_);
   tiles_.set("u_patch_pixels", static_cast<float>(canvas_.patch * o.radius));
+  tiles_.set("u_pin", canvas_.grainOnSurface() ? 1.0f : 0.0f);
   tiles_.set("u_dome", glm::vec4(glm::vec3(dome_centre_), static_cast<float>(dome_radius_)));
   tiles_.set("u_eye", glm::vec3(camera.eye()));
   tiles_.set("u_seed", seed_);

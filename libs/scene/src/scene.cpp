@@ -57,6 +57,10 @@ bool Scene::usesStrokes() const {
   return anyObject(objects, [](const Object& o) { return o.lines.strokes(); });
 }
 
+bool Scene::usesSuggestiveContours() const {
+  return anyObject(objects, [](const Object& o) { return o.lines.suggestiveContours(); });
+}
+
 bool Scene::hasAnimation() const {
   return anyObject(objects, [](const Object& o) { return o.animated(); });
 }

@@ -69,6 +69,8 @@ inline constexpr std::array<Named<CanvasPattern>, 2> kCanvasPatterns{
     {{"rice_paper", CanvasPattern::RicePaper}, {"silk", CanvasPattern::Silk}}};
 inline constexpr std::array<Named<CanvasMethod>, 2> kCanvasMethods{
     {{"tiles", CanvasMethod::Tiles}, {"splat", CanvasMethod::Splat}}};
+inline constexpr std::array<Named<CanvasZoom>, 3> kCanvasZooms{
+    {{"auto", CanvasZoom::Auto}, {"surface", CanvasZoom::Surface}, {"screen", CanvasZoom::Screen}}};
 
 inline constexpr std::array<Named<BorderMode>, 3> kBorderModes{
     {{"auto", BorderMode::Auto}, {"dissolve", BorderMode::Dissolve}, {"keep", BorderMode::Keep}}};
@@ -142,6 +144,11 @@ void describe(V& v, LineParams& p) {
   v.number({"far_width", "stroke width at the far side of the scene, relative to the near side"}, p.far_width, kUnit);
   v.number({"valley_ink", "ink of concave crests (valleys, crevices), relative to ridges and outlines"}, p.valley_ink,
            kUnit);
+  v.number({"suggestive",
+            "strokes: suggestive contours (DeCarlo et al. 2003), where N·V has a local minimum along the view "
+            "direction projected into the surface, drawn where that trough is at least this deep 3 pixels "
+            "either side (the lines a contour would become from a little lower); light ink, as valleys; 0 = off"},
+           p.suggestive, {0, 1});
 }
 
 template <typename V>
@@ -316,6 +323,13 @@ void describe(V& v, Canvas& c) {
             "more closely under zoom, larger keeps the spectrum closer to the kernels'",
             Effect::Uniform, "kernel radii"},
            c.patch, {0.5, 16});
+  v.choice({"zoom",
+            "tiles, when the camera moves in or out: `surface` keeps the grain on the surface (it grows and "
+            "shrinks with it between octaves, two octaves mixed, 0.5x to 2x); `screen` keeps its size on screen "
+            "exact (it slides as the surface scales); `auto` is `surface` for rice paper and `screen` for silk, "
+            "whose narrow weave spectrum the octave mix widens",
+            Effect::Uniform},
+           c.zoom, kCanvasZooms);
   v.number({"contrast", "the paper's brightness is multiplied by 1 + contrast × the unit-variance canvas noise"},
            c.contrast, kUnit);
   v.number({"absorbency", "how far the canvas varies the diffusion's absorbency: 0.75 + 0.25 × absorbency × noise"},

@@ -63,7 +63,12 @@ struct LineParams {
   double taper = 0.35;      //!< width of a crest just past the threshold, relative to a strong one
   double far_width = 0.45;  //!< width at the far side of the scene, relative to the near side
   double valley_ink = 0.5;  //!< ink of concave crests (valleys), relative to ridges and outlines
+  //! Suggestive contours (DeCarlo et al. 2003) as strokes: where N·V has a local minimum
+  //! along w, the view direction projected into the tangent plane, at least this much
+  //! deeper than N·V a few pixels either side along w; 0 = off. Strokes only.
+  double suggestive = 0.0;
   bool strokes() const { return enabled && width > 0; }
+  bool suggestiveContours() const { return strokes() && suggestive > 0; }
 };
 
 //! Interior shading (seed 001 Eqs. 2, 3, 5; SPEC.md section 7).
@@ -206,6 +211,11 @@ enum class CanvasPattern { RicePaper, Silk };
 //! patches (one full-screen pass), or seed 001's kernels splatted by a geometry shader on
 //! every triangle (the reference the tiles are measured against).
 enum class CanvasMethod { Tiles, Splat };
+//! What the `tiles` grain keeps when the camera moves in or out: its place on the surface
+//! (it grows and shrinks with it between octaves, two octaves mixed), or its exact size on
+//! screen (it slides over the surface as that scales); `auto` is the surface for rice
+//! paper and the screen for silk, whose narrow weave spectrum the octave mix widens.
+enum class CanvasZoom { Auto, Surface, Screen };
 
 //! Lengths are in pixels of a 1024-pixel-tall frame (they scale with the output height).
 struct Canvas {
@@ -213,6 +223,7 @@ struct Canvas {
   CanvasPattern static_pattern = CanvasPattern::RicePaper;  //!< what `static` shows
   CanvasMethod method = CanvasMethod::Tiles;                //!< rice paper and silk only
   double patch = 2.0;                                       //!< tiles: anchor spacing in kernel radii
+  CanvasZoom zoom = CanvasZoom::Auto;                       //!< tiles: what the grain keeps under a dolly
   double contrast = 0.015;        //!< paper brightness × (1 + contrast · unit-variance noise)
   double absorbency = 1.0;        //!< how much the canvas varies the ink absorbency
   double grain = 6.0;             //!< kernel radius r (the quads' half side)
@@ -231,6 +242,10 @@ struct Canvas {
 
   //! Whether the canvas draws rice paper's marks (the tiles method only).
   bool hasMarks() const;
+  //! Whether the tiles' grain is pinned to the surface under zoom (`zoom` resolved).
+  bool grainOnSurface() const {
+    return zoom == CanvasZoom::Surface || (zoom == CanvasZoom::Auto && pattern() == CanvasPattern::RicePaper);
+  }
 
   //! The pattern drawn: rice paper or silk (static: static_pattern); meaningless for None.
   CanvasPattern pattern() const {
@@ -290,7 +305,8 @@ struct Scene {
   std::filesystem::path resolve(const std::string& relative) const;
   bool usesWrinkles() const;
   bool usesLines() const;
-  bool usesStrokes() const;  //!< some object draws its lines as strokes
+  bool usesStrokes() const;             //!< some object draws its lines as strokes
+  bool usesSuggestiveContours() const;  //!< some object's strokes include suggestive contours
   bool usesShading() const;
   bool hasAnimation() const;
   bool dissolvesBorders() const;
