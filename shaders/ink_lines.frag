@@ -7,7 +7,11 @@
 // - crests: pixels past Eq. 1's threshold where the curvature peaks across the line
 //   (non-maximum suppression), so a broad band of high curvature gives its crest line and a
 //   smooth hill gives no filled disc; concave crests (valleys, crevices) get lighter ink;
-// - silhouettes: where N·V is below the threshold and smallest across the line.
+// - silhouettes: where N·V is below the threshold and smallest across the line;
+// - suggestive contours (SUGGESTIVE; DeCarlo et al. 2003): where N·V has a local minimum
+//   along w, the view direction projected into the tangent plane (equivalently, the radial
+//   curvature crosses zero with D_w κ_r > 0): the contours the surface would show from a
+//   slightly different view, lighter ink.
 // Width tapers with the crest's strength and with distance; the atmosphere (fade, mist,
 // border) is applied here, at the centre, so a stroke overrunning onto the paper keeps it.
 #include "ink_objects.glsl"
@@ -23,6 +27,40 @@ vec3 normalAt(ivec2 q) {
 float facing(ivec2 q, vec3 v) {
   return texelFetch(u_depth, q, 0).r >= 1.0 ? 1.0 : abs(dot(normalAt(q), v));
 }
+
+#ifdef SUGGESTIVE
+uniform mat4 u_view_projection;
+const float kSuggestiveReach = 3.0;  // pixels either side along w where the trough's depth is measured
+
+// N·V at q (−1 where q is background or across a depth jump from `z`: no trough there).
+float facingAlong(ivec2 q, vec3 v, float z) {
+  float d = texelFetch(u_depth, q, 0).r;
+  if (d >= 1.0 || abs(viewDepth(d) - z) > 0.05 * z) return -1.0;
+  return dot(normalAt(q), v);
+}
+
+// How deep a trough of N·V along w sits at p (0 where p is not its bottom).
+float suggestiveTrough(ivec2 p, vec3 position, vec3 n, float z) {
+  vec3 v = normalize(u_eye - position);
+  float nv = dot(n, v);
+  vec3 w = v - nv * n;
+  if (nv <= 0.0 || dot(w, w) < 1e-4) return 0.0;  // facing away, or seen head-on (w undefined)
+  // w's direction on screen, in pixels.
+  vec4 a = u_view_projection * vec4(position, 1.0);
+  vec4 b = u_view_projection * vec4(position + normalize(w) * (1e-3 * z), 1.0);
+  vec2 s = (b.xy / b.w - a.xy / a.w) * vec2(textureSize(u_depth, 0));
+  if (dot(s, s) < 1e-12) return 0.0;
+  s = normalize(s);
+  // The bottom: no lower than the pixels one step either side along w.
+  ivec2 step1 = ivec2(round(s));
+  float n1 = facingAlong(p + step1, v, z), n0 = facingAlong(p - step1, v, z);
+  if (n1 < 0.0 || n0 < 0.0 || nv > n1 || nv > n0) return 0.0;
+  ivec2 reach = ivec2(round(s * kSuggestiveReach));
+  float f1 = facingAlong(p + reach, v, z), f0 = facingAlong(p - reach, v, z);
+  if (f1 < 0.0 || f0 < 0.0) return 0.0;
+  return min(f0, f1) - nv;
+}
+#endif
 
 void main() {
   ivec2 p = ivec2(gl_FragCoord.xy);
@@ -92,6 +130,21 @@ void main() {
       if (trough) ink = strength = 1.0;
     }
   }
+
+#ifdef SUGGESTIVE
+  if (ink < o.valley_ink && o.suggestive > 0.0) {
+    float trough = suggestiveTrough(p, position, normalize(nc.xyz * 2.0 - 1.0), viewDepth(depth));
+    if (trough >= o.suggestive) {
+      // Strength 0 at the threshold, 1 at three times it: light and thin, as valleys.
+      float s = smoothstep(1.0, 3.0, trough / o.suggestive);
+      float suggestive_ink = o.valley_ink * mix(0.5, 1.0, s);
+      if (suggestive_ink > ink) {
+        ink = suggestive_ink;
+        strength = 0.5 * s;
+      }
+    }
+  }
+#endif
 
   if (ink <= 0.0) return;
   float far = smoothstep(u_fade_range.x, u_fade_range.y, distance(u_eye, position));

@@ -58,6 +58,7 @@ class InkPass final : public RenderPass {
     std::vector<std::string> line_defines;
     if (scene_.usesStrokes()) {
       addSurfaceDefines(scene_, line_defines);
+      if (scene_.usesSuggestiveContours()) line_defines.emplace_back("SUGGESTIVE");
       lines.emplace(Program({"fullscreen.vert", "ink_lines.frag"}, line_defines));
     }
     program_ = Program({"fullscreen.vert", "ink.frag"}, defines);  // a throw keeps the old programs
@@ -119,6 +120,11 @@ class InkPass final : public RenderPass {
       glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
       lines_->use();
       setSurfaceUniforms(*lines_, in);
+      if (scene_.usesSuggestiveContours()) {
+        lines_->set("u_view_projection",
+                    glm::mat4(glm::dmat4(in.camera.projection(static_cast<double>(in.width) / in.height)) *
+                              glm::dmat4(in.camera.view())));
+      }
       glDrawArrays(GL_TRIANGLES, 0, 3);
       glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
       glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
@@ -204,6 +210,7 @@ class InkPass final : public RenderPass {
       p.stroke_taper = static_cast<float>(l.taper);
       p.stroke_far = static_cast<float>(l.far_width);
       p.valley_ink = static_cast<float>(l.valley_ink);
+      p.suggestive = l.suggestiveContours() ? static_cast<float>(l.suggestive) : 0.0f;
       p.tones = glm::vec4(sh.tones[0], sh.tones[1], sh.tones[2], sh.tones[3]);
       p.thresholds = glm::vec4(sh.thresholds[0], sh.thresholds[1], sh.thresholds[2], sh.thresholds[3]);
       p.tone5 = static_cast<float>(sh.tones[4]);
@@ -257,7 +264,9 @@ class InkPass final : public RenderPass {
 }  // namespace
 
 std::string inkStructure(const scene::Scene& s) {
-  return joined(inkDefines(s, false));
+  // The lines stage's suggestive-contour variant too: turning them on or off rebuilds it
+  // (the word means nothing to ink.frag, which the variant test compiles with these).
+  return joined(inkDefines(s, false)) + (s.usesSuggestiveContours() ? " SUGGESTIVE" : "");
 }
 
 std::unique_ptr<RenderPass> makeInkPass(const PassSetup& setup) {

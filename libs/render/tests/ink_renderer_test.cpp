@@ -690,6 +690,7 @@ TEST_F(Variants, EveryCombinationTheSceneKeysCanProduceCompiles) {
       Program({"fullscreen.vert", "ink.frag"}, {"LINES", "STROKES", "SHADING", "BORDER", "MIST", "DEBUG_OUTPUTS"}));
   ASSERT_NO_THROW(Program({"fullscreen.vert", "ink_lines.frag"}, {"BORDER", "MIST"}));
   ASSERT_NO_THROW(Program({"fullscreen.vert", "ink_lines.frag"}, {"SINGLE_OBJECT"}));
+  ASSERT_NO_THROW(Program({"fullscreen.vert", "ink_lines.frag"}, {"SUGGESTIVE", "BORDER", "MIST"}));
   // G-buffer: SURFACE × WRINKLE × curvature kinds; ink: LINES × SHADING × WRINKLE ×
   // SINGLE_OBJECT × CANVAS; canvas: two patterns × tiles (one or more objects) or splat,
   // and static's two; diffusion: one.
@@ -986,6 +987,61 @@ TEST_F(Look, StrokesAreLinesOfTheWidthAskedForOnAHill) {
   EXPECT_LT(w2, 3.0);
   EXPECT_NEAR(w5 / w2, 2.5, 0.6) << "width follows the key: " << w2 << " and " << w5 << " px";
   EXPECT_LT(w5, 6.5);
+}
+
+// Suggestive contours on a corrugated sheet h = A cos(kx) seen from the +x side, above the
+// steepest slope (no true contour anywhere). Oracle (DeCarlo et al. 2003): the radial
+// curvature is zero only where h'' = 0, the inflection lines kx = π/2 + nπ, and D_w κ_r > 0
+// only on those where the sheet turns away from the eye (h' > 0 there: kx = 3π/2 + 2nπ).
+// Strokes must lie there and not on the other half; without the key, nothing is drawn.
+TEST_F(Look, SuggestiveContoursLieOnTheInflectionsThatTurnAway) {
+  const double pi = std::numbers::pi, k = 2 * pi / 0.125, amplitude = 0.6 / k;  // steepest slope 0.6
+  const mesh::Mesh sheet =
+      test::heightGrid(241, 241, 1.0 / 240, [&](double x, double) { return amplitude * std::cos(k * x); });
+  std::map<bool, int> inked;
+  std::map<bool, std::string> structure;
+  int near_right = 0, near_wrong = 0;
+  for (const bool on : {false, true}) {
+    const scene::Scene s = sceneWith({{"up", "z"},
+                                      {"lines",
+                                       {{"width", 2.0},
+                                        {"taper", 1.0},
+                                        {"curve_factor", 0.0},
+                                        {"silhouette", 0.0},
+                                        {"depth_edges", 0.0},
+                                        {"suggestive", on ? 0.05 : 0.0}}},
+                                      {"shading", {{"enabled", false}}}},
+                                     {{"output", {{"fade", 0.0}}}});
+    InkRenderer r(s, prepare(s, sheet));
+    EXPECT_EQ(r.variants().at("ink").back().find("SUGGESTIVE") != std::string::npos, on);
+    structure[on] = InkRenderer::structureKey(s);
+    const std::vector<double> ink = inkOf(
+        r.render(sceneCamera(s, r.worldBounds(), 1.0, {0, 50, 1.3}), 240, 240).colour(0).download(3), s.output.paper);
+    const image::Image positions = r.worldPositions();
+    int checked = 0;
+    for (int y = 0; y < 240; ++y) {
+      for (int x = 0; x < 240; ++x) {
+        if (positions.at(x, y, 3) < 0.5f) continue;
+        const double wx = positions.at(x, y, 0), wz = positions.at(x, y, 2);
+        // The positions are the sheet's own coordinates (checked on its height).
+        if (checked++ % 97 == 0) {
+          ASSERT_NEAR(wz, amplitude * std::cos(k * wx), 0.05 * amplitude);
+        }
+        if (ink[static_cast<std::size_t>(y) * 240 + x] < 0.3) continue;
+        ++inked[on];
+        if (!on) continue;
+        const double phase = std::fmod(std::fmod(k * wx, 2 * pi) + 2 * pi, 2 * pi);
+        near_right += std::abs(phase - 1.5 * pi) < 0.6;
+        near_wrong += std::abs(phase - 0.5 * pi) < 0.6;
+      }
+    }
+    ASSERT_GT(checked, 20000);
+  }
+  EXPECT_NE(structure[false], structure[true]) << "the viewer must rebuild when the lines stage's variant changes";
+  EXPECT_EQ(inked[false], 0) << "nothing but suggestive contours could draw here";
+  EXPECT_GT(inked[true], 600) << "about eight lines across the sheet";
+  EXPECT_GT(near_right, 0.85 * inked[true]) << "wrong half: " << near_wrong;
+  EXPECT_LT(near_wrong, 0.03 * inked[true]);
 }
 
 // Parallel ridges and valleys of one profile z = a·cos(x), seen across: both have the same
