@@ -281,6 +281,9 @@ int main(int argc, char** argv) {
     render::FrameStats stats, last_drawn;
     auto shader_stamp = shader_dir.empty() ? std::filesystem::file_time_type{} : newestShader(shader_dir);
     double last_poll = glfwGetTime();
+    // Frame rate: smoothed for the panel; for a scripted run, over every frame after the
+    // first (which compiles shaders and uploads meshes), printed at the end.
+    double fps = 0.0, last_swap = 0.0, first_swap = 0.0;
     for (int frame = 1; !glfwWindowShouldClose(window); ++frame) {
       int width = 0, height = 0;
       glfwGetFramebufferSize(window, &width, &height);
@@ -329,7 +332,7 @@ int main(int argc, char** argv) {
           ImGui::SetNextWindowSize(ImVec2(380, static_cast<float>(height) - 16), ImGuiCond_FirstUseEver);
           ImGui::Begin("shanshui");
           ImGui::Text("%zu triangles, %dx%d", renderer->triangleCount(), width, height);
-          ImGui::Text("%s", stats.cached ? "frame: cached (nothing re-rendered)" : "frame: rendered");
+          ImGui::Text("%s, %.1f fps", stats.cached ? "frame: cached (nothing re-rendered)" : "frame: rendered", fps);
           double total = 0;
           for (const auto& p : last_drawn.passes) {
             ImGui::Text("  %-10s %7.2f ms", p.name.c_str(), p.gpu_ms);
@@ -374,7 +377,18 @@ int main(int argc, char** argv) {
         }
         if (take && with_ui) saveScreenshot();
         glfwSwapBuffers(window);
-        if (last) break;
+        const double now = glfwGetTime();
+        if (last_swap > 0.0 && now > last_swap)
+          fps = fps > 0.0 ? 0.9 * fps + 0.1 / (now - last_swap) : 1.0 / (now - last_swap);
+        last_swap = now;
+        if (frame == 1) first_swap = now;
+        if (last) {
+          if (frame > 1 && now > first_swap) {
+            std::fprintf(stderr, "shanshui-view: %d frames at %dx%d in %.2f s after the first: %.1f fps\n", frame - 1,
+                         width, height, now - first_swap, (frame - 1) / (now - first_swap));
+          }
+          break;
+        }
       }
       if (frames > 0 || sc.hasAnimation())
         glfwPollEvents();

@@ -91,6 +91,7 @@ TEST(Cli, ViewerScreenshotUnderXvfbMatchesHeadlessRender) {
   auto r = run("xvfb-run -a -s '-screen 0 640x480x24' " + bin("shanshui-view") + " " + common +
                " --set camera.azimuth=30 --orbit 10 --frames 3 --screenshot " + quote(dir / "view.png"));
   ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("2 frames at 240x180 in"), std::string::npos) << "no frame rate reported: " << r.output;
   r = run(bin("shanshui-render") + " " + common + " --set camera.azimuth=60 -o " + quote(dir / "render.png"));
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const image::Image a = image::loadImage(dir / "view.png"), b = image::loadImage(dir / "render.png");
