@@ -79,7 +79,26 @@ void main() {
   float jump = o.depth_edges;
   if (jump > 0.0) {
     float z = viewDepth(depth);
-    if (viewDepth(farthestNeighbour(p)) - z > jump * z) ink = strength = 1.0;
+    if (viewDepth(farthestNeighbour(p)) - z > jump * z) {
+      ink = strength = 1.0;
+    } else {
+      // A fold seen from afar: the surface behind is only a little farther, under the
+      // jump, but the step is a kink in inverse depth, which is affine across the screen
+      // on any plane. p is on the near side when its 1/z stands above the mean of its two
+      // neighbours along x or y by a tenth of the jump (the N·V band of such a fold is
+      // thinner than a pixel, so the silhouette test would give only dots).
+      float iz = 1.0 / z;
+      float kink_x = 2.0 * iz - 1.0 / viewDepth(texelFetch(u_depth, p - ivec2(1, 0), 0).r) -
+                     1.0 / viewDepth(texelFetch(u_depth, p + ivec2(1, 0), 0).r);
+      float kink_y = 2.0 * iz - 1.0 / viewDepth(texelFetch(u_depth, p - ivec2(0, 1), 0).r) -
+                     1.0 / viewDepth(texelFetch(u_depth, p + ivec2(0, 1), 0).r);
+      // Weak kinks (shallow folds) light and thin, those near a jump dark and wide.
+      float kink = max(kink_x, kink_y) / (0.1 * jump * iz);
+      if (kink > 1.0) {
+        strength = smoothstep(1.0, 5.0, kink);
+        ink = mix(0.5, 1.0, strength);
+      }
+    }
   }
 
   if (ink < 1.0 && (o.line_flags & kNormalOnly) == 0u) {

@@ -989,6 +989,62 @@ TEST_F(Look, StrokesAreLinesOfTheWidthAskedForOnAHill) {
   EXPECT_LT(w5, 6.5);
 }
 
+// A bulge on a slope that rises away from the eye, seen low: above the bulge's crest the
+// picture shows the slope behind it, only a little farther (less than the 3 % jump an
+// outline needs). The fold is still an occluding contour, and must be one line, not the
+// row of dots the N·V test alone gives there (its band is thinner than a pixel). Oracle:
+// per column, the row where the visible surface jumps from the bulge to the slope
+// behind, from the world positions (the bulge's near side has x > its crest's).
+TEST_F(Look, AFoldSeenEdgeOnIsOneLine) {
+  const double crest = 0.55;
+  const mesh::Mesh land = test::heightGrid(241, 241, 1.0 / 240, [&](double x, double) {
+    return 0.35 * (1.0 - x) + 0.05 * std::exp(-(x - crest) * (x - crest) / (2 * 0.03 * 0.03));
+  });
+  const scene::Scene s = sceneWith({{"up", "z"},
+                                    {"recentre", false},
+                                    {"lines", {{"width", 2.0}, {"taper", 1.0}, {"curve_factor", 0.0}}},
+                                    {"shading", {{"enabled", false}}}},
+                                   {{"output", {{"fade", 0.0}}}});
+  InkRenderer r(s, prepare(s, land));
+  // From five times as far with a fifth of the field of view: the same picture, with every
+  // depth jump a fifth as large relative to the distance (about 1.4 % here).
+  OrbitCamera cam = sceneCamera(s, r.worldBounds(), 1.0, {0, 12, 1.6});
+  cam.distance *= 5.0;
+  cam.fov_y_deg = glm::degrees(2.0 * std::atan(std::tan(glm::radians(cam.fov_y_deg) * 0.5) / 5.0));
+  cam.enclose(r.worldBounds());
+  const image::Image pic = r.render(cam, 240, 240).colour(0).download(3);
+  const std::vector<double> ink = inkOf(pic, s.output.paper);
+  const image::Image positions = r.worldPositions();
+  int columns = 0, drawn = 0;
+  double jump_sum = 0;
+  for (int x = 20; x < 220; ++x) {
+    // Row 0 is the top; the bulge's near side is below its crest on screen, the slope
+    // behind it above.
+    for (int y = 0; y + 1 < 240; ++y) {
+      if (positions.at(x, y, 3) < 0.5f || positions.at(x, y + 1, 3) < 0.5f) continue;
+      const double above = positions.at(x, y, 0), below = positions.at(x, y + 1, 0);
+      if (!(below > crest - 0.02 && above < crest - 0.06)) continue;
+      ++columns;
+      const glm::dvec3 eye = cam.eye();
+      const double d0 = glm::length(
+          glm::dvec3(positions.at(x, y + 1, 0), positions.at(x, y + 1, 1), positions.at(x, y + 1, 2)) - eye);
+      const double d1 =
+          glm::length(glm::dvec3(positions.at(x, y, 0), positions.at(x, y, 1), positions.at(x, y, 2)) - eye);
+      jump_sum += d1 / d0 - 1;
+      bool hit = false;
+      for (int dy = -2; dy <= 2; ++dy) {
+        const int yy = std::clamp(y + dy, 0, 239);
+        hit = hit || ink[static_cast<std::size_t>(yy) * 240 + x] > 0.3;
+      }
+      drawn += hit;
+      break;
+    }
+  }
+  std::fprintf(stderr, "fold columns %d drawn %d mean jump %.4f\n", columns, drawn, columns ? jump_sum / columns : 0.0);
+  ASSERT_GT(columns, 150) << "the fold is seen across the picture";
+  EXPECT_GT(drawn, 0.9 * columns);
+}
+
 // Suggestive contours on a corrugated sheet h = A cos(kx) seen from the +x side, above the
 // steepest slope (no true contour anywhere). Oracle (DeCarlo et al. 2003): the radial
 // curvature is zero only where h'' = 0, the inflection lines kx = π/2 + nπ, and D_w κ_r > 0
