@@ -190,7 +190,7 @@ std::vector<double> planeSpectrum(const nlohmann::json& canvas, int n, int seeds
         {std::make_shared<const scene::ObjectAsset>(scene::prepareAsset(plane, ps.objects[0])), nullptr}};
     render::InkRenderer pr(ps, plane_objects);
     // Each seed from another distance, spread over one octave of zoom: a canvas whose grain
-    // scales with the surface between octaves (`pin`) is measured over its whole cycle.
+    // scales with the surface between octaves (`zoom: surface`) is measured over its whole cycle.
     const double zoom = 1.6 * std::exp2(static_cast<double>(seed - first) / seeds);
     pr.render(render::sceneCamera(ps, pr.worldBounds(), 1.0, {0, 89, zoom}), n, n);
     const std::vector<double> ring = render::radialPowerSpectrum(pr.passTarget("canvas")->colour(0).download(1));
@@ -222,7 +222,8 @@ void tilesSection(std::ostream& md, std::ostream& csv, bench::TradeoffPoints& po
   const int cost_w = quick ? 256 : 1024, cost_h = quick ? 192 : 768, cost_frames = quick ? 3 : 9;
   md << "## Tiles against the splatted reference: error against run time for `patch`\n\n"
      << "Spectrum: relative L2 distance between the mean ring-averaged periodogram (" << seeds
-     << " seeds) of each canvas on a plane filling a " << n << "² frame and that of the splatted canvas over "
+     << " seeds, each seen from another distance over one octave of zoom) of each canvas on a plane filling a " << n
+     << "² frame and that of the splatted canvas over "
      << "rings above 1 % of its peak (`grain` 24; silk one-way at `frequency` 0.06). The floor row is the splatted "
         "canvas against itself with other seeds: the estimator's own distance. Warping error: as in the first "
         "table, silk (`grain` 24, `frequency` 0.06) on the sample scene at "
