@@ -290,6 +290,34 @@ TEST(Cli, ParamGivesUvsReportAndCheckerView) {
   EXPECT_GT(light, checker.pixels.size() / 3 / 50);
 }
 
+// A closed animal: auto prints what it tried and why it kept the atlas, and the report
+// lists the charts.
+TEST(Cli, ParamChartsAClosedMeshAndSaysWhy) {
+  test::TempDir dir;
+  const std::filesystem::path cow = test::cgalMeshes() / "cow.off";
+  SHANSHUI_REQUIRE_FILE(cow);
+  const auto r = run(bin("shanshui-param") + " " + quote(cow) + " -o " + quote(dir / "uv.obj") + " --report " +
+                     quote(dir / "p.json"));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("auto tried"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("kept charts"), std::string::npos) << r.output;
+  const auto report = nlohmann::json::parse(readBytes(dir / "p.json"));
+  EXPECT_EQ(report["method"], "charts");
+  EXPECT_EQ(report["atlas"]["per_chart"].size(), report["atlas"]["charts"].get<std::size_t>());
+  EXPECT_LE(report["distortion"]["l2_stretch"].get<double>(), 1.5);
+  // One seam cut open: L2 in the hundreds, refused (after the repair's line), nothing written.
+  const auto refused =
+      run(bin("shanshui-param") + " " + quote(cow) + " -o " + quote(dir / "bad.obj") + " --method tutte");
+  EXPECT_NE(refused.exit_code, 0);
+  EXPECT_NE(refused.output.find("above --max-stretch 2"), std::string::npos) << refused.output;
+  EXPECT_NE(refused.output.find("--accept-stretch"), std::string::npos) << refused.output;
+  EXPECT_FALSE(std::filesystem::exists(dir / "bad.obj"));
+  // The seams are split vertices: the OBJ reads back with more vertices than the cow.
+  const mesh::PolygonSoup soup = mesh::readPolygonSoup(dir / "uv.obj");
+  EXPECT_EQ(soup.uvs.size(), soup.positions.size());
+  EXPECT_GT(soup.positions.size(), 2904u);
+}
+
 TEST(Cli, ParamRefusesWhatItCannotFlattenAndWritesNothing) {
   test::TempDir dir;
   const std::filesystem::path bear = test::cgalMeshes() / "anchor.off";  // closed, genus 4
@@ -298,8 +326,11 @@ TEST(Cli, ParamRefusesWhatItCannotFlattenAndWritesNothing) {
   std::ofstream(dir / "nan.off") << "OFF\n3 1 0\n0 0 0\n1 0 0\nnan 1 0\n3 0 1 2\n";
   const std::string keep = " -o " + quote(dir / "keep.obj");
   const std::string param = bin("shanshui-param") + " ";
+  const std::filesystem::path cow = test::cgalMeshes() / "cow.off";  // one seam: L2 in the hundreds
   const std::pair<std::string, std::string> cases[] = {
-      {param + quote(bear) + keep, "closed mesh of genus 4"},
+      {param + quote(bear) + keep + " --method lscm", "closed mesh of genus 4"},
+      {param + quote(cow) + keep + " --method charts --padding 100", "--padding"},
+      {param + quote(cow) + keep + " --budget -1", "--budget"},
       {param + quote(kDem) + keep, "unknown mesh format"},
       {param + quote(dir / "nan.off") + keep, "nan.off"},
       {param + quote(bear) + keep + " --method magic", "unknown method 'magic'"},

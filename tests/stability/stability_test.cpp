@@ -282,7 +282,7 @@ TEST(Stability, ParameterizationOnStiffMeshes) {
   writeText(dir / "vertical.obj", "v 0 0 0\nv 1 0 0\nv 0 0 1\nv 1 0 1\nf 1 2 4\nf 1 4 3\n");
   const std::string p = bin("shanshui-param") + " ";
   const auto out = dir / "p.obj";
-  for (const char* method : {"auto", "xy", "lscm", "arap"}) {
+  for (const char* method : {"auto", "xy", "lscm", "arap", "charts"}) {
     const std::string m = std::string(" --method ") + method;
     runCase("param", std::string("single triangle, ") + method, p + quote(dir / "one.obj") + m, out, "one.obj",
             meshIsFinite);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <numeric>
 #include <sstream>
 
@@ -16,8 +17,9 @@ namespace {
 using Clock = std::chrono::steady_clock;
 
 const std::pair<Method, const char*> kMethodNames[] = {
-    {Method::Auto, "auto"},   {Method::Xy, "xy"},     {Method::Mvc, "mvc"},   {Method::Dcm, "dcm"},
-    {Method::Tutte, "tutte"}, {Method::Lscm, "lscm"}, {Method::Arap, "arap"}, {Method::Authalic, "authalic"},
+    {Method::Auto, "auto"},     {Method::Xy, "xy"},     {Method::Mvc, "mvc"},   {Method::Dcm, "dcm"},
+    {Method::Tutte, "tutte"},   {Method::Lscm, "lscm"}, {Method::Arap, "arap"}, {Method::Authalic, "authalic"},
+    {Method::Charts, "charts"},
 };
 
 std::uint64_t edgeKey(std::uint32_t a, std::uint32_t b) {
@@ -82,6 +84,7 @@ std::vector<glm::dvec2> runMethod(const mesh::Mesh& m, Method method, const Para
     case Method::Arap:
       return detail::freeBorderUvs(m, method);
     case Method::Auto:
+    case Method::Charts:
       break;
   }
   SHANSHUI_CHECK(false);
@@ -118,6 +121,35 @@ MethodTrial tryMethod(const mesh::Mesh& m, Method method, const ParamOptions& op
   return trial;
 }
 
+// Seconds each method took in bench_param_tradeoff on the development machine (2 cores),
+// as a function of the vertex count: linear for the projection, n^1.5 for the sparse
+// direct solves, and for ARAP the worst case of its 50 iterations (one LSCM-sized solve
+// each: 0.4 s at 16k vertices on a terrain, which converges at once, but 2.7 s on the 7.5k
+// vertices of CGAL's lion). Charts: about linear (segmentation, one LSCM per chart,
+// merging), 1.1 s for the 2.9k vertices of the cow and 7.9 s for the 38k of the bunny.
+double modelSeconds(Method method, double vertices) {
+  const double k = vertices / 16500.0;
+  switch (method) {
+    case Method::Xy:
+      return 0.012 * k;
+    case Method::Mvc:
+    case Method::Dcm:
+    case Method::Tutte:
+      return 0.22 * std::pow(k, 1.5);
+    case Method::Lscm:
+      return 0.25 * std::pow(k, 1.5);
+    case Method::Arap:
+      return 51 * 0.25 * std::pow(k, 1.5);
+    case Method::Authalic:
+      return 6.0 * std::pow(k, 1.5);
+    case Method::Charts:
+      return 4.5 * k;
+    case Method::Auto:
+      break;
+  }
+  return 0.0;
+}
+
 std::string describe(const Distortion& d) {
   std::ostringstream s;
   s << d.flipped << " flipped, " << d.degenerate << " degenerate and " << d.non_finite << " non-finite UV faces";
@@ -152,6 +184,41 @@ int borderLoops(const mesh::Mesh& m) {
   return topology(m).border_loops;
 }
 
+std::string trialSummary(const ParamReport& r) {
+  std::ostringstream s;
+  s.precision(3);
+  for (const MethodTrial& t : r.trials) {
+    if (!t.ran) continue;
+    s << (s.tellp() > 0 ? "; " : "") << methodName(t.method) << " ";
+    if (t.distortion.valid()) {
+      s << "L2 " << t.distortion.l2_stretch;
+    } else {
+      s << describe(t.distortion);
+    }
+  }
+  return s.str();
+}
+
+std::string trialTable(const ParamReport& r) {
+  std::ostringstream s;
+  s.precision(3);
+  for (const MethodTrial& t : r.trials) {
+    s << "  " << methodName(t.method) << ": ";
+    if (t.ran) {
+      s << t.seconds << " s (predicted " << t.predicted_seconds << " s), ";
+      if (t.distortion.valid()) {
+        s << "L2 stretch " << t.distortion.l2_stretch;
+      } else {
+        s << describe(t.distortion);
+      }
+    } else {
+      s << t.note;
+    }
+    s << "\n";
+  }
+  return s.str();
+}
+
 mesh::Mesh parameterize(const mesh::Mesh& input, const ParamOptions& opts, ParamReport* report,
                         const std::string& what) {
   if (opts.authalic_iterations < 1 || opts.authalic_iterations > 1000) {
@@ -160,110 +227,207 @@ mesh::Mesh parameterize(const mesh::Mesh& input, const ParamOptions& opts, Param
   if (!(opts.auto_accept_stretch >= 1.0)) {
     throw makeError("auto stretch limit ", opts.auto_accept_stretch, "; expected at least 1");
   }
+  if (!(opts.budget_seconds >= 0.0)) {
+    throw makeError("--budget ", opts.budget_seconds, "; expected seconds >= 0");
+  }
+  if (!(opts.max_stretch >= 1.0)) throw makeError("--max-stretch ", opts.max_stretch, "; expected at least 1");
+  if (!(opts.one_piece_preference >= 1.0)) {
+    throw makeError("one-piece preference ", opts.one_piece_preference, "; expected at least 1");
+  }
   if (input.triangles.empty()) throw makeError(what, ": no triangles to parameterize");
   for (const glm::dvec3& p : input.positions) {
     if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
       throw makeError(what, ": NaN or infinite vertex coordinates; repair the mesh first");
   }
-  // A closed sphere-like mesh is cut open along one seam first.
-  mesh::Mesh disc;
-  int seamVertices = 0;
-  Topology top = topology(input);
-  if (top.border_loops == 0) {
-    SeamCut cut = cutOpen(input, what);
-    disc = std::move(cut.mesh);
-    seamVertices = static_cast<int>(cut.seam.size());
-    top = topology(disc);
-  } else {
-    disc = input;
-  }
-  if (top.border_loops > 1) {
-    throw makeError(what, ": ", top.border_loops,
-                    " border loops (holes or several components); fill the holes "
-                    "and keep one component first (shanshui-repair)");
-  }
-  const long long euler = static_cast<long long>(disc.positions.size()) - static_cast<long long>(top.edges) +
-                          static_cast<long long>(disc.triangles.size());
-  if (euler != 1) {
-    throw makeError(what, ": not a topological disc (Euler characteristic ", euler,
-                    ", expected 1: handles or several components); parameterization needs a disc");
-  }
-
-  // Recentre in double: UTM-sized coordinates would lose precision in the solvers.
-  mesh::Mesh m = disc;
-  glm::dvec3 centre(0.0);
-  for (const glm::dvec3& p : m.positions) centre += p;
-  centre /= static_cast<double>(m.positions.size());
-  for (glm::dvec3& p : m.positions) p -= centre;
-
   const auto start = Clock::now();
   ParamReport local;
   ParamReport& r = report ? *report : local;
   r = {};
-  r.seam_vertices = seamVertices;
-  const int vertices = static_cast<int>(m.positions.size());
-  mesh::Mesh best;
-  bool haveBest = false;
-  auto consider = [&](Method method) {
-    mesh::Mesh result;
-    MethodTrial trial = tryMethod(m, method, opts, &result);
-    const bool better =
-        trial.ran && trial.distortion.valid() && (!haveBest || trial.distortion.l2_stretch < r.distortion.l2_stretch);
-    if (better) {
-      best = std::move(result);
-      haveBest = true;
-      r.method = method;
-      r.distortion = trial.distortion;
+
+  // The one-piece methods need a disc: the input, or a closed sphere-like mesh cut open.
+  mesh::Mesh disc;
+  std::string notADisc;
+  const Topology top = topology(input);
+  const long long euler = static_cast<long long>(input.positions.size()) - static_cast<long long>(top.edges) +
+                          static_cast<long long>(input.triangles.size());
+  if (top.border_loops == 0) {
+    try {
+      SeamCut cut = cutOpen(input, what);
+      disc = std::move(cut.mesh);
+      r.seam_vertices = static_cast<int>(cut.seam.size());
+    } catch (const Error& e) {
+      notADisc = e.what();
+    }
+  } else if (top.border_loops > 1) {
+    notADisc = makeError(what, ": ", top.border_loops,
+                         " border loops (holes or several components); fill the holes "
+                         "and keep one component first (shanshui-repair)")
+                   .what();
+  } else if (euler != 1) {
+    notADisc = makeError(what, ": not a topological disc (Euler characteristic ", euler,
+                         ", expected 1: handles or several components)")
+                   .what();
+  } else {
+    disc = input;
+  }
+  // Recentred in double: UTM-sized coordinates would lose precision in the solvers.
+  mesh::Mesh m = disc;
+  glm::dvec3 centre(0.0);
+  for (const glm::dvec3& p : m.positions) centre += p;
+  centre /= std::max<double>(1.0, static_cast<double>(m.positions.size()));
+  for (glm::dvec3& p : m.positions) p -= centre;
+
+  // Each candidate is run and measured; the best one-piece map and the atlas are kept apart.
+  mesh::Mesh bestPiece, atlas;
+  Distortion pieceDistortion, atlasDistortion;
+  Method pieceMethod = Method::Xy;
+  bool havePiece = false, haveAtlas = false;
+  AtlasReport atlasReport;
+  double speed = 1.0;  // measured seconds / modelled seconds, from the last method that ran long enough
+  auto run = [&](Method method) {
+    MethodTrial trial;
+    trial.method = method;
+    const double vertices = static_cast<double>(method == Method::Charts ? input.positions.size() : m.positions.size());
+    trial.predicted_seconds = speed * modelSeconds(method, vertices);
+    if (method == Method::Charts) {
+      const auto t0 = Clock::now();
+      AtlasReport ar;
+      try {
+        mesh::Mesh result = parameterizeCharts(input, opts.charts, &ar, what);
+        trial.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+        trial.ran = true;
+        trial.distortion = measureDistortion(result);
+        if (trial.distortion.valid()) {
+          atlas = std::move(result);
+          atlasDistortion = trial.distortion;
+          atlasReport = std::move(ar);
+          haveAtlas = true;
+        }
+      } catch (const Error& e) {
+        trial.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+        trial.note = e.what();
+      }
+    } else {
+      mesh::Mesh result;
+      trial = [&] {
+        MethodTrial t = tryMethod(m, method, opts, &result);
+        t.predicted_seconds = trial.predicted_seconds;
+        return t;
+      }();
+      if (trial.ran && trial.distortion.valid() &&
+          (!havePiece || trial.distortion.l2_stretch < pieceDistortion.l2_stretch)) {
+        bestPiece = std::move(result);
+        pieceDistortion = trial.distortion;
+        pieceMethod = method;
+        havePiece = true;
+      }
+    }
+    // The machine's speed, from the methods whose cost depends on size alone (ARAP's
+    // iterations and the number of charts depend on the shape).
+    const double modelled = modelSeconds(method, vertices);
+    const bool steady = method != Method::Arap && method != Method::Charts;
+    if (steady && trial.ran && trial.seconds > 0.05 && modelled > 0.0) {
+      speed = std::clamp(trial.seconds / modelled, 0.25, 20.0);
     }
     r.trials.push_back(std::move(trial));
   };
+  auto bestStretch = [&] {
+    double best = std::numeric_limits<double>::infinity();
+    if (havePiece) best = pieceDistortion.l2_stretch;
+    if (haveAtlas) best = std::min(best, atlasDistortion.l2_stretch);
+    return best;
+  };
 
   if (opts.method != Method::Auto) {
-    consider(opts.method);
+    if (opts.method != Method::Charts && !notADisc.empty()) {
+      throw makeError(notADisc, "; --method charts (or auto) makes an atlas of charts instead");
+    }
+    run(opts.method);
     const MethodTrial& t = r.trials.back();
     if (!t.ran) throw makeError(what, ": ", t.note);
-    if (!haveBest) {
+    if (!havePiece && !haveAtlas) {
       throw makeError(what, ": ", methodName(opts.method), " gives ", describe(t.distortion), " of ",
                       t.distortion.faces, "; try --method auto");
     }
+    r.decision = std::string("asked for ") + methodName(opts.method);
   } else {
-    consider(Method::Xy);
-    const std::pair<Method, int> plan[] = {{Method::Mvc, opts.auto_max_vertices_linear},
-                                           {Method::Lscm, opts.auto_max_vertices_linear},
-                                           {Method::Arap, opts.auto_max_vertices_arap}};
-    for (const auto& [method, limit] : plan) {
-      // Near-isometric already (the projection on a heightfield, LSCM on a developable
-      // surface): the slower methods cannot do much better.
-      const bool good = haveBest && r.distortion.l2_stretch <= opts.auto_accept_stretch;
-      if (good || vertices > limit) {
+    // Cheapest and most likely first. A closed or non-disc mesh starts with the atlas: one
+    // seam rarely flattens an animal or a statue (SPEC.md section 5).
+    std::vector<Method> plan;
+    if (notADisc.empty() && r.seam_vertices == 0) {
+      plan = {Method::Xy, Method::Mvc, Method::Lscm, Method::Charts, Method::Arap, Method::Tutte};
+    } else if (notADisc.empty()) {
+      plan = {Method::Charts, Method::Mvc, Method::Lscm, Method::Arap, Method::Tutte};
+    } else {
+      plan = {Method::Charts};
+    }
+    for (Method method : plan) {
+      const double elapsed = std::chrono::duration<double>(Clock::now() - start).count();
+      const double predicted =
+          speed * modelSeconds(method, static_cast<double>(method == Method::Charts ? input.positions.size()
+                                                                                    : m.positions.size()));
+      std::ostringstream why;
+      why.precision(3);
+      if (bestStretch() <= opts.auto_accept_stretch) {
+        why << "skipped: a valid map with L2 stretch <= " << opts.auto_accept_stretch << " is already found";
+      } else if (!r.trials.empty() && elapsed + predicted > opts.budget_seconds) {
+        why << "skipped: predicted " << predicted << " s, " << std::max(0.0, opts.budget_seconds - elapsed)
+            << " s of the " << opts.budget_seconds << " s budget left";
+      }
+      if (!why.str().empty()) {
         MethodTrial skipped;
         skipped.method = method;
-        std::ostringstream why;
-        if (good) {
-          why << "skipped: " << methodName(r.method)
-              << " is already valid with L2 stretch <= " << opts.auto_accept_stretch;
-        } else {
-          why << "skipped: " << vertices << " vertices > " << limit;
-        }
+        skipped.predicted_seconds = predicted;
         skipped.note = why.str();
-        r.trials.push_back(skipped);
+        r.trials.push_back(std::move(skipped));
         continue;
       }
-      consider(method);
+      run(method);
     }
-    // Last resort: Tutte's barycentric map onto a convex border is one-to-one in exact
-    // arithmetic (Tutte 1963, Floater 2003), whatever the mesh.
-    if (!haveBest && vertices <= opts.auto_max_vertices_linear) consider(Method::Tutte);
-    if (!haveBest) {
-      std::ostringstream s;
-      for (const MethodTrial& t : r.trials) {
-        s << "; " << methodName(t.method) << ": " << (t.ran ? describe(t.distortion) : t.note);
-      }
-      throw makeError(what, ": no method gave a one-to-one parameterization", s.str());
+    if (!havePiece && !haveAtlas) {
+      throw makeError(what, ": no method gave a one-to-one parameterization",
+                      notADisc.empty() ? "" : " (" + notADisc + ")", "; tried ", trialSummary(r));
     }
   }
+
+  // An atlas has seams the wrinkle strokes break at, so a one-piece map within the
+  // preference factor of it wins.
+  const bool keepAtlas =
+      haveAtlas && (!havePiece || pieceDistortion.l2_stretch > opts.one_piece_preference * atlasDistortion.l2_stretch);
+  std::ostringstream decision;
+  decision.precision(4);
+  mesh::Mesh best;
+  if (keepAtlas) {
+    best = std::move(atlas);
+    r.method = Method::Charts;
+    r.distortion = atlasDistortion;
+    r.atlas = std::move(atlasReport);
+    r.seam_vertices = 0;
+    decision << "charts: L2 stretch " << atlasDistortion.l2_stretch;
+    if (havePiece) {
+      decision << " against " << pieceDistortion.l2_stretch << " for the best one-piece map ("
+               << methodName(pieceMethod) << ")";
+    }
+  } else {
+    best = std::move(bestPiece);
+    best.positions = disc.positions;  // the caller's coordinates (plus seam copies)
+    r.method = pieceMethod;
+    r.distortion = pieceDistortion;
+    decision << methodName(pieceMethod) << ": L2 stretch " << pieceDistortion.l2_stretch;
+    if (haveAtlas) {
+      decision << ", within " << opts.one_piece_preference << "x of the atlas's " << atlasDistortion.l2_stretch
+               << " (one piece has no seams)";
+    } else {
+      decision << ", the least of the valid one-piece maps";
+    }
+  }
+  if (opts.method == Method::Auto) r.decision = decision.str();
   r.seconds = std::chrono::duration<double>(Clock::now() - start).count();
-  best.positions = disc.positions;  // the caller's coordinates (plus seam copies)
+  if (r.distortion.l2_stretch > opts.max_stretch && !opts.accept_over_stretch) {
+    throw makeError(what, ": the best map (", methodName(r.method), ") has L2 stretch ", r.distortion.l2_stretch,
+                    ", above --max-stretch ", opts.max_stretch,
+                    "; raise it or pass --accept-stretch to keep the map anyway (tried ", trialSummary(r), ")");
+  }
   return best;
 }
 
