@@ -316,6 +316,12 @@ TEST(Cli, ParamChartsAClosedMeshAndSaysWhy) {
   const mesh::PolygonSoup soup = mesh::readPolygonSoup(dir / "uv.obj");
   EXPECT_EQ(soup.uvs.size(), soup.positions.size());
   EXPECT_GT(soup.positions.size(), 2904u);
+  // The renderer keeps the atlas's UVs through its repair (the seams' coincident vertices).
+  const auto drawn =
+      run(bin("shanshui-render") + " " + quote(dir / "uv.obj") + " -o " + quote(dir / "cow.png") +
+          " --size 160x120 --set objects.0.wrinkle.texture=" +
+          quote("\"" + (test::sourceDir() / "samples/textures/rain_strokes_wrinkle.png").string() + "\""));
+  EXPECT_EQ(drawn.exit_code, 0) << drawn.output;
 }
 
 TEST(Cli, ParamRefusesWhatItCannotFlattenAndWritesNothing) {

@@ -1,5 +1,7 @@
 // The mesh repair pipeline on CGAL's Polygon Mesh Processing. This is the only file of
 // libs/mesh that includes CGAL: the interface (repair.h) speaks shanshui types only.
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <map>
 #include <sstream>
@@ -82,6 +84,61 @@ std::vector<BorderLoop> borderLoops(const SurfaceMesh& sm) {
   return loops;
 }
 
+// Gives each corner of `out` the UV of the soup corner at the same position in the soup face
+// with the same corner positions (or, for a triangle the repair made, of any soup vertex at
+// that position), then splits every vertex whose corners disagree into one copy per UV.
+// Positions are compared exactly: repair merges only identical points. Returns the copies.
+std::size_t carryUvsByCorner(const PolygonSoup& soup, Mesh& out) {
+  using Key = std::array<double, 3>;
+  auto key = [](const glm::dvec3& p) { return Key{p.x, p.y, p.z}; };
+  std::map<Key, std::uint32_t> anyAt;
+  for (std::uint32_t v = 0; v < soup.positions.size(); ++v) anyAt.emplace(key(soup.positions[v]), v);
+  std::map<std::array<Key, 3>, std::size_t> triangleAt;  // sorted corner positions -> soup face
+  for (std::size_t f = 0; f < soup.faces.size(); ++f) {
+    const auto& face = soup.faces[f];
+    if (face.size() != 3 ||
+        std::any_of(face.begin(), face.end(), [&](std::uint32_t v) { return v >= soup.positions.size(); }))
+      continue;
+    std::array<Key, 3> k{key(soup.positions[face[0]]), key(soup.positions[face[1]]), key(soup.positions[face[2]])};
+    std::sort(k.begin(), k.end());
+    triangleAt.emplace(k, f);
+  }
+  std::vector<std::vector<std::pair<glm::vec2, std::uint32_t>>> uvsAt(out.positions.size());  // (uv, copy)
+  out.uvs.assign(out.positions.size(), glm::vec2(0.0f));
+  std::size_t copies = 0;
+  for (glm::uvec3& t : out.triangles) {
+    std::array<Key, 3> k{key(out.positions[t.x]), key(out.positions[t.y]), key(out.positions[t.z])};
+    std::sort(k.begin(), k.end());
+    const auto face = triangleAt.find(k);
+    for (int c = 0; c < 3; ++c) {
+      const Key p = key(out.positions[t[c]]);
+      std::uint32_t source = anyAt.at(p);
+      if (face != triangleAt.end()) {
+        for (std::uint32_t v : soup.faces[face->second])
+          if (key(soup.positions[v]) == p) source = v;
+      }
+      const glm::vec2 uv = soup.uvs[source];
+      auto& seen = uvsAt[t[c]];
+      const auto same = std::find_if(seen.begin(), seen.end(), [&](const auto& e) { return e.first == uv; });
+      if (same != seen.end()) {
+        t[c] = same->second;
+      } else if (seen.empty()) {
+        seen.emplace_back(uv, t[c]);
+        out.uvs[t[c]] = uv;
+      } else {
+        const auto copy = static_cast<std::uint32_t>(out.positions.size());
+        out.positions.push_back(out.positions[t[c]]);
+        out.normals.push_back(out.normals[t[c]]);
+        out.uvs.push_back(uv);
+        seen.emplace_back(uv, copy);
+        t[c] = copy;
+        ++copies;
+      }
+    }
+  }
+  return copies;
+}
+
 }  // namespace
 
 bool RepairReport::changed() const {
@@ -108,6 +165,7 @@ std::vector<std::pair<std::string, double>> RepairReport::counters() const {
           {"holes_filled", d(holes_filled)},
           {"hole_faces_added", d(hole_faces_added)},
           {"holes_left_open", d(holes_left_open)},
+          {"uv_seam_vertices_split", d(uv_seam_vertices_split)},
           {"boundary_loops", d(boundary_loops)}};
 }
 
@@ -307,6 +365,11 @@ Mesh repairMesh(const PolygonSoup& soup, const RepairOptions& options, RepairRep
   if (sameVertices) {
     out.uvs = soup.uvs;
     out.normals = soup.normals;
+  } else if (soup.uvs.size() == soup.positions.size() && !soup.uvs.empty()) {
+    // UVs with seams (a chart atlas, a sphere cut open) come as coincident vertices that
+    // step 2 merged: they follow the corners, and seams are split again.
+    out.normals = vertexNormals(out);
+    r.uv_seam_vertices_split = carryUvsByCorner(soup, out);
   } else {
     r.attributes_dropped = !soup.uvs.empty() || !soup.normals.empty();
   }

@@ -206,3 +206,59 @@ TEST(Repair, FoldedQuadsEndManifold) {
 
 }  // namespace
 }  // namespace shanshui::mesh
+
+namespace shanshui::mesh {
+namespace {
+
+// A cube whose six sides each have their own UV square (24 vertices, as an atlas writes
+// it): the clean-up merges the coincident corners, and the UVs must still follow every
+// corner, with the seams split again.
+TEST(Repair, UvSeamsSurviveTheMergeOfCoincidentVertices) {
+  PolygonSoup soup;
+  const glm::dvec3 corner[8] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
+  const int sides[6][4] = {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}};
+  for (int s = 0; s < 6; ++s) {
+    const auto base = static_cast<std::uint32_t>(soup.positions.size());
+    for (int k = 0; k < 4; ++k) {
+      soup.positions.push_back(corner[sides[s][k]]);
+      soup.uvs.emplace_back(2.0f * s + (k == 1 || k == 2), (k >= 2) ? 1.0f : 0.0f);
+    }
+    soup.faces.push_back({base, base + 1, base + 2});
+    soup.faces.push_back({base, base + 2, base + 3});
+  }
+  RepairReport r;
+  const Mesh m = repairMesh(soup, {}, &r, "cube.obj");
+  EXPECT_FALSE(r.attributes_dropped);
+  EXPECT_EQ(r.boundary_loops, 0u);           // closed once merged
+  EXPECT_EQ(r.uv_seam_vertices_split, 16u);  // 24 corners of 8 points
+  ASSERT_EQ(m.uvs.size(), m.positions.size());
+  ASSERT_EQ(m.normals.size(), m.positions.size());
+  ASSERT_EQ(m.triangles.size(), soup.faces.size());
+  // Oracle: every output corner has the UV of the input corner at the same position in the
+  // input triangle with the same three positions.
+  for (const glm::uvec3& t : m.triangles) {
+    bool found = false;
+    for (const auto& f : soup.faces) {
+      int same = 0;
+      for (int k = 0; k < 3; ++k)
+        for (int l = 0; l < 3; ++l) same += m.positions[t[k]] == soup.positions[f[l]];
+      if (same != 3) continue;
+      found = true;
+      for (int k = 0; k < 3; ++k)
+        for (int l = 0; l < 3; ++l)
+          if (m.positions[t[k]] == soup.positions[f[l]]) {
+            EXPECT_EQ(m.uvs[t[k]], soup.uvs[f[l]]);
+          }
+    }
+    EXPECT_TRUE(found);
+  }
+  // Copies of a corner share its (smooth) normal.
+  for (std::size_t i = 0; i < m.positions.size(); ++i)
+    for (std::size_t j = i + 1; j < m.positions.size(); ++j)
+      if (m.positions[i] == m.positions[j]) {
+        EXPECT_EQ(m.normals[i], m.normals[j]);
+      }
+}
+
+}  // namespace
+}  // namespace shanshui::mesh

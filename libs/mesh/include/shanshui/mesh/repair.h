@@ -37,7 +37,10 @@ struct RepairReport {
   std::size_t holes_left_open = 0;  //!< larger than max_hole_edges, or filling failed
   std::size_t boundary_loops = 0;   //!< in the result; 0 means closed
   bool attributes_dropped = false;  //!< UVs/normals could not follow the changes
-  ManifoldProblems left;            //!< what the final check still finds (warned)
+  //! UV seams (coincident vertices with different UVs) merged by the clean-up and split
+  //! again so that the UVs follow every corner; normals are then recomputed.
+  std::size_t uv_seam_vertices_split = 0;
+  ManifoldProblems left;  //!< what the final check still finds (warned)
   std::size_t output_vertices = 0;
   std::size_t output_faces = 0;
   std::vector<std::string> warnings;
