@@ -5,11 +5,14 @@
 // every method's L2 stretch should be 1. Writes param_tradeoff.csv, .md and _points.csv
 // (for shanshui-bench's plots). --quick: small meshes, no CGAL meshes, no 230k run.
 //   bench_param_tradeoff [--out DIR] [--max-vertices N] [--quick]
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <map>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -17,6 +20,7 @@
 #include "shanshui/core/error.h"
 #include "shanshui/mesh/mesh_io.h"
 #include "shanshui/mesh/repair.h"
+#include "shanshui/mesh/shapes.h"
 #include "shanshui/param/parameterize.h"
 #include "shanshui/terrain/heightfield.h"
 #include "shanshui/terrain/terrain_mesh.h"
@@ -51,6 +55,65 @@ mesh::Mesh developableRidge(int n) {
     for (int i = 0; i < n; ++i) {
       const double x = i * 10.0, y = j * 10.0;
       m.positions.emplace_back(x, y, 250.0 * std::sin(x / 150.0) + 120.0 * std::exp(-(x - 600) * (x - 600) / 20000.0));
+    }
+  for (int j = 0; j + 1 < n; ++j)
+    for (int i = 0; i + 1 < n; ++i) {
+      const auto a = static_cast<unsigned>(j * n + i), w = static_cast<unsigned>(n);
+      m.triangles.emplace_back(a, a + 1, a + w + 1);
+      m.triangles.emplace_back(a, a + w + 1, a + w);
+    }
+  return m;
+}
+
+// A cube of six n × n grids: developable piece by piece, so an atlas can reach L2 stretch
+// exactly 1 (the known answer for the chart knobs).
+mesh::Mesh subdividedCube(int n) {
+  mesh::Mesh m;
+  std::map<std::array<long, 3>, unsigned> index;
+  auto vertex = [&](glm::dvec3 p) {
+    const std::array<long, 3> key{std::lround(p.x * n), std::lround(p.y * n), std::lround(p.z * n)};
+    const auto [it, inserted] = index.emplace(key, static_cast<unsigned>(m.positions.size()));
+    if (inserted) m.positions.push_back(p);
+    return it->second;
+  };
+  for (int axis = 0; axis < 3; ++axis)
+    for (int side = 0; side < 2; ++side) {
+      const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+      for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) {
+          unsigned q[4];
+          const int di[4] = {0, 1, 1, 0}, dj[4] = {0, 0, 1, 1};
+          for (int k = 0; k < 4; ++k) {
+            glm::dvec3 p(0.0);
+            p[axis] = side;
+            p[u] = static_cast<double>(i + di[k]) / n;
+            p[v] = static_cast<double>(j + dj[k]) / n;
+            q[k] = vertex(p);
+          }
+          // Outward winding: (u, v, axis) is right-handed, so side 1 keeps the order.
+          if (side == 1) {
+            m.triangles.emplace_back(q[0], q[1], q[2]);
+            m.triangles.emplace_back(q[0], q[2], q[3]);
+          } else {
+            m.triangles.emplace_back(q[0], q[2], q[1]);
+            m.triangles.emplace_back(q[0], q[3], q[2]);
+          }
+        }
+    }
+  return m;
+}
+
+// A steep mountain on an n × n grid of 30 m cells: the projection's L2 stretch is about
+// 1.03, above auto's early stop, so auto goes on to the solvers as far as its budget allows.
+mesh::Mesh steepMountain(int n) {
+  mesh::Mesh m;
+  const double span = 14000.0, cell = span / (n - 1);
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      const double x = i * cell, y = j * cell, dx = x - 7000, dy = y - 7500;
+      m.positions.emplace_back(x, y,
+                               3200.0 * std::exp(-(dx * dx + dy * dy) / (2 * 2600.0 * 2600.0)) +
+                                   650.0 * std::sin(x / 700.0) * std::cos(y / 900.0));
     }
   for (int j = 0; j + 1 < n; ++j)
     for (int i = 0; i + 1 < n; ++i) {
@@ -103,6 +166,7 @@ int main(int argc, char** argv) {
       {"authalic circle", Method::Authalic, Border::Circle},
       {"lscm", Method::Lscm, Border::Circle},
       {"arap", Method::Arap, Border::Circle},
+      {"charts", Method::Charts, Border::Circle},
   };
   std::ofstream csv(out / "param_tradeoff.csv");
   csv << "input,vertices,config,seconds,l2_stretch,linf_stretch,angle_distortion,area_distortion,flipped,"
@@ -120,6 +184,7 @@ int main(int argc, char** argv) {
       param::ParamOptions o;
       o.method = c.method;
       o.border = c.border;
+      o.accept_over_stretch = c.method != Method::Auto;  // the table shows each method as it is
       param::ParamReport r;
       std::string note;
       const auto start = Clock::now();
@@ -144,6 +209,107 @@ int main(int argc, char** argv) {
       if (in.name == kDevelopable && note.empty())
         points.add("parameterization of a developable ridge", "L2 stretch - 1 (0 = isometric)", label, false,
                    1000.0 * seconds, d.l2_stretch - 1.0);
+    }
+  }
+
+  // Charts: the stretch limit per chart against run time, on a subdivided cube (an atlas
+  // can be exactly isometric there) and on CGAL's cow.
+  md << "\n## Charts: the per-chart stretch limit against run time\n\n"
+        "| input | faces | chart stretch limit | seconds | charts | L2 | Linf | flipped | atlas usage |\n"
+        "|---|---|---|---|---|---|---|---|---|\n";
+  std::vector<Input> chartInputs;
+  chartInputs.push_back({"subdivided cube", subdividedCube(quick ? 6 : 16)});
+  const fs::path meshDir = SHANSHUI_TEST_MESH_DIR;
+  auto cgal = [&](const char* name) {
+    const fs::path f = meshDir / (std::string(name) + ".off");
+    mesh::RepairOptions ro;
+    ro.components = mesh::ComponentPolicy::KeepAll;
+    ro.max_hole_edges = 1 << 30;
+    return Input{f.filename().string(), mesh::repairMesh(mesh::readPolygonSoup(f), ro, nullptr, f.string())};
+  };
+  if (!quick && fs::exists(meshDir / "cow.off")) chartInputs.push_back(cgal("cow"));
+  for (const Input& in : chartInputs) {
+    for (const double limit : {1.01, 1.05, 1.2, 1.5, 2.0}) {
+      param::ChartOptions co;
+      co.max_chart_stretch = limit;
+      param::AtlasReport ar;
+      const auto start = Clock::now();
+      const mesh::Mesh atlas = param::parameterizeCharts(in.mesh, co, &ar, in.name);
+      const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
+      const param::Distortion d = param::measureDistortion(atlas);
+      std::snprintf(line, sizeof line, "| %s | %zu | %.2f | %.3f | %zu | %.4f | %.3g | %d | %.2f |\n", in.name.c_str(),
+                    in.mesh.triangleCount(), limit, seconds, ar.charts.size(), d.l2_stretch, d.linf_stretch, d.flipped,
+                    ar.usage);
+      md << line;
+      std::fprintf(stderr, "%s", line);
+      if (in.name == "subdivided cube") {
+        points.add("charts of a subdivided cube", "L2 stretch - 1 (0 = isometric)", "charts", true, 1000.0 * seconds,
+                   d.l2_stretch - 1.0);
+      }
+    }
+  }
+
+  // Charts and auto on closed meshes and meshes with handles (CGAL's demo meshes, when
+  // extracted), and a 100k-face closed mesh of our own.
+  if (!quick) {
+    md << "\n## Closed meshes: charts, and what auto keeps\n\n"
+          "| input | faces | genus | charts: seconds | charts | L2 | flipped | usage | auto: seconds | auto keeps | "
+          "L2 |\n|---|---|---|---|---|---|---|---|---|---|---|\n";
+    std::vector<Input> closed;
+    for (const char* name : {"cow", "elk", "camel", "bear", "anchor", "armadillo", "bunny00"}) {
+      if (fs::exists(meshDir / (std::string(name) + ".off"))) closed.push_back(cgal(name));
+    }
+    mesh::Mesh bumpy = mesh::uvSphere(1.0, 224, 224);
+    for (glm::dvec3& p : bumpy.positions) {
+      p *= 1.0 + 0.15 * std::sin(5 * p.x) * std::cos(4 * p.y) + 0.08 * std::sin(9 * p.z);
+    }
+    closed.push_back({"bumpy sphere", bumpy});
+    for (const Input& in : closed) {
+      const long long euler = [&] {
+        std::set<std::pair<unsigned, unsigned>> edges;
+        for (const glm::uvec3& t : in.mesh.triangles)
+          for (int k = 0; k < 3; ++k) edges.insert({std::min(t[k], t[(k + 1) % 3]), std::max(t[k], t[(k + 1) % 3])});
+        return static_cast<long long>(in.mesh.vertexCount()) - static_cast<long long>(edges.size()) +
+               static_cast<long long>(in.mesh.triangleCount());
+      }();
+      param::AtlasReport ar;
+      auto start = Clock::now();
+      const mesh::Mesh atlas = param::parameterizeCharts(in.mesh, {}, &ar, in.name);
+      const double chartSeconds = std::chrono::duration<double>(Clock::now() - start).count();
+      const param::Distortion d = param::measureDistortion(atlas);
+      param::ParamReport r;
+      std::string kept;
+      start = Clock::now();
+      try {
+        param::parameterize(in.mesh, {}, &r, in.name);
+        kept = param::methodName(r.method);
+      } catch (const Error& e) {
+        kept = "refused";
+      }
+      const double autoSeconds = std::chrono::duration<double>(Clock::now() - start).count();
+      std::snprintf(line, sizeof line, "| %s | %zu | %lld | %.2f | %zu | %.3f | %d | %.2f | %.2f | %s | %.3f |\n",
+                    in.name.c_str(), in.mesh.triangleCount(), (2 - euler) / 2, chartSeconds, ar.charts.size(),
+                    d.l2_stretch, d.flipped, ar.usage, autoSeconds, kept.c_str(), r.distortion.l2_stretch);
+      md << line;
+      std::fprintf(stderr, "%s", line);
+    }
+
+    // Budgeted auto against size on a terrain whose projection is just over the early stop.
+    md << "\n## auto against size (budget 5 s)\n\n| vertices | seconds | methods run | kept | L2 "
+          "|\n|---|---|---|---|---|\n";
+    for (const int n : {100, 160, 240, 324, 400, 500}) {
+      const mesh::Mesh m = steepMountain(n);
+      param::ParamReport r;
+      const auto t0 = Clock::now();
+      param::parameterize(m, {}, &r, "steep mountain");
+      const double seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+      std::string ran;
+      for (const param::MethodTrial& t : r.trials)
+        if (t.ran) ran += std::string(ran.empty() ? "" : ", ") + param::methodName(t.method);
+      std::snprintf(line, sizeof line, "| %zu | %.2f | %s | %s | %.4f |\n", m.vertexCount(), seconds, ran.c_str(),
+                    param::methodName(r.method), r.distortion.l2_stretch);
+      md << line;
+      std::fprintf(stderr, "%s", line);
     }
   }
 

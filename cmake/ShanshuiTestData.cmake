@@ -7,8 +7,8 @@ set(SHANSHUI_CGAL_DATA_ARCHIVE "/usr/share/doc/libcgal-dev/data.tar.gz" CACHE FI
 set(SHANSHUI_TEST_MESH_DIR "${PROJECT_BINARY_DIR}/test-data/cgal")
 set(cgal_meshes three_peaks.off elephant-with-holes.off holes.off lion.off blobby_3cc.off
     triceratops.off anchor.off degtri_sliding.off oblong-shuffled.off cube-ouvert.off bear.off
-    cube_quad.off cross_quad.off cow.off)
-if(EXISTS "${SHANSHUI_CGAL_DATA_ARCHIVE}" AND NOT EXISTS "${SHANSHUI_TEST_MESH_DIR}/cow.off")
+    cube_quad.off cross_quad.off cow.off elk.off camel.off armadillo.off bunny00.off)
+if(EXISTS "${SHANSHUI_CGAL_DATA_ARCHIVE}" AND NOT EXISTS "${SHANSHUI_TEST_MESH_DIR}/bunny00.off")
   set(patterns "")
   foreach(m IN LISTS cgal_meshes)
     list(APPEND patterns "data/meshes/${m}")
@@ -23,7 +23,7 @@ if(EXISTS "${SHANSHUI_CGAL_DATA_ARCHIVE}" AND NOT EXISTS "${SHANSHUI_TEST_MESH_D
   endforeach()
   file(REMOVE_RECURSE "${PROJECT_BINARY_DIR}/test-data/tmp")
 endif()
-if(NOT EXISTS "${SHANSHUI_TEST_MESH_DIR}/cow.off")
+if(NOT EXISTS "${SHANSHUI_TEST_MESH_DIR}/bunny00.off")
   message(WARNING "CGAL test meshes not found (${SHANSHUI_CGAL_DATA_ARCHIVE}); run scripts/setup.sh")
 endif()
 get_filename_component(SHANSHUI_DATA_DIR_ABS "${SHANSHUI_DATA_DIR}" ABSOLUTE)

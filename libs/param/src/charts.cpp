@@ -4,14 +4,15 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
-#include <deque>
 #include <limits>
 #include <map>
 #include <numeric>
+#include <optional>
 #include <unordered_map>
 
 #include "cgal_methods.h"
 #include "shanshui/core/error.h"
+#include "shanshui/core/parallel_for.h"
 
 namespace shanshui::param {
 namespace {
@@ -367,32 +368,44 @@ void mergeCharts(const mesh::Mesh& m, std::vector<Chart>& charts, double limit, 
       if (touched[a]) continue;
       auto& list = neighbours[a];
       std::stable_sort(list.begin(), list.end(), [](const auto& x, const auto& y) { return x.first > y.first; });
-      // Of the neighbours it can merge with, the one whose union packs best.
-      std::size_t into = charts.size();
-      double bestFill = -1.0;
-      Chart bestUnion;
+      // Of the neighbours it can merge with, the one whose union packs best (all tried at
+      // once, on every core).
+      std::vector<std::size_t> candidates;
       for (const auto& [n, bi] : list) {
         const auto b = static_cast<std::size_t>(bi);
         if (touched[b]) continue;
         const std::pair<int, int> key(static_cast<int>(std::min(a, b)), static_cast<int>(std::max(a, b)));
         const auto seen = failed.find(key);
         if (seen != failed.end() && seen->second == std::pair(version[key.first], version[key.second])) continue;
-        std::vector<std::uint32_t> faces = charts[b].mesh.faces;
+        candidates.push_back(b);
+      }
+      std::vector<std::optional<Chart>> unions(candidates.size());
+      std::vector<double> fills(candidates.size(), -1.0);
+      parallelFor(static_cast<int>(candidates.size()), resolveThreads(0), [&](int k) {
+        std::vector<std::uint32_t> faces = charts[candidates[k]].mesh.faces;
         faces.insert(faces.end(), charts[a].mesh.faces.begin(), charts[a].mesh.faces.end());
         ChartMesh u = extract(m, faces);
-        if (u.components == 1 && isDisc(u.mesh)) {
-          Flattened f = flatten(u.mesh, limit);
-          const double fill = f.ok ? boxFill(u.mesh, f.uv) : 0.0;
-          if (f.ok && f.distortion.l2_stretch <= limit && (u.faces.size() <= kSmallChart || fill >= minFill)) {
-            if (fill > bestFill) {
-              bestFill = fill;
-              into = b;
-              bestUnion = {std::move(u), std::move(f)};
-            }
-            continue;
-          }
+        if (u.components != 1 || !isDisc(u.mesh)) return;
+        Flattened f = flatten(u.mesh, limit);
+        const double fill = f.ok ? boxFill(u.mesh, f.uv) : 0.0;
+        if (f.ok && f.distortion.l2_stretch <= limit && (u.faces.size() <= kSmallChart || fill >= minFill)) {
+          fills[k] = fill;
+          unions[k] = Chart{std::move(u), std::move(f)};
         }
-        failed[key] = {version[key.first], version[key.second]};
+      });
+      std::size_t into = charts.size();
+      double bestFill = -1.0;
+      Chart bestUnion;
+      for (std::size_t k = 0; k < candidates.size(); ++k) {
+        const std::size_t b = candidates[k];
+        if (!unions[k]) {
+          const std::pair<int, int> key(static_cast<int>(std::min(a, b)), static_cast<int>(std::max(a, b)));
+          failed[key] = {version[key.first], version[key.second]};
+        } else if (fills[k] > bestFill) {
+          bestFill = fills[k];
+          into = b;
+          bestUnion = std::move(*unions[k]);
+        }
       }
       if (into < charts.size()) {
         charts[into] = std::move(bestUnion);
@@ -660,36 +673,51 @@ mesh::Mesh parameterizeCharts(const mesh::Mesh& m, const ChartOptions& o, AtlasR
 
   // Charts: every connected component, split until each is a disc that flattens within the
   // stretch limit (a single triangle always does).
+  // Pieces are handled a generation at a time, on every core; results are gathered in
+  // order, so the atlas does not depend on the thread count.
   std::vector<Chart> charts;
-  std::deque<std::vector<std::uint32_t>> queue;
-  queue.emplace_back(m.triangles.size());
-  std::iota(queue.front().begin(), queue.front().end(), 0u);
-  while (!queue.empty()) {
-    std::vector<std::uint32_t> faces = std::move(queue.front());
-    queue.pop_front();
-    ChartMesh c = extract(m, faces);
-    if (c.components > 1) {
-      std::vector<std::vector<std::uint32_t>> parts(c.components);
-      for (std::size_t i = 0; i < faces.size(); ++i) parts[c.component_of_face[i]].push_back(faces[i]);
-      for (auto& p : parts) queue.push_back(std::move(p));
-      continue;
-    }
-    if (isDisc(c.mesh) || faces.size() == 1) {
-      Flattened f = flatten(c.mesh, o.max_chart_stretch);
-      const bool good = f.ok && f.distortion.l2_stretch <= o.max_chart_stretch;
-      if (good && faces.size() > kSmallChart && boxFill(c.mesh, f.uv) < o.min_fill) {
-        for (auto& p : splitAcross(c, f.uv)) queue.push_back(std::move(p));
-        continue;
+  std::vector<std::vector<std::uint32_t>> wave(1, std::vector<std::uint32_t>(m.triangles.size()));
+  std::iota(wave[0].begin(), wave[0].end(), 0u);
+  struct Outcome {
+    std::optional<Chart> chart;
+    std::vector<std::vector<std::uint32_t>> pieces;
+    bool split = false;
+  };
+  while (!wave.empty()) {
+    std::vector<Outcome> outcomes(wave.size());
+    parallelFor(static_cast<int>(wave.size()), resolveThreads(0), [&](int i) {
+      const std::vector<std::uint32_t>& faces = wave[i];
+      Outcome& out = outcomes[i];
+      ChartMesh c = extract(m, faces);
+      if (c.components > 1) {
+        out.pieces.resize(c.components);
+        for (std::size_t k = 0; k < faces.size(); ++k) out.pieces[c.component_of_face[k]].push_back(faces[k]);
+        return;
       }
-      if (good || faces.size() == 1) {
-        if (f.uv.empty()) f.uv.assign(c.mesh.positions.size(), glm::dvec2(0.0));
-        charts.push_back({std::move(c), std::move(f)});
-        continue;
+      if (isDisc(c.mesh) || faces.size() == 1) {
+        Flattened f = flatten(c.mesh, o.max_chart_stretch);
+        const bool good = f.ok && f.distortion.l2_stretch <= o.max_chart_stretch;
+        if (good && faces.size() > kSmallChart && boxFill(c.mesh, f.uv) < o.min_fill) {
+          out.pieces = splitAcross(c, f.uv);
+          return;
+        }
+        if (good || faces.size() == 1) {
+          if (f.uv.empty()) f.uv.assign(c.mesh.positions.size(), glm::dvec2(0.0));
+          out.chart = Chart{std::move(c), std::move(f)};
+          return;
+        }
+        out.split = true;
       }
-      ++r.splits;
+      out.pieces = split(c);
+    });
+    std::vector<std::vector<std::uint32_t>> next;
+    for (Outcome& out : outcomes) {
+      if (out.chart) charts.push_back(std::move(*out.chart));
+      r.splits += out.split;
+      for (auto& p : out.pieces)
+        if (!p.empty()) next.push_back(std::move(p));
     }
-    for (auto& p : split(c))
-      if (!p.empty()) queue.push_back(std::move(p));
+    wave = std::move(next);
   }
   const std::size_t beforeMerging = charts.size();
   mergeCharts(m, charts, o.max_chart_stretch, o.min_fill);
@@ -724,10 +752,13 @@ mesh::Mesh parameterizeCharts(const mesh::Mesh& m, const ChartOptions& o, AtlasR
     for (const glm::dvec2& p : uvs[c]) hi = glm::max(hi, p);
     longest[c] = std::max(hi.x, hi.y);
   }
-  std::vector<std::vector<glm::dvec2>> placed;
-  Packed packed;
-  double bestUsage = -1.0;
-  for (int variant = 0; variant < 4; ++variant) {
+  struct Try {
+    std::vector<std::vector<glm::dvec2>> placed;
+    Packed packed;
+    double usage = -1.0, texel = 0.0;
+  };
+  std::vector<Try> tries(4);
+  parallelFor(4, resolveThreads(0), [&](int variant) {
     double side = std::sqrt(totalArea / 0.7);
     for (int attempt = 0; attempt < 6; ++attempt) {
       const double texel = side / o.atlas_resolution;
@@ -738,16 +769,17 @@ mesh::Mesh parameterizeCharts(const mesh::Mesh& m, const ChartOptions& o, AtlasR
         side = longer;
         continue;
       }
-      const double usage = totalArea / std::max(p.width * p.height, 1e-300);
-      if (usage > bestUsage) {
-        bestUsage = usage;
-        placed = std::move(trial);
-        packed = p;
-        r.texel = longer / o.atlas_resolution;
-      }
+      tries[variant] = {std::move(trial), p, totalArea / std::max(p.width * p.height, 1e-300),
+                        longer / o.atlas_resolution};
       break;
     }
-  }
+  });
+  std::size_t bestTry = 0;
+  for (std::size_t v = 1; v < tries.size(); ++v)
+    if (tries[v].usage > tries[bestTry].usage) bestTry = v;
+  std::vector<std::vector<glm::dvec2>> placed = std::move(tries[bestTry].placed);
+  const Packed packed = tries[bestTry].packed;
+  r.texel = tries[bestTry].texel;
   r.width = packed.width;
   r.height = packed.height;
   r.usage = totalArea / std::max(packed.width * packed.height, 1e-300);
