@@ -116,8 +116,10 @@ int main(int argc, char** argv) {
                    param::trialTable(report).c_str(), report.decision.c_str());
     }
     if (report.method == param::Method::Charts) {
-      std::fprintf(stderr, "%s: atlas of %zu charts (%d split after flattening), %.0f%% of the atlas used\n",
-                   input.c_str(), report.atlas.charts.size(), report.atlas.splits, 100.0 * report.atlas.usage);
+      std::fprintf(stderr,
+                   "%s: atlas of %zu charts (%d split after flattening, %d merged back), %.0f%% of the atlas used\n",
+                   input.c_str(), report.atlas.charts.size(), report.atlas.splits, report.atlas.merges,
+                   100.0 * report.atlas.usage);
     }
     if (report.seam_vertices > 0) {
       std::fprintf(stderr, "%s: closed mesh cut open along a seam of %d vertices\n", input.c_str(),
@@ -162,6 +164,7 @@ int main(int argc, char** argv) {
         nlohmann::json aj{{"charts", a.charts.size()},
                           {"usage", a.usage},
                           {"splits", a.splits},
+                          {"merges", a.merges},
                           {"padding_texels", options.charts.padding_texels},
                           {"resolution", options.charts.atlas_resolution}};
         for (const param::ChartReport& c : a.charts) {

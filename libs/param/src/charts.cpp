@@ -744,26 +744,31 @@ mesh::Mesh parameterizeCharts(const mesh::Mesh& m, const ChartOptions& o, AtlasR
   const int pad = static_cast<int>(std::ceil(o.padding_texels / perCell));
   // The cell size follows from the atlas's longer side, known only after packing: pack with
   // a guess, and again with the side found while the padding falls short.
-  // Greedy packing depends on the order and the goal: four tries (largest area or longest
-  // side first; smallest rectangle or square), the best usage kept.
-  std::vector<double> longest(uvs.size());
+  // Greedy packing depends on the order and the goal: eight tries (largest area, longest
+  // side, largest box or longest short side first; smallest rectangle or square), the best
+  // usage kept.
+  std::vector<double> longest(uvs.size()), boxArea(uvs.size()), shortest(uvs.size());
   for (std::size_t c = 0; c < uvs.size(); ++c) {
     glm::dvec2 hi(0.0);
     for (const glm::dvec2& p : uvs[c]) hi = glm::max(hi, p);
     longest[c] = std::max(hi.x, hi.y);
+    shortest[c] = std::min(hi.x, hi.y);
+    boxArea[c] = hi.x * hi.y;
   }
+  const std::vector<double>* orders[] = {&areas, &longest, &boxArea, &shortest};
+  constexpr int variants = 8;
   struct Try {
     std::vector<std::vector<glm::dvec2>> placed;
     Packed packed;
     double usage = -1.0, texel = 0.0;
   };
-  std::vector<Try> tries(4);
-  parallelFor(4, resolveThreads(0), [&](int variant) {
+  std::vector<Try> tries(variants);
+  parallelFor(variants, resolveThreads(0), [&](int variant) {
     double side = std::sqrt(totalArea / 0.7);
     for (int attempt = 0; attempt < 6; ++attempt) {
       const double texel = side / o.atlas_resolution;
       std::vector<std::vector<glm::dvec2>> trial = uvs;
-      const Packed p = pack(trial, tris, variant < 2 ? areas : longest, texel * perCell, pad, variant % 2 == 1);
+      const Packed p = pack(trial, tris, *orders[variant / 2], texel * perCell, pad, variant % 2 == 1);
       const double longer = std::max(p.width, p.height);
       if (longer > side * 1.0001 && attempt + 1 < 6) {
         side = longer;
