@@ -324,6 +324,23 @@ TEST(Cli, ParamChartsAClosedMeshAndSaysWhy) {
   EXPECT_EQ(drawn.exit_code, 0) << drawn.output;
 }
 
+// Three fins on one edge (a non-manifold edge) and a separate tetrahedron: repaired, every
+// component kept, charted; never refused as "not a disc".
+TEST(Cli, ParamChartsNonManifoldAndSeveralComponents) {
+  test::TempDir dir;
+  std::ofstream(dir / "fins.obj") << "v 0 0 0\nv 0 0 1\nv 1 0 0.5\nv -0.5 0.87 0.5\nv -0.5 -0.87 0.5\n"
+                                     "v 3 0 0\nv 4 0 0\nv 3 1 0\nv 3 0 1\n"
+                                     "f 1 2 3\nf 1 2 4\nf 1 2 5\nf 6 8 7\nf 6 7 9\nf 7 8 9\nf 8 6 9\n";
+  const auto r = run(bin("shanshui-param") + " " + quote(dir / "fins.obj") + " -o " + quote(dir / "uv.obj") +
+                     " --report " + quote(dir / "p.json"));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto report = nlohmann::json::parse(readBytes(dir / "p.json"));
+  EXPECT_EQ(report["method"], "charts");
+  EXPECT_EQ(report["valid"], true);
+  EXPECT_EQ(report["faces"], 7);  // nothing dropped
+  EXPECT_GE(report["atlas"]["charts"].get<int>(), 2);
+}
+
 TEST(Cli, ParamRefusesWhatItCannotFlattenAndWritesNothing) {
   test::TempDir dir;
   const std::filesystem::path bear = test::cgalMeshes() / "anchor.off";  // closed, genus 4
