@@ -1,0 +1,198 @@
+// Object-space lines for brush strokes (seed 002), against analytic answers: a cube's 12
+// creases of which 9 show from a corner and link into at most 9 strokes, a sphere's
+// silhouette as one closed chain, a torus seen from above with its two silhouettes, and
+// the Cardinal spline's interpolation and tension.
+#include <cmath>
+#include <set>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "shanshui/core/error.h"
+#include "shanshui/mesh/shapes.h"
+#include "shanshui/strokes/chains.h"
+#include "shanshui/strokes/edges.h"
+#include "shanshui/strokes/visibility.h"
+#include "test_support.h"
+
+namespace shanshui::strokes {
+namespace {
+
+// The unit cube [0,1]³, two outward triangles per side: 18 edges, 12 of them creases.
+mesh::Mesh cube() {
+  mesh::Mesh m;
+  for (int i = 0; i < 8; ++i) m.positions.emplace_back(i & 1, (i >> 1) & 1, (i >> 2) & 1);
+  const unsigned sides[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+  for (const auto& q : sides) {
+    m.triangles.emplace_back(q[0], q[1], q[2]);
+    m.triangles.emplace_back(q[0], q[2], q[3]);
+  }
+  return m;
+}
+
+struct View {
+  glm::dvec3 eye;
+  glm::dmat4 vp;
+};
+
+View lookFrom(glm::dvec3 eye, glm::dvec3 at, glm::dvec3 up = {0, 0, 1}, double fovDeg = 40.0) {
+  return {eye, glm::perspective(glm::radians(fovDeg), 1.0, 0.1, 100.0) * glm::lookAt(eye, at, up)};
+}
+
+TEST(Strokes, CubeHasTwelveCreasesAndNoBorder) {
+  const mesh::Mesh m = cube();
+  const EdgeGraph g = buildEdgeGraph(m);
+  EXPECT_EQ(g.vertices.size(), 18u);
+  EXPECT_EQ(g.non_manifold, 0u);
+  int creases = 0, borders = 0;
+  for (const FeatureEdge& e : featureEdges(g, m, {5, 4, 3}, 30.0)) {
+    creases += (e.kinds & kCrease) != 0;
+    borders += (e.kinds & kBorder) != 0;
+  }
+  EXPECT_EQ(creases, 12);
+  EXPECT_EQ(borders, 0);
+  // The printed test |N1·N2| > 0.5 would mark the six flat diagonals instead.
+  int flat = 0;
+  for (double d : g.normal_dot) flat += std::abs(d) > 0.5;
+  EXPECT_EQ(flat, 6);
+  // A crease angle past 90° keeps none of the cube's right angles.
+  int steep = 0;
+  for (const FeatureEdge& e : featureEdges(g, m, {5, 4, 3}, 100.0)) steep += (e.kinds & kCrease) != 0;
+  EXPECT_EQ(steep, 0);
+}
+
+// From a generic corner, 3 faces show: their 9 edges (6 on the outline, 3 meeting at the
+// near corner) are visible, the 3 at the far corner hidden; the outline's edges are the
+// silhouettes.
+TEST(Strokes, CubeFromACornerShowsNineEdgesLinkedIntoAtMostNineStrokes) {
+  const mesh::Mesh m = cube();
+  const EdgeGraph g = buildEdgeGraph(m);
+  const View v = lookFrom({3.1, 2.3, 2.7}, {0.5, 0.5, 0.5});
+  const std::vector<FeatureEdge> edges = featureEdges(g, m, v.eye, 30.0);
+  const ReferenceImage ref = rasterizeReference(m, v.vp, 400, 400);
+  const std::vector<ScreenSegment> seen = visibleSegments(edges, g, m, v.vp, ref);
+  // Visible length per edge over its projected length.
+  std::map<std::uint32_t, double> visible;
+  for (const ScreenSegment& s : seen) visible[s.edge] += glm::length(s.b - s.a);
+  int shown = 0, hidden = 0, silhouettes = 0;
+  for (const FeatureEdge& e : edges) {
+    if (!(e.kinds & kCrease)) continue;
+    auto px = [&](std::uint32_t i) {
+      const glm::dvec4 c = v.vp * glm::dvec4(m.positions[i], 1.0);
+      return (glm::dvec2(c) / c.w * 0.5 + 0.5) * 400.0;
+    };
+    const double full = glm::length(px(g.vertices[e.edge][1]) - px(g.vertices[e.edge][0]));
+    const double share = visible[e.edge] / full;
+    if (share > 0.9) ++shown;
+    if (share < 0.1) ++hidden;
+    EXPECT_TRUE(share > 0.9 || share < 0.1) << "edge " << e.edge << " partly visible: " << share;
+    silhouettes += (e.kinds & kSilhouette) != 0;
+  }
+  EXPECT_EQ(shown, 9);
+  EXPECT_EQ(hidden, 3);
+  EXPECT_EQ(silhouettes, 6);
+  const std::vector<Chain> chains = linkSegments(seen);
+  EXPECT_LE(chains.size(), 9u);
+  EXPECT_GE(chains.size(), 1u);
+  double total = 0.0;
+  for (const Chain& c : chains) total += c.length_px;
+  double pieces = 0.0;
+  for (const ScreenSegment& s : seen) pieces += glm::length(s.b - s.a);
+  EXPECT_GE(total, pieces - 1e-6);  // every visible piece is in a chain (gaps add length)
+}
+
+// Seen from above its pole, a sphere's silhouette is one latitude ring: one closed chain.
+TEST(Strokes, SphereSilhouetteIsOneClosedChain) {
+  const mesh::Mesh m = mesh::uvSphere(1.0, 32, 64);
+  const EdgeGraph g = buildEdgeGraph(m);
+  const View v = lookFrom({0, 0, 4}, {0, 0, 0}, {0, 1, 0});
+  std::vector<FeatureEdge> silhouettes;
+  for (const FeatureEdge& e : featureEdges(g, m, v.eye, 180.0))
+    if (e.kinds & kSilhouette) silhouettes.push_back(e);
+  ASSERT_EQ(silhouettes.size(), 64u);  // one ring of the 64 slices
+  const ReferenceImage ref = rasterizeReference(m, v.vp, 300, 300);
+  const std::vector<Chain> chains = linkSegments(visibleSegments(silhouettes, g, m, v.vp, ref));
+  ASSERT_EQ(chains.size(), 1u);
+  EXPECT_TRUE(chains[0].closed);
+  // Its length is the ring's projected circumference.
+  glm::dvec2 centre(0.0);
+  for (const glm::dvec2& p : chains[0].points) centre += p / static_cast<double>(chains[0].points.size());
+  double radius = 0.0;
+  for (const glm::dvec2& p : chains[0].points) radius += glm::length(p - centre) / chains[0].points.size();
+  EXPECT_NEAR(chains[0].length_px, 2 * M_PI * radius, 0.01 * 2 * M_PI * radius);
+}
+
+// From above, a torus shows its outer and its inner silhouette: two closed chains, the
+// inner one inside the outer.
+TEST(Strokes, TorusFromAboveShowsItsInnerAndOuterSilhouettes) {
+  const mesh::Mesh m = mesh::torus(3.0, 1.0, 96, 48);
+  const EdgeGraph g = buildEdgeGraph(m);
+  const View v = lookFrom({0, 0, 12}, {0, 0, 0}, {0, 1, 0});
+  std::vector<FeatureEdge> silhouettes;
+  for (const FeatureEdge& e : featureEdges(g, m, v.eye, 180.0))
+    if (e.kinds & kSilhouette) silhouettes.push_back(e);
+  const ReferenceImage ref = rasterizeReference(m, v.vp, 400, 400);
+  const std::vector<Chain> chains = linkSegments(visibleSegments(silhouettes, g, m, v.vp, ref));
+  ASSERT_EQ(chains.size(), 2u);
+  std::vector<double> radii;
+  for (const Chain& c : chains) {
+    EXPECT_TRUE(c.closed);
+    double r = 0.0;
+    for (const glm::dvec2& p : c.points) r += glm::length(p - glm::dvec2(200.0)) / c.points.size();
+    radii.push_back(r);
+  }
+  std::sort(radii.begin(), radii.end());
+  // Projected radii of the rings at about 2 and 4 units, seen from 12 (less the tube's
+  // rise for the perspective), against the 400 px image of a 40° field.
+  const double scale = 200.0 / std::tan(glm::radians(20.0));
+  EXPECT_NEAR(radii[0], scale * 2.0 / 12.0, 0.1 * scale * 2.0 / 12.0);
+  EXPECT_NEAR(radii[1], scale * 4.0 / 12.0, 0.1 * scale * 4.0 / 12.0);
+}
+
+TEST(Strokes, LinkingRespectsTheTurnAndTheGap) {
+  // An L of two pieces (90°): two strokes at 45°, one at 100°.
+  const std::vector<ScreenSegment> ell = {{{0, 0}, {10, 0}, 0, kCrease}, {{10, 0}, {10, 10}, 1, kCrease}};
+  EXPECT_EQ(linkSegments(ell).size(), 2u);
+  EXPECT_EQ(linkSegments(ell, {100.0, 5.0}).size(), 1u);
+  // Collinear pieces 4 px apart join; 6 px apart they do not.
+  const std::vector<ScreenSegment> near = {{{0, 0}, {10, 0}, 0, 0}, {{14, 0}, {24, 0}, 1, 0}};
+  const std::vector<ScreenSegment> far = {{{0, 0}, {10, 0}, 0, 0}, {{16, 0}, {26, 0}, 1, 0}};
+  EXPECT_EQ(linkSegments(near).size(), 1u);
+  EXPECT_EQ(linkSegments(far).size(), 2u);
+  // A piece stored backwards is walked forwards.
+  const std::vector<ScreenSegment> reversed = {{{0, 0}, {10, 0}, 0, 0}, {{20, 0}, {10, 0}, 1, 0}};
+  const std::vector<Chain> one = linkSegments(reversed);
+  ASSERT_EQ(one.size(), 1u);
+  EXPECT_EQ(one[0].points.size(), 3u);
+  EXPECT_DOUBLE_EQ(one[0].length_px, 20.0);
+  test::expectErrorNaming([] { linkSegments({}, {200.0, 5.0}); }, "turn", "200");
+}
+
+TEST(Strokes, CardinalSplinePassesThroughItsPointsAndTensionOneIsStraight) {
+  Chain c;
+  c.points = {{0, 0}, {10, 5}, {20, -5}, {30, 0}};
+  for (const double tension : {-0.5, 0.0, 0.5, 1.0}) {
+    const std::vector<glm::dvec2> curve = cardinalSpline(c, tension, 0.5);
+    // Through every control point (the span starts are samples), ending on the last.
+    for (const glm::dvec2& p : c.points) {
+      double nearest = 1e9;
+      for (const glm::dvec2& q : curve) nearest = std::min(nearest, glm::length(q - p));
+      EXPECT_LT(nearest, 1e-9) << "tension " << tension;
+    }
+    EXPECT_EQ(curve.back(), c.points.back());
+    if (tension == 1.0) {  // s = 0: each span is the straight segment (with cubic easing)
+      for (const glm::dvec2& q : curve) {
+        const int k = std::min(2, static_cast<int>(q.x / 10.0));
+        const glm::dvec2 a = c.points[k], b = c.points[k + 1];
+        EXPECT_NEAR(cross(glm::dvec3(b - a, 0), glm::dvec3(q - a, 0)).z, 0.0, 1e-9);
+      }
+    }
+  }
+  // Closed: wraps and ends where it began.
+  c.closed = true;
+  const std::vector<glm::dvec2> loop = cardinalSpline(c, 0.0, 1.0);
+  EXPECT_EQ(loop.front(), loop.back());
+  test::expectErrorNaming([&] { cardinalSpline(c, 2.0, 1.0); }, "tension", "2");
+}
+
+}  // namespace
+}  // namespace shanshui::strokes
