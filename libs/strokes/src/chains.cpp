@@ -34,7 +34,8 @@ std::vector<Chain> linkSegments(const std::vector<ScreenSegment>& segs, const Li
   if (!(o.max_turn_deg >= 0.0 && o.max_turn_deg <= 180.0)) {
     throw makeError("link turn ", o.max_turn_deg, " degrees; expected [0, 180]");
   }
-  if (!(o.max_gap_px >= 0.0 && o.max_gap_px <= 1000.0)) throw makeError("link gap ", o.max_gap_px, " px; expected [0, 1000]");
+  if (!(o.max_gap_px >= 0.0 && o.max_gap_px <= 1000.0))
+    throw makeError("link gap ", o.max_gap_px, " px; expected [0, 1000]");
   const double maxTurn = o.max_turn_deg * M_PI / 180.0;
   EndGrid grid{std::max(o.max_gap_px, 1.0), {}};
   auto endPoint = [&](std::uint32_t id) { return id % 2 == 0 ? segs[id / 2].a : segs[id / 2].b; };

@@ -16,7 +16,8 @@ EdgeGraph buildEdgeGraph(const mesh::Mesh& m) {
     const glm::uvec3 t = m.triangles[f];
     for (int k = 0; k < 3; ++k) {
       const std::uint32_t a = t[k], b = t[(k + 1) % 3];
-      half.emplace_back((static_cast<std::uint64_t>(std::min(a, b)) << 32) | std::max(a, b), static_cast<std::int32_t>(f));
+      half.emplace_back((static_cast<std::uint64_t>(std::min(a, b)) << 32) | std::max(a, b),
+                        static_cast<std::int32_t>(f));
     }
   }
   std::sort(half.begin(), half.end());
@@ -34,8 +35,8 @@ EdgeGraph buildEdgeGraph(const mesh::Mesh& m) {
       ++g.non_manifold;
     } else {
       const std::int32_t f0 = half[i].second, f1 = j - i == 2 ? half[i + 1].second : -1;
-      g.vertices.push_back({static_cast<std::uint32_t>(half[i].first >> 32),
-                            static_cast<std::uint32_t>(half[i].first & 0xffffffffu)});
+      g.vertices.push_back(
+          {static_cast<std::uint32_t>(half[i].first >> 32), static_cast<std::uint32_t>(half[i].first & 0xffffffffu)});
       g.faces.push_back({f0, f1});
       g.normal_dot.push_back(f1 < 0 ? 1.0 : glm::dot(g.face_normals[f0], g.face_normals[f1]));
     }

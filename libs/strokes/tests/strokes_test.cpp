@@ -9,6 +9,7 @@
 
 #include "shanshui/core/error.h"
 #include "shanshui/mesh/shapes.h"
+#include "shanshui/strokes/brush.h"
 #include "shanshui/strokes/chains.h"
 #include "shanshui/strokes/edges.h"
 #include "shanshui/strokes/visibility.h"
@@ -192,6 +193,98 @@ TEST(Strokes, CardinalSplinePassesThroughItsPointsAndTensionOneIsStraight) {
   const std::vector<glm::dvec2> loop = cardinalSpline(c, 0.0, 1.0);
   EXPECT_EQ(loop.front(), loop.back());
   test::expectErrorNaming([&] { cardinalSpline(c, 2.0, 1.0); }, "tension", "2");
+}
+
+// Pixel centres of a column covered by the strip's triangles, by brute force.
+double coveredHeight(const std::vector<StripVertex>& strip, double x) {
+  int covered = 0;
+  for (int yi = -200; yi <= 200; ++yi) {
+    const glm::dvec2 q(x, yi * 0.05);
+    bool in = false;
+    for (std::size_t i = 0; i + 2 < strip.size() && !in; ++i) {
+      const glm::dvec2 a = strip[i].position, b = strip[i + 1].position, c = strip[i + 2].position;
+      const double d1 = cross(glm::dvec3(b - a, 0), glm::dvec3(q - a, 0)).z;
+      const double d2 = cross(glm::dvec3(c - b, 0), glm::dvec3(q - b, 0)).z;
+      const double d3 = cross(glm::dvec3(a - c, 0), glm::dvec3(q - c, 0)).z;
+      in = (d1 >= 0 && d2 >= 0 && d3 >= 0) || (d1 <= 0 && d2 <= 0 && d3 <= 0);
+    }
+    covered += in;
+  }
+  return covered * 0.05;
+}
+
+// The strip's width, measured across it, follows width · (min + (1 − min) · pressure).
+TEST(Brush, StrokeWidthFollowsThePressureCurve) {
+  std::vector<glm::dvec2> path;
+  for (int i = 0; i <= 200; ++i) path.emplace_back(i, 0.0);
+  BrushOptions o;
+  o.width_px = 8.0;
+  for (StrokeStyle style : {StrokeStyle::Qinxian, StrokeStyle::Liuye, StrokeStyle::Zaohe, StrokeStyle::Jianbi,
+                            StrokeStyle::Zhuye, StrokeStyle::Mixed}) {
+    SCOPED_TRACE(static_cast<int>(style));
+    const std::vector<StripVertex> strip = strokeStrip(path, style, 7, o);
+    ASSERT_EQ(strip.size(), 2 * path.size());
+    for (double x = 5.5; x < 196; x += 10) {
+      const double expected =
+          o.width_px * (o.min_pressure + (1 - o.min_pressure) * pressure(style, x / 200.0, 200.0, 7, o));
+      EXPECT_NEAR(coveredHeight(strip, x), expected, 0.4) << "at x = " << x;
+    }
+  }
+  // The side tip runs the path along the heel: a fifth of the width on the right (y < 0).
+  const std::vector<StripVertex> side = strokeStrip(path, StrokeStyle::Zhuye, 7, o);
+  EXPECT_NEAR(side[0].position.y, -0.2 * o.width_px, 1e-9);
+  EXPECT_NEAR(side[1].position.y, 0.8 * o.width_px, 1e-9);
+}
+
+TEST(Brush, PressureCurvesHaveTheirStylesShapes) {
+  const BrushOptions o;
+  // Zither string: even.
+  for (double t = 0; t <= 1; t += 0.05) EXPECT_EQ(pressure(StrokeStyle::Qinxian, t, 100, 1, o), 1.0);
+  // Willow leaf: 0 at both ends, 1 at a turn between 30 % and 70 %, seeded.
+  std::set<double> peaks;
+  for (std::uint64_t seed = 0; seed < 8; ++seed) {
+    EXPECT_NEAR(pressure(StrokeStyle::Liuye, 0.0, 100, seed, o), 0.0, 1e-12);
+    EXPECT_NEAR(pressure(StrokeStyle::Liuye, 1.0, 100, seed, o), 0.0, 1e-12);
+    double best = 0, at = 0;
+    for (double t = 0; t <= 1; t += 0.001) {
+      const double p = pressure(StrokeStyle::Liuye, t, 100, seed, o);
+      if (p > best) best = p, at = t;
+    }
+    EXPECT_NEAR(best, 1.0, 1e-4);
+    EXPECT_GE(at, 0.299);
+    EXPECT_LE(at, 0.701);
+    peaks.insert(std::round(at * 100));
+    EXPECT_EQ(pressure(StrokeStyle::Liuye, 0.4, 100, seed, o), pressure(StrokeStyle::Liuye, 0.4, 100, seed, o));
+  }
+  EXPECT_GE(peaks.size(), 4u) << "the turn varies with the seed";
+  // Date pit: one quick 0 -> 1 -> 0 per beat of 30 px: 4 maxima on 120 px.
+  int maxima = 0;
+  double prev2 = -1, prev1 = -1;
+  for (double t = 0; t <= 1.0001; t += 0.002) {
+    const double p = pressure(StrokeStyle::Zaohe, t, 120, 1, o);
+    if (prev1 > prev2 && prev1 >= p && prev1 > 0.99) ++maxima;
+    prev2 = prev1;
+    prev1 = p;
+  }
+  EXPECT_EQ(maxima, 4);
+  // Reduced stroke and bamboo leaf: pressed at once, never pressed again.
+  for (StrokeStyle style : {StrokeStyle::Jianbi, StrokeStyle::Zhuye}) {
+    EXPECT_EQ(pressure(style, 0.0, 50, 1, o), 1.0);
+    double last = 2;
+    for (int i = 0; i <= 100; ++i) {
+      const double p = pressure(style, i / 100.0, 50, 1, o);
+      EXPECT_LE(p, last);
+      last = p;
+    }
+    EXPECT_NEAR(last, 0.0, 1e-12);  // t = 1: lifted
+  }
+  // Mixed chooses by length.
+  EXPECT_EQ(styleFor(StrokeStyle::Mixed, 200, o), StrokeStyle::Liuye);
+  EXPECT_EQ(styleFor(StrokeStyle::Mixed, 60, o), StrokeStyle::Zaohe);
+  EXPECT_EQ(styleFor(StrokeStyle::Mixed, 10, o), StrokeStyle::Jianbi);
+  BrushOptions bad;
+  bad.width_px = 0;
+  test::expectErrorNaming([&] { strokeStrip({{0, 0}, {1, 0}}, StrokeStyle::Qinxian, 1, bad); }, "width", "0");
 }
 
 }  // namespace

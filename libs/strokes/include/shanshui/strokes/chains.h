@@ -17,8 +17,8 @@ struct LinkOptions {
 //! A polyline on screen, in drawing order.
 struct Chain {
   std::vector<glm::dvec2> points;
-  bool closed = false;        //!< the last point joins the first
-  std::uint8_t kinds = 0;     //!< union of the edge kinds in it
+  bool closed = false;     //!< the last point joins the first
+  std::uint8_t kinds = 0;  //!< union of the edge kinds in it
   double length_px = 0.0;
 };
 
