@@ -12,6 +12,9 @@ bool always(const scene::Scene&) {
 bool hasCanvas(const scene::Scene& s) {
   return s.canvas.type != scene::CanvasType::None;
 }
+bool brushStrokes(const scene::Scene& s) {
+  return s.usesBrushStrokes();
+}
 bool diffuses(const scene::Scene& s) {
   return s.diffusion.enabled();
 }
@@ -25,6 +28,7 @@ const std::vector<PassEntry>& passList() {
       {"gbuffer", always, gbufferStructure, makeGbufferPass},
       {"canvas", hasCanvas, canvasStructure, makeCanvasPass},
       {"ink", always, inkStructure, makeInkPass},
+      {"strokes", brushStrokes, strokesStructure, makeStrokesPass},
       {"diffusion", diffuses, nothing, makeDiffusionPass},
   };
   return list;

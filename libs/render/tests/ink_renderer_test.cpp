@@ -1139,3 +1139,119 @@ TEST_F(Look, ValleyStrokesCarryValleyInkOfTheRidges) {
 
 }  // namespace
 }  // namespace shanshui::render
+
+namespace shanshui::render {
+namespace {
+
+// The unit cube [0,1]³, outward, two triangles a side.
+mesh::Mesh unitCube() {
+  mesh::Mesh m;
+  for (int i = 0; i < 8; ++i) m.positions.emplace_back(i & 1, (i >> 1) & 1, (i >> 2) & 1);
+  const unsigned sides[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+  for (const auto& q : sides) {
+    m.triangles.emplace_back(q[0], q[1], q[2]);
+    m.triangles.emplace_back(q[0], q[2], q[3]);
+  }
+  return m;
+}
+
+double segmentDistance(glm::dvec2 p, glm::dvec2 a, glm::dvec2 b) {
+  const glm::dvec2 d = b - a;
+  const double t = std::clamp(glm::dot(p - a, d) / std::max(glm::dot(d, d), 1e-12), 0.0, 1.0);
+  return glm::length(p - (a + t * d));
+}
+
+// Brush strokes (issue 24) on a cube seen from a corner: ink only along the edges that a
+// front face borders (the independent oracle: back-face tests on a convex solid), along
+// each of them, and none along the hidden ones; the pass is built only when asked.
+TEST_F(Ink, BrushStrokesDrawTheVisibleEdgesOfACubeAndOnlyThem) {
+  const json object = {{"up", "z"}, {"recentre", false}, {"lines", {{"enabled", false}}}};
+  json with = object;
+  with["strokes"] = {{"style", "qinxian"}, {"width", 24.0}, {"ink", 1.0}, {"crease", 30.0}};
+  const json top = {{"output", {{"fade", 0.0}}}};
+  const scene::Scene plain = sceneWith(object, top), inked = sceneWith(with, top);
+  const mesh::Mesh cube = unitCube();
+  InkRenderer a(plain, prepare(plain, cube)), b(inked, prepare(inked, cube));
+  EXPECT_EQ(a.passesBuilt(), (std::vector<std::string>{"gbuffer", "ink"}));
+  EXPECT_EQ(b.passesBuilt(), (std::vector<std::string>{"gbuffer", "ink", "strokes"}));
+  const int size = 256;
+  const OrbitCamera cam = sceneCamera(inked, b.worldBounds(), 1.0, {37, 28, 0.8});
+  FrameStats st;
+  const image::Image before = a.render(cam, size, size).colour(0).download(3);
+  const image::Image after = b.render(cam, size, size, &st).colour(0).download(3);
+  ASSERT_EQ(st.passes.size(), 3u);
+  EXPECT_EQ(st.passes[2].name, "strokes");
+
+  // The oracle: project the 12 edges; an edge is visible when a face on it faces the eye.
+  const glm::dmat4 vp = glm::dmat4(cam.projection(1.0)) * glm::dmat4(cam.view());
+  auto px = [&](glm::dvec3 p) {
+    const glm::dvec4 c = vp * glm::dvec4(p, 1.0);
+    const glm::dvec2 ndc = glm::dvec2(c) / c.w;
+    return glm::dvec2((ndc.x * 0.5 + 0.5) * size, (0.5 - ndc.y * 0.5) * size);  // row 0 at the top
+  };
+  const glm::dvec3 eye = cam.eye();
+  std::vector<std::pair<glm::dvec2, glm::dvec2>> shown, hidden;
+  for (int i = 0; i < 8; ++i)
+    for (int bit = 0; bit < 3; ++bit) {
+      const int j = i | (1 << bit);
+      if (j == i) continue;
+      const glm::dvec3 p(i & 1, (i >> 1) & 1, (i >> 2) & 1), q(j & 1, (j >> 1) & 1, (j >> 2) & 1);
+      // The two faces on the edge: the two other axes, at the edge's coordinates.
+      bool front = false;
+      for (int other = 0; other < 3; ++other) {
+        if (other == bit) continue;
+        glm::dvec3 n(0.0);
+        n[other] = p[other] > 0.5 ? 1.0 : -1.0;
+        front |= glm::dot(n, eye - p) > 0.0;
+      }
+      (front ? shown : hidden).emplace_back(px(p), px(q));
+    }
+  ASSERT_EQ(shown.size(), 9u);
+  const double halfWidth = 0.5 * 24.0 * size / 1024.0;
+  auto darkened = [&](int x, int y) { return before.at(x, y, 0) - after.at(x, y, 0) > 0.08f; };
+  // Every darkened pixel lies on a visible edge's stroke.
+  int dark = 0, stray = 0;
+  for (int y = 0; y < size; ++y)
+    for (int x = 0; x < size; ++x) {
+      if (!darkened(x, y)) continue;
+      ++dark;
+      double nearest = 1e9;
+      for (const auto& [p, q] : shown) nearest = std::min(nearest, segmentDistance({x + 0.5, y + 0.5}, p, q));
+      stray += nearest > halfWidth + 2.0;
+    }
+  EXPECT_GT(dark, 500);
+  EXPECT_LE(stray, dark / 100);
+  // Along each visible edge the stroke is there (all but the ends)...
+  for (const auto& [p, q] : shown) {
+    int samples = 0, covered = 0;
+    for (double t = 0.1; t <= 0.9; t += 0.02) {
+      const glm::dvec2 s = glm::mix(p, q, t);
+      bool any = false;
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          const int x = static_cast<int>(s.x) + dx, y = static_cast<int>(s.y) + dy;
+          if (x >= 0 && y >= 0 && x < size && y < size) any |= darkened(x, y);
+        }
+      ++samples;
+      covered += any;
+    }
+    EXPECT_GE(covered, samples * 9 / 10);
+  }
+  // ...and along the hidden ones, away from the visible strokes, it is not.
+  int hiddenSamples = 0, hiddenInked = 0;
+  for (const auto& [p, q] : hidden) {
+    for (double t = 0.0; t <= 1.0; t += 0.02) {
+      const glm::dvec2 s = glm::mix(p, q, t);
+      double nearest = 1e9;
+      for (const auto& [a2, b2] : shown) nearest = std::min(nearest, segmentDistance(s, a2, b2));
+      if (nearest < halfWidth + 4.0) continue;
+      ++hiddenSamples;
+      hiddenInked += darkened(static_cast<int>(s.x), static_cast<int>(s.y));
+    }
+  }
+  EXPECT_GT(hiddenSamples, 20);
+  EXPECT_EQ(hiddenInked, 0);
+}
+
+}  // namespace
+}  // namespace shanshui::render

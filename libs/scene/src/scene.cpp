@@ -57,6 +57,10 @@ bool Scene::usesStrokes() const {
   return anyObject(objects, [](const Object& o) { return o.lines.strokes(); });
 }
 
+bool Scene::usesBrushStrokes() const {
+  return anyObject(objects, [](const Object& o) { return o.strokes.enabled(); });
+}
+
 bool Scene::usesSuggestiveContours() const {
   return anyObject(objects, [](const Object& o) { return o.lines.suggestiveContours(); });
 }

@@ -72,6 +72,13 @@ inline constexpr std::array<Named<CanvasMethod>, 2> kCanvasMethods{
 inline constexpr std::array<Named<CanvasZoom>, 3> kCanvasZooms{
     {{"auto", CanvasZoom::Auto}, {"surface", CanvasZoom::Surface}, {"screen", CanvasZoom::Screen}}};
 
+inline constexpr std::array<Named<BrushStyle>, 7> kBrushStyles{{{"none", BrushStyle::None},
+                                                                {"qinxian", BrushStyle::Qinxian},
+                                                                {"liuye", BrushStyle::Liuye},
+                                                                {"zaohe", BrushStyle::Zaohe},
+                                                                {"jianbi", BrushStyle::Jianbi},
+                                                                {"zhuye", BrushStyle::Zhuye},
+                                                                {"mixed", BrushStyle::Mixed}}};
 inline constexpr std::array<Named<BorderMode>, 3> kBorderModes{
     {{"auto", BorderMode::Auto}, {"dissolve", BorderMode::Dissolve}, {"keep", BorderMode::Keep}}};
 
@@ -221,6 +228,31 @@ void describe(V& v, BorderParams& b) {
 }
 
 template <typename V>
+void describe(V& v, BrushStrokeParams& p) {
+  v.choice({"style",
+            "brush strokes along the silhouettes, borders and creases (seed 002): `qinxian` (zither string: even), "
+            "`liuye` (willow leaf: thin-thick-thin), `zaohe` (date pit: a beat every 30 px), `jianbi` (reduced "
+            "stroke: pressed, then lifted), `zhuye` (bamboo leaf: as jianbi, side tip), `mixed` (by length); "
+            "`none`: no strokes pass",
+            kRebuild},
+           p.style, kBrushStyles);
+  v.number(
+      {"crease", "edges whose two faces' normals are further apart are creases; 180 = silhouettes and borders only",
+       Effect::Uniform, "degrees"},
+      p.crease_deg, {1, 180});
+  v.number({"width", "stroke width at full pressure", Effect::Uniform, "pixels at 1024 high"}, p.width, {0.1, 64});
+  v.number({"min_pressure", "width where the brush is lifted, relative to full"}, p.min_pressure, kUnit);
+  v.number({"ink", "ink of a stroke's core"}, p.ink, kUnit);
+  v.number(
+      {"max_turn", "linking: largest turn where two visible pieces join (seed 002: 45)", Effect::Uniform, "degrees"},
+      p.max_turn_deg, {0, 180});
+  v.number({"max_gap", "linking: largest gap bridged between pieces (seed 002: 5)", Effect::Uniform, "pixels"},
+           p.max_gap_px, {0, 1000});
+  v.number({"tension", "Cardinal spline tension: 0 Catmull-Rom, 1 straight between the pieces' ends"}, p.tension,
+           {-1, 1});
+}
+
+template <typename V>
 void describe(V& v, Object& o) {
   v.text({"name", "shown in the viewer; empty: `objects.N`"}, o.name, Text::Plain);
   v.text({"mesh", "`.obj`, `.ply`, `.off`, repaired on load like `shanshui-repair`; give `mesh` or `dem`", kRebuild},
@@ -259,6 +291,7 @@ void describe(V& v, Object& o) {
   v.group("shading", o.shading, Table::Own);
   v.group("wrinkle", o.wrinkle, Table::Own);
   v.group("border", o.border, Table::Own);
+  v.group("strokes", o.strokes, Table::Own);
 }
 
 template <typename V>

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "shanshui/core/error.h"
+#include "shanshui/core/parallel_for.h"
 
 namespace shanshui::strokes {
 namespace {
@@ -63,40 +64,61 @@ std::vector<ScreenSegment> visibleSegments(const std::vector<FeatureEdge>& edges
     throw makeError("visibility options: samples per pixel ", o.samples_per_pixel, ", search ", o.search_px,
                     " px, depth tolerance ", o.depth_tolerance, "; expected > 0, >= 0, >= 0");
   }
-  std::vector<ScreenSegment> out;
-  for (const FeatureEdge& fe : edges) {
-    const glm::dvec4 a = toWindow(vp, m.positions[g.vertices[fe.edge][0]], ref.width, ref.height);
-    const glm::dvec4 b = toWindow(vp, m.positions[g.vertices[fe.edge][1]], ref.width, ref.height);
-    if (a.w <= 0 || b.w <= 0) continue;
-    const auto [f0, f1] = g.faces[fe.edge];
-    const double length = glm::length(glm::dvec2(b) - glm::dvec2(a));
-    const int n = std::max(2, static_cast<int>(std::ceil(length * o.samples_per_pixel)) + 1);
-    // Runs of visible samples become segments from the first to the last sample of the run.
-    int runStart = -1;
-    auto close = [&](int last) {
-      const double t0 = static_cast<double>(runStart) / (n - 1), t1 = static_cast<double>(last) / (n - 1);
-      const glm::dvec2 p = glm::mix(glm::dvec2(a), glm::dvec2(b), t0), q = glm::mix(glm::dvec2(a), glm::dvec2(b), t1);
-      const bool whole = runStart == 0 && last == n - 1;
-      if (whole || glm::length(q - p) >= o.min_partial_px) out.push_back({p, q, fe.edge, fe.kinds});
-      runStart = -1;
-    };
-    for (int s = 0; s < n; ++s) {
-      const double t = static_cast<double>(s) / (n - 1);
-      const glm::dvec3 p = glm::mix(glm::dvec3(a), glm::dvec3(b), t);  // window z is affine along the edge too
-      const int px = static_cast<int>(std::floor(p.x)), py = static_cast<int>(std::floor(p.y));
-      bool visible = false;
-      for (int dy = -o.search_px; dy <= o.search_px && !visible; ++dy)
-        for (int dx = -o.search_px; dx <= o.search_px && !visible; ++dx) {
-          const int x = px + dx, y = py + dy;
-          if (x < 0 || y < 0 || x >= ref.width || y >= ref.height) continue;
-          const std::size_t i = static_cast<std::size_t>(y) * ref.width + x;
-          visible = ref.id[i] == f0 || (f1 >= 0 && ref.id[i] == f1) || p.z <= ref.depth[i] + o.depth_tolerance;
+  const bool linear = o.near > 0.0 && o.far > o.near;
+  // Eye distance of a window depth under a perspective projection with GL's default range.
+  auto distance = [&](double z) {
+    return 2.0 * o.near * o.far / (o.far + o.near - (2.0 * z - 1.0) * (o.far - o.near));
+  };
+  auto inFront = [&](double sample, float image) {
+    if (!linear) return sample <= image + o.depth_tolerance;
+    const double d = distance(sample), di = distance(image);
+    return d <= di * (1.0 + o.relative_tolerance);
+  };
+  // Edges in chunks on every core, gathered in order.
+  const int chunks = std::max(1, std::min<int>(64, static_cast<int>(edges.size() / 256)));
+  std::vector<std::vector<ScreenSegment>> parts(static_cast<std::size_t>(chunks));
+  parallelFor(chunks, resolveThreads(0), [&](int chunk) {
+    std::vector<ScreenSegment>& out = parts[static_cast<std::size_t>(chunk)];
+    const std::size_t begin = edges.size() * chunk / chunks, end = edges.size() * (chunk + 1) / chunks;
+    for (std::size_t e = begin; e < end; ++e) {
+      const FeatureEdge& fe = edges[e];
+      const glm::dvec4 a = toWindow(vp, m.positions[g.vertices[fe.edge][0]], ref.width, ref.height);
+      const glm::dvec4 b = toWindow(vp, m.positions[g.vertices[fe.edge][1]], ref.width, ref.height);
+      if (a.w <= 0 || b.w <= 0) continue;
+      const auto [f0, f1] = g.faces[fe.edge];
+      const double length = glm::length(glm::dvec2(b) - glm::dvec2(a));
+      const int n = std::max(2, static_cast<int>(std::ceil(length * o.samples_per_pixel)) + 1);
+      // Runs of visible samples become segments from the first to the last sample of the run.
+      int runStart = -1;
+      auto close = [&](int last) {
+        const double t0 = static_cast<double>(runStart) / (n - 1), t1 = static_cast<double>(last) / (n - 1);
+        const glm::dvec3 p = glm::mix(glm::dvec3(a), glm::dvec3(b), t0), q = glm::mix(glm::dvec3(a), glm::dvec3(b), t1);
+        const bool whole = runStart == 0 && last == n - 1;
+        if (whole || glm::length(glm::dvec2(q) - glm::dvec2(p)) >= o.min_partial_px) {
+          out.push_back({glm::dvec2(p), glm::dvec2(q), p.z, q.z, fe.edge, fe.kinds});
         }
-      if (visible && runStart < 0) runStart = s;
-      if (!visible && runStart >= 0) close(s - 1);
+        runStart = -1;
+      };
+      for (int s = 0; s < n; ++s) {
+        const double t = static_cast<double>(s) / (n - 1);
+        const glm::dvec3 p = glm::mix(glm::dvec3(a), glm::dvec3(b), t);  // window z is affine along the edge too
+        const int px = static_cast<int>(std::floor(p.x)), py = static_cast<int>(std::floor(p.y));
+        bool visible = false;
+        for (int dy = -o.search_px; dy <= o.search_px && !visible; ++dy)
+          for (int dx = -o.search_px; dx <= o.search_px && !visible; ++dx) {
+            const int x = px + dx, y = py + dy;
+            if (x < 0 || y < 0 || x >= ref.width || y >= ref.height) continue;
+            const std::size_t i = static_cast<std::size_t>(y) * ref.width + x;
+            visible = ref.id[i] == f0 || (f1 >= 0 && ref.id[i] == f1) || inFront(p.z, ref.depth[i]);
+          }
+        if (visible && runStart < 0) runStart = s;
+        if (!visible && runStart >= 0) close(s - 1);
+      }
+      if (runStart >= 0) close(n - 1);
     }
-    if (runStart >= 0) close(n - 1);
-  }
+  });
+  std::vector<ScreenSegment> out;
+  for (auto& part : parts) out.insert(out.end(), part.begin(), part.end());
   return out;
 }
 

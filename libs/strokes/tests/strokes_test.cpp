@@ -151,19 +151,21 @@ TEST(Strokes, TorusFromAboveShowsItsInnerAndOuterSilhouettes) {
 
 TEST(Strokes, LinkingRespectsTheTurnAndTheGap) {
   // An L of two pieces (90°): two strokes at 45°, one at 100°.
-  const std::vector<ScreenSegment> ell = {{{0, 0}, {10, 0}, 0, kCrease}, {{10, 0}, {10, 10}, 1, kCrease}};
+  const std::vector<ScreenSegment> ell = {{{0, 0}, {10, 0}, 0.5, 0.5, 0, kCrease},
+                                          {{10, 0}, {10, 10}, 0.5, 0.5, 1, kCrease}};
   EXPECT_EQ(linkSegments(ell).size(), 2u);
   EXPECT_EQ(linkSegments(ell, {100.0, 5.0}).size(), 1u);
   // Collinear pieces 4 px apart join; 6 px apart they do not.
-  const std::vector<ScreenSegment> near = {{{0, 0}, {10, 0}, 0, 0}, {{14, 0}, {24, 0}, 1, 0}};
-  const std::vector<ScreenSegment> far = {{{0, 0}, {10, 0}, 0, 0}, {{16, 0}, {26, 0}, 1, 0}};
+  const std::vector<ScreenSegment> near = {{{0, 0}, {10, 0}, 0.5, 0.5, 0, 0}, {{14, 0}, {24, 0}, 0.5, 0.5, 1, 0}};
+  const std::vector<ScreenSegment> far = {{{0, 0}, {10, 0}, 0.5, 0.5, 0, 0}, {{16, 0}, {26, 0}, 0.5, 0.5, 1, 0}};
   EXPECT_EQ(linkSegments(near).size(), 1u);
   EXPECT_EQ(linkSegments(far).size(), 2u);
   // A piece stored backwards is walked forwards.
-  const std::vector<ScreenSegment> reversed = {{{0, 0}, {10, 0}, 0, 0}, {{20, 0}, {10, 0}, 1, 0}};
+  const std::vector<ScreenSegment> reversed = {{{0, 0}, {10, 0}, 0.1, 0.2, 0, 0}, {{20, 0}, {10, 0}, 0.3, 0.2, 1, 0}};
   const std::vector<Chain> one = linkSegments(reversed);
   ASSERT_EQ(one.size(), 1u);
   EXPECT_EQ(one[0].points.size(), 3u);
+  EXPECT_EQ(one[0].depth, (std::vector<double>{0.1, 0.2, 0.3}));  // depths follow their points
   EXPECT_DOUBLE_EQ(one[0].length_px, 20.0);
   test::expectErrorNaming([] { linkSegments({}, {200.0, 5.0}); }, "turn", "200");
 }
@@ -187,6 +189,17 @@ TEST(Strokes, CardinalSplinePassesThroughItsPointsAndTensionOneIsStraight) {
         EXPECT_NEAR(cross(glm::dvec3(b - a, 0), glm::dvec3(q - a, 0)).z, 0.0, 1e-9);
       }
     }
+  }
+  // Subdivided, no span is longer than asked and every new point lies on the polyline.
+  const Chain fine = subdivided(c, 3.0);
+  EXPECT_EQ(fine.points.front(), c.points.front());
+  EXPECT_EQ(fine.points.back(), c.points.back());
+  for (std::size_t i = 1; i < fine.points.size(); ++i)
+    EXPECT_LE(glm::length(fine.points[i] - fine.points[i - 1]), 3.0 + 1e-9);
+  for (const glm::dvec2& q : fine.points) {
+    const int k = std::min(2, static_cast<int>(q.x / 10.0));
+    const glm::dvec2 a = c.points[k], b = c.points[k + 1];
+    EXPECT_NEAR(cross(glm::dvec3(b - a, 0), glm::dvec3(q - a, 0)).z, 0.0, 1e-9);
   }
   // Closed: wraps and ends where it began.
   c.closed = true;

@@ -30,6 +30,8 @@ struct SceneObjectGpu {
   glm::dvec3 centre{0.0};     //!< world, of the bounding sphere
   double radius = 1.0;        //!< world bounding-sphere radius
   double feature_size = 0.0;  //!< world units
+  //! The loaded mesh (model coordinates), kept for passes that work on the CPU (strokes).
+  std::shared_ptr<const scene::ObjectAsset> asset;
 };
 
 //! What every pass of a frame reads.
@@ -104,6 +106,8 @@ std::string canvasStructure(const scene::Scene&);
 std::unique_ptr<RenderPass> makeInkPass(const PassSetup&);
 std::string inkStructure(const scene::Scene&);
 std::unique_ptr<RenderPass> makeDiffusionPass(const PassSetup&);
+std::unique_ptr<RenderPass> makeStrokesPass(const PassSetup&);
+std::string strokesStructure(const scene::Scene&);
 
 std::string joined(const std::vector<std::string>& v);
 

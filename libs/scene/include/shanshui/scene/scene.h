@@ -129,6 +129,22 @@ struct BorderParams {
   double roughness = 1.2;
 };
 
+//! Brush strokes along the object-space lines (seed 002): the five baimiao styles of the
+//! thesis and their mix (strokes/brush.h has the pressure curves).
+enum class BrushStyle { None, Qinxian, Liuye, Zaohe, Jianbi, Zhuye, Mixed };
+
+struct BrushStrokeParams {
+  BrushStyle style = BrushStyle::None;
+  double crease_deg = 60.0;    //!< edges whose faces' normals differ more are creases; 180 = none
+  double width = 3.0;          //!< full-pressure width, pixels at 1024 high
+  double min_pressure = 0.15;  //!< width at pressure 0, relative to full
+  double ink = 0.85;           //!< ink of a stroke's core, [0, 1]
+  double max_turn_deg = 45.0;  //!< linking: the direction may turn this much where pieces join
+  double max_gap_px = 5.0;     //!< linking: largest gap bridged, pixels
+  double tension = 0.0;        //!< Cardinal spline tension: 0 Catmull-Rom, 1 straight
+  bool enabled() const { return style != BrushStyle::None; }
+};
+
 //! Which model axis points up. Terrain and shanshui's own files are Z-up; most modelling
 //! tools write OBJ/PLY Y-up. Auto: Z for DEMs, Y for meshes.
 enum class UpAxis { Auto, X, Y, Z };
@@ -158,6 +174,7 @@ struct Object {
   ShadingParams shading;
   WrinkleParams wrinkle;
   BorderParams border;
+  BrushStrokeParams strokes;
   //! The wrinkle texture is drawn (a texture, and shading on).
   bool wrinkled() const { return !wrinkle.texture.empty() && shading.enabled; }
   bool dissolvesBorder() const {
@@ -307,6 +324,7 @@ struct Scene {
   bool usesLines() const;
   bool usesStrokes() const;             //!< some object draws its lines as strokes
   bool usesSuggestiveContours() const;  //!< some object's strokes include suggestive contours
+  bool usesBrushStrokes() const;        //!< some object has objects.N.strokes.style
   bool usesShading() const;
   bool hasAnimation() const;
   bool dissolvesBorders() const;

@@ -22,9 +22,9 @@ enum class StrokeStyle {
 };
 
 struct BrushOptions {
-  double width_px = 4.0;       //!< full-pressure width, (0, 256]
-  double min_pressure = 0.15;  //!< the brush never leaves the paper: width at pressure 0, [0, 1]
-  double zaohe_beat_px = 30.0;  //!< date pit: length of one 0 → 1 → 0 beat, (0, inf)
+  double width_px = 4.0;         //!< full-pressure width, (0, 256]
+  double min_pressure = 0.15;    //!< the brush never leaves the paper: width at pressure 0, [0, 1]
+  double zaohe_beat_px = 30.0;   //!< date pit: length of one 0 → 1 → 0 beat, (0, inf)
   double mixed_long_px = 120.0;  //!< mixed: liuye at or above this length
   double mixed_short_px = 40.0;  //!< mixed: jianbi below this length, zaohe between
 };

@@ -26,6 +26,7 @@ ReferenceImage rasterizeReference(const mesh::Mesh& mesh, const glm::dmat4& view
 //! A visible piece of a feature edge, in pixels (x right, y up, pixel centres at +0.5).
 struct ScreenSegment {
   glm::dvec2 a, b;
+  double za = 0.0, zb = 0.0;  //!< window depth at a and b
   std::uint32_t edge = 0;
   std::uint8_t kinds = 0;
 };
@@ -34,6 +35,11 @@ struct VisibilityOptions {
   double samples_per_pixel = 2.0;  //!< along each edge on screen
   int search_px = 1;               //!< id match within this many pixels of the sample
   double depth_tolerance = 1e-4;   //!< window depth; a sample this close to the image is visible
+  //! With near < far (a perspective projection's planes), depths are compared as distances
+  //! from the eye instead, a sample within `relative_tolerance` of the image's being visible:
+  //! the same tolerance near and far.
+  double near = 0.0, far = 0.0;
+  double relative_tolerance = 0.005;
   //! A visible piece that is not the whole edge and is shorter than this is dropped: near a
   //! visible corner a hidden edge passes the depth test for a pixel or two.
   double min_partial_px = 3.0;
