@@ -598,9 +598,10 @@ Packed pack(std::vector<std::vector<glm::dvec2>>& uvs, const std::vector<std::ve
       spread.reserve(cells.size());
       for (std::size_t s0 = 0; s0 < stride; ++s0)
         for (std::size_t k = s0; k < cells.size(); k += stride) spread.push_back(cells[k]);
-      grow(usedWidth + cover.width + pad + 1, usedHeight + cover.height + pad + 1);
-      for (int y = 0; y <= usedHeight; ++y) {
-        for (int x = 0; x <= usedWidth; ++x) {
+      // Up to a padding past the used rectangle: there the dilated cover clears every chart.
+      grow(usedWidth + 2 * pad + cover.width + 1, usedHeight + 2 * pad + cover.height + 1);
+      for (int y = 0; y <= usedHeight + pad; ++y) {
+        for (int x = 0; x <= usedWidth + pad; ++x) {
           const int w = std::max(usedWidth, x + cover.width), h = std::max(usedHeight, y + cover.height);
           // Rectangle area, with a square preferred among equals (textures are square).
           const double cost =
@@ -627,7 +628,7 @@ Packed pack(std::vector<std::vector<glm::dvec2>>& uvs, const std::vector<std::ve
         }
       }
     }
-    SHANSHUI_CHECK(std::isfinite(best.cost));  // the corner beyond the used rectangle is always free
+    SHANSHUI_CHECK(std::isfinite(best.cost));  // a padding past the used rectangle is always free
     const Cells& cover = best.cover;
     for (int y = 0; y < cover.height; ++y)
       for (int x = 0; x < cover.width; ++x)
@@ -672,9 +673,9 @@ mesh::Mesh parameterizeCharts(const mesh::Mesh& m, const ChartOptions& o, AtlasR
   r = {};
 
   // Charts: every connected component, split until each is a disc that flattens within the
-  // stretch limit (a single triangle always does).
-  // Pieces are handled a generation at a time, on every core; results are gathered in
-  // order, so the atlas does not depend on the thread count.
+  // stretch limit (a single triangle always does). Pieces are handled a generation at a
+  // time, on every core; results are gathered in order, so the atlas does not depend on
+  // the thread count.
   std::vector<Chart> charts;
   std::vector<std::vector<std::uint32_t>> wave(1, std::vector<std::uint32_t>(m.triangles.size()));
   std::iota(wave[0].begin(), wave[0].end(), 0u);
@@ -723,9 +724,7 @@ mesh::Mesh parameterizeCharts(const mesh::Mesh& m, const ChartOptions& o, AtlasR
   mergeCharts(m, charts, o.max_chart_stretch, o.min_fill);
   r.merges = static_cast<int>(beforeMerging - charts.size());
 
-  // Pack. The padding is in texels of an atlas `atlas_resolution` texels along its longer
-  // side, which is known only after packing: pack with a guess of that side, and again
-  // with the side found while the padding falls short.
+  // Pack, each chart turned into its least bounding rectangle first.
   std::vector<std::vector<glm::dvec2>> uvs;
   std::vector<std::vector<glm::uvec3>> tris;
   std::vector<double> areas;
@@ -742,9 +741,9 @@ mesh::Mesh parameterizeCharts(const mesh::Mesh& m, const ChartOptions& o, AtlasR
   // Packing cells of `perCell` texels, at most 256 across the guessed side.
   const int perCell = std::max(1, o.atlas_resolution / 256);
   const int pad = static_cast<int>(std::ceil(o.padding_texels / perCell));
-  // The cell size follows from the atlas's longer side, known only after packing: pack with
-  // a guess, and again with the side found while the padding falls short.
-  // Greedy packing depends on the order and the goal: eight tries (largest area, longest
+  // The padding is in texels of an atlas `atlas_resolution` texels along its longer side,
+  // known only after packing: pack with a guess of that side, and again with the side found
+  // while the padding falls short. Greedy packing depends on the order and the goal: eight tries (largest area, longest
   // side, largest box or longest short side first; smallest rectangle or square), the best
   // usage kept.
   std::vector<double> longest(uvs.size()), boxArea(uvs.size()), shortest(uvs.size());

@@ -2,9 +2,9 @@
 // with strokes are found on the CPU (strokes/edges.h), kept where the G-buffer's depth shows
 // them (visibility.h), linked into chains and drawn as brush strips over the ink picture,
 // so diffusion and the canvas act on them as on any ink.
-#include <glm/gtc/matrix_transform.hpp>
-
 #include <algorithm>
+
+#include <glm/gtc/matrix_transform.hpp>
 
 #include "shanshui/core/error.h"
 #include "shanshui/render/gl_check.h"
@@ -147,8 +147,8 @@ class StrokesPass final : public RenderPass {
       bo.min_pressure = p.min_pressure;
       for (std::size_t c = 0; c < chains.size(); ++c) {
         std::vector<double> depth;
-        const auto path =
-            strokes::cardinalSpline(strokes::subdivided(chains[c], std::max(4.0, 2.0 * bo.width_px)), p.tension, 1.0, &depth);
+        const auto path = strokes::cardinalSpline(strokes::subdivided(chains[c], std::max(4.0, 2.0 * bo.width_px)),
+                                                  p.tension, 1.0, &depth);
         // The willow leaf's turn varies from stroke to stroke, the same each frame for a
         // stroke that starts at the same place.
         const glm::ivec2 start(glm::floor(chains[c].points.front() / 8.0));
@@ -162,10 +162,11 @@ class StrokesPass final : public RenderPass {
         for (std::size_t k = 0; k < path.size(); ++k) {
           const glm::dvec4 ndc(path[k].x / w * 2.0 - 1.0, path[k].y / h * 2.0 - 1.0, depth[k] * 2.0 - 1.0, 1.0);
           const glm::dvec4 world = inverseVp * ndc;
-          const auto ink = static_cast<float>(p.ink * presence(in, sm.object, toModel, glm::dvec3(world) / world.w, fadeRange));
+          const auto ink =
+              static_cast<float>(p.ink * presence(in, sm.object, toModel, glm::dvec3(world) / world.w, fadeRange));
           for (const strokes::StripVertex& v : {strip[2 * k], strip[2 * k + 1]}) {
-            vertices.insert(vertices.end(), {static_cast<float>(v.position.x), static_cast<float>(v.position.y), v.along,
-                                             v.across, v.pressure, ink});
+            vertices.insert(vertices.end(), {static_cast<float>(v.position.x), static_cast<float>(v.position.y),
+                                             v.along, v.across, v.pressure, ink});
           }
         }
       }
@@ -178,7 +179,8 @@ class StrokesPass final : public RenderPass {
       glEnableVertexAttribArray(0);
       glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, kFloats * sizeof(float), nullptr);
       glEnableVertexAttribArray(1);
-      glVertexAttribPointer(1, 4, GL_FLOAT, GL_FALSE, kFloats * sizeof(float), reinterpret_cast<void*>(2 * sizeof(float)));
+      glVertexAttribPointer(1, 4, GL_FLOAT, GL_FALSE, kFloats * sizeof(float),
+                            reinterpret_cast<void*>(2 * sizeof(float)));
       glBindFramebuffer(GL_FRAMEBUFFER, target_.id());
       glViewport(0, 0, w, h);
       glDisable(GL_DEPTH_TEST);
