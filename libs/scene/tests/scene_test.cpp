@@ -246,6 +246,7 @@ TEST(Scene, RebuildKeysAreTheOnesThatChangeVariantsOrFiles) {
                                           "objects.*.wrinkle.texture",
                                           "objects.*.wrinkle.uv",
                                           "objects.*.wrinkle.mapping",
+                                          "objects.*.strokes.style",  // builds the strokes pass
                                           "canvas.type",
                                           "canvas.static_pattern",
                                           "canvas.method"};
