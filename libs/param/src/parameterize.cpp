@@ -126,7 +126,7 @@ MethodTrial tryMethod(const mesh::Mesh& m, Method method, const ParamOptions& op
 // direct solves, and for ARAP the worst case of its 50 iterations (one LSCM-sized solve
 // each: 0.4 s at 16k vertices on a terrain, which converges at once, but 2.7 s on the 7.5k
 // vertices of CGAL's lion). Charts: about linear (segmentation, one LSCM per chart,
-// merging), 1.1 s for the 2.9k vertices of the cow and 7.9 s for the 38k of the bunny.
+// merging), 1.1 s for the 2.9k vertices of the cow and 6 s for the 38k of the bunny.
 double modelSeconds(Method method, double vertices) {
   const double k = vertices / 16500.0;
   switch (method) {
