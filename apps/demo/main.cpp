@@ -241,6 +241,22 @@ int main(int argc, char** argv) {
       results.push_back(runner.run(st));
       stages.push_back(st);
     }
+    // Seed 002's brush strokes (willow leaf) on the level distance.
+    {
+      const fs::path scene = s / "scenes/level_distance.json";
+      Stage st{"level_strokes",
+               "shanshui-render",
+               {scene.string(), "-o", (o / "level_strokes.png").string(), "--stats",
+                (o / "level_strokes_stats.json").string(), "--set", "objects.0.strokes.style=\"liuye\""},
+               {scene, s / "terrain/mount_st_helens.dem", s / "textures/rain_strokes_wrinkle.png"},
+               {o / "level_strokes.png", o / "level_strokes_stats.json"}};
+      if (quick) {
+        st.args.insert(st.args.end(), {"--set", "output.height=120", "--set", "output.width=160", "--set",
+                                       "objects.0.max_vertices=4000"});
+      }
+      results.push_back(runner.run(st));
+      stages.push_back(st);
+    }
     if (!reference.empty()) {
       fs::copy_file(reference, assets / ("reference" + fs::path(reference).extension().string()),
                     fs::copy_options::overwrite_existing);
@@ -335,13 +351,16 @@ int main(int argc, char** argv) {
     if (!reference.empty()) {
       md << " ![reference](assets/reference" << fs::path(reference).extension().string() << ")";
     }
+    md << "\n\nThe level distance with seed 002's brush strokes along its silhouettes and creases "
+          "(`objects.N.strokes.style: liuye`, willow leaf: thin, thick, thin):\n\n"
+          "![level strokes](level_strokes.png)";
     md << "\n\nWhat a painter would look at, measured (`look` in `shanshui-render --stats`; docs/render.md): "
           "share of paper-tone pixels, share and mean width of the dark marks, ink of the far third of the "
           "land over the near third, longest straight edge over the width.\n\n"
        << "| picture | paper share | dark share | dark width px | far / near ink | longest straight |\n"
        << "|---|---|---|---|---|---|\n";
-    for (const std::string& name :
-         {std::string("mountain"), std::string("high"), std::string("deep"), std::string("level")}) {
+    for (const std::string& name : {std::string("mountain"), std::string("high"), std::string("deep"),
+                                    std::string("level"), std::string("level_strokes")}) {
       const fs::path f = o / (name + "_stats.json");
       const json st = fs::exists(f) ? json::parse(readFile(f), nullptr, false) : json();
       md << "| " << name;

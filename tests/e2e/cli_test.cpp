@@ -405,11 +405,11 @@ TEST(Cli, DemoRunsTheChainThenReusesWhatIsUpToDate) {
       "cd " + quote(dir.path()) + " && " + bin("shanshui-demo") + " --quick --frames 2 --samples samples --out out";
   auto r = run(demo);
   ASSERT_EQ(r.exit_code, 0) << r.output;
-  const std::map<std::string, std::string> all_ran = {{"enhance", "running"},        {"quilt", "running"},
-                                                      {"terrain", "running"},        {"param", "running"},
-                                                      {"still", "running"},          {"orbit", "running"},
-                                                      {"high_distance", "running"},  {"deep_distance", "running"},
-                                                      {"level_distance", "running"}, {"stability", "running"}};
+  const std::map<std::string, std::string> all_ran = {
+      {"enhance", "running"},       {"quilt", "running"},         {"terrain", "running"},
+      {"param", "running"},         {"still", "running"},         {"orbit", "running"},
+      {"high_distance", "running"}, {"deep_distance", "running"}, {"level_distance", "running"},
+      {"level_strokes", "running"}, {"stability", "running"}};
   EXPECT_EQ(demoStages(r.output), all_ran);
   for (const char* f : {"report.md", "mountain.png", "orbit_0000.png", "orbit_0001.png", "assets/wrinkle.png",
                         "assets/st_helens_uv.obj", "assets/checker.png", "assets/scan.png"}) {
@@ -419,6 +419,8 @@ TEST(Cli, DemoRunsTheChainThenReusesWhatIsUpToDate) {
   EXPECT_NE(report.find("![mountain](mountain.png)"), std::string::npos);
   EXPECT_NE(report.find("![high](high.png) ![deep](deep.png) ![level](level.png)"), std::string::npos);
   EXPECT_NE(report.find("| deep | 0."), std::string::npos) << "the look statistics of each picture";
+  EXPECT_NE(report.find("![level strokes](level_strokes.png)"), std::string::npos);
+  EXPECT_NE(report.find("| level_strokes | 0."), std::string::npos);
   EXPECT_NE(report.find("L2 stretch"), std::string::npos);
   EXPECT_EQ(report.find(dir.path().string()), std::string::npos) << "the report's links are relative";
   // The stability table of this run (its fast cases with --quick), on a fresh machine too.
@@ -445,6 +447,7 @@ TEST(Cli, DemoRunsTheChainThenReusesWhatIsUpToDate) {
                                                                       {"high_distance", "reused"},
                                                                       {"deep_distance", "reused"},
                                                                       {"level_distance", "reused"},
+                                                                      {"level_strokes", "reused"},
                                                                       {"stability", "reused"}}));
 
   // A reference picture goes beside the paintings; a missing one is named before any work.
