@@ -106,22 +106,11 @@ mesh::Mesh subdividedCube(int n) {
 // A steep mountain on an n × n grid of 30 m cells: the projection's L2 stretch is about
 // 1.03, above auto's early stop, so auto goes on to the solvers as far as its budget allows.
 mesh::Mesh steepMountain(int n) {
-  mesh::Mesh m;
-  const double span = 14000.0, cell = span / (n - 1);
-  for (int j = 0; j < n; ++j)
-    for (int i = 0; i < n; ++i) {
-      const double x = i * cell, y = j * cell, dx = x - 7000, dy = y - 7500;
-      m.positions.emplace_back(x, y,
-                               3200.0 * std::exp(-(dx * dx + dy * dy) / (2 * 2600.0 * 2600.0)) +
-                                   650.0 * std::sin(x / 700.0) * std::cos(y / 900.0));
-    }
-  for (int j = 0; j + 1 < n; ++j)
-    for (int i = 0; i + 1 < n; ++i) {
-      const auto a = static_cast<unsigned>(j * n + i), w = static_cast<unsigned>(n);
-      m.triangles.emplace_back(a, a + 1, a + w + 1);
-      m.triangles.emplace_back(a, a + w + 1, a + w);
-    }
-  return m;
+  return mesh::heightGrid(n, n, 14000.0 / (n - 1), [](double x, double y) {
+    const double dx = x - 7000, dy = y - 7500;
+    return 3200.0 * std::exp(-(dx * dx + dy * dy) / (2 * 2600.0 * 2600.0)) +
+           650.0 * std::sin(x / 700.0) * std::cos(y / 900.0);
+  });
 }
 
 }  // namespace

@@ -81,4 +81,15 @@ Mesh icosphere(int levels) {
   return m;
 }
 
+Mesh unitCube() {
+  Mesh m;
+  for (int i = 0; i < 8; ++i) m.positions.emplace_back(i & 1, (i >> 1) & 1, (i >> 2) & 1);
+  const unsigned sides[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+  for (const auto& q : sides) {
+    m.triangles.emplace_back(q[0], q[1], q[2]);
+    m.triangles.emplace_back(q[0], q[2], q[3]);
+  }
+  return m;
+}
+
 }  // namespace shanshui::mesh

@@ -313,11 +313,9 @@ mesh::Mesh parameterize(const mesh::Mesh& input, const ParamOptions& opts, Param
       }
     } else {
       mesh::Mesh result;
-      trial = [&] {
-        MethodTrial t = tryMethod(m, method, opts, &result);
-        t.predicted_seconds = trial.predicted_seconds;
-        return t;
-      }();
+      const double predicted = trial.predicted_seconds;
+      trial = tryMethod(m, method, opts, &result);
+      trial.predicted_seconds = predicted;
       if (trial.ran && trial.distortion.valid() &&
           (!havePiece || trial.distortion.l2_stretch < pieceDistortion.l2_stretch)) {
         bestPiece = std::move(result);

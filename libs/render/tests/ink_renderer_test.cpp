@@ -1143,18 +1143,6 @@ TEST_F(Look, ValleyStrokesCarryValleyInkOfTheRidges) {
 namespace shanshui::render {
 namespace {
 
-// The unit cube [0,1]³, outward, two triangles a side.
-mesh::Mesh unitCube() {
-  mesh::Mesh m;
-  for (int i = 0; i < 8; ++i) m.positions.emplace_back(i & 1, (i >> 1) & 1, (i >> 2) & 1);
-  const unsigned sides[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
-  for (const auto& q : sides) {
-    m.triangles.emplace_back(q[0], q[1], q[2]);
-    m.triangles.emplace_back(q[0], q[2], q[3]);
-  }
-  return m;
-}
-
 double segmentDistance(glm::dvec2 p, glm::dvec2 a, glm::dvec2 b) {
   const glm::dvec2 d = b - a;
   const double t = std::clamp(glm::dot(p - a, d) / std::max(glm::dot(d, d), 1e-12), 0.0, 1.0);
@@ -1170,7 +1158,7 @@ TEST_F(Ink, BrushStrokesDrawTheVisibleEdgesOfACubeAndOnlyThem) {
   with["strokes"] = {{"style", "qinxian"}, {"width", 24.0}, {"ink", 1.0}, {"crease", 30.0}};
   const json top = {{"output", {{"fade", 0.0}}}};
   const scene::Scene plain = sceneWith(object, top), inked = sceneWith(with, top);
-  const mesh::Mesh cube = unitCube();
+  const mesh::Mesh cube = mesh::unitCube();
   InkRenderer a(plain, prepare(plain, cube)), b(inked, prepare(inked, cube));
   EXPECT_EQ(a.passesBuilt(), (std::vector<std::string>{"gbuffer", "ink"}));
   EXPECT_EQ(b.passesBuilt(), (std::vector<std::string>{"gbuffer", "ink", "strokes"}));

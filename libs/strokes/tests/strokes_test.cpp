@@ -18,18 +18,6 @@
 namespace shanshui::strokes {
 namespace {
 
-// The unit cube [0,1]³, two outward triangles per side: 18 edges, 12 of them creases.
-mesh::Mesh cube() {
-  mesh::Mesh m;
-  for (int i = 0; i < 8; ++i) m.positions.emplace_back(i & 1, (i >> 1) & 1, (i >> 2) & 1);
-  const unsigned sides[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
-  for (const auto& q : sides) {
-    m.triangles.emplace_back(q[0], q[1], q[2]);
-    m.triangles.emplace_back(q[0], q[2], q[3]);
-  }
-  return m;
-}
-
 struct View {
   glm::dvec3 eye;
   glm::dmat4 vp;
@@ -40,7 +28,7 @@ View lookFrom(glm::dvec3 eye, glm::dvec3 at, glm::dvec3 up = {0, 0, 1}, double f
 }
 
 TEST(Strokes, CubeHasTwelveCreasesAndNoBorder) {
-  const mesh::Mesh m = cube();
+  const mesh::Mesh m = mesh::unitCube();
   const EdgeGraph g = buildEdgeGraph(m);
   EXPECT_EQ(g.vertices.size(), 18u);
   EXPECT_EQ(g.non_manifold, 0u);
@@ -65,7 +53,7 @@ TEST(Strokes, CubeHasTwelveCreasesAndNoBorder) {
 // near corner) are visible, the 3 at the far corner hidden; the outline's edges are the
 // silhouettes.
 TEST(Strokes, CubeFromACornerShowsNineEdgesLinkedIntoAtMostNineStrokes) {
-  const mesh::Mesh m = cube();
+  const mesh::Mesh m = mesh::unitCube();
   const EdgeGraph g = buildEdgeGraph(m);
   const View v = lookFrom({3.1, 2.3, 2.7}, {0.5, 0.5, 0.5});
   const std::vector<FeatureEdge> edges = featureEdges(g, m, v.eye, 30.0);

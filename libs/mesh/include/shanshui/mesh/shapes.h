@@ -17,6 +17,10 @@ Mesh uvSphere(double radius, int stacks = 48, int slices = 96, glm::dvec3 centre
 //! H = (big + 2 small cos v) / (2 small (big + small cos v))).
 Mesh torus(double big, double small, int nu, int nv, std::vector<double>* cosV = nullptr);
 
+//! The unit cube [0,1]³, two outward triangles per side (18 edges: 12 creases, 6 flat
+//! diagonals).
+Mesh unitCube();
+
 //! A sphere of radius 1 around the origin: an icosahedron with each face split into 4,
 //! `levels` times (20 · 4^levels triangles).
 Mesh icosphere(int levels);
