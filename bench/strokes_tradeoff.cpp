@@ -1,7 +1,8 @@
 // Error against run time for the brush strokes' knobs (issue 24): the spline's sampling
 // step and the span chains are subdivided to, on a sphere seen from above its pole, whose
 // silhouette has a known projected radius; and linking's gap and turn, on the same sphere
-// (one closed chain is the answer) and a torus (two). Writes strokes_tradeoff.md and .csv.
+// (one closed chain is the answer) and a torus (two). Writes strokes_tradeoff.md, .csv and
+// _points.csv (for shanshui-bench's plots).
 //   bench_strokes_tradeoff [--out DIR] [--quick]
 #include <chrono>
 #include <cmath>
@@ -18,6 +19,7 @@
 #include "shanshui/strokes/chains.h"
 #include "shanshui/strokes/edges.h"
 #include "shanshui/strokes/visibility.h"
+#include "tradeoff_points.h"
 
 namespace {
 
@@ -71,6 +73,7 @@ int main(int argc, char** argv) {
   std::ofstream md(args.out / "strokes_tradeoff.md");
   std::ofstream csv(args.out / "strokes_tradeoff.csv");
   csv << "knob,value,ms,error_px,chains\n";
+  bench::TradeoffPoints points(args.out / "strokes_tradeoff_points.csv");
   md << "## Spline: sampling step and subdivision span against the true silhouette\n\n"
      << "A sphere of radius 1 seen from 4 above its pole at " << size << "² (40° field): its smooth silhouette "
      << "projects to a circle of " << truth << " px. Error: mean |distance to the centre − that radius| over the "
@@ -95,6 +98,9 @@ int main(int argc, char** argv) {
       md << line;
       csv << "spline_step_span" << (span < 1e8 ? static_cast<int>(span) : 0) << "," << step << "," << ms << "," << error
           << ",1\n";
+      points.add("brush strokes: spline sampling step", "mean error to the true silhouette (px)",
+                 span < 1e8 ? "spans of " + std::to_string(static_cast<int>(span)) + " px" : "chain's points alone",
+                 true, ms, error);
       std::fprintf(stderr, "%s", line);
     }
   }
@@ -112,6 +118,9 @@ int main(int argc, char** argv) {
       md << line;
       csv << "link_gap_turn" << turn << "," << gap << "," << msA + msB << ","
           << std::abs(static_cast<double>(a) - 1.0) + std::abs(static_cast<double>(b) - 2.0) << "," << a + b << "\n";
+      points.add("brush strokes: linking gap and turn", "chains off the answer (sphere 1, torus 2)",
+                 "max turn " + std::to_string(static_cast<int>(turn)) + " deg, gap 0-20 px", true, msA + msB,
+                 std::abs(static_cast<double>(a) - 1.0) + std::abs(static_cast<double>(b) - 2.0));
       std::fprintf(stderr, "%s", line);
     }
   }

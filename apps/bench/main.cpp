@@ -42,6 +42,9 @@ const std::vector<StageDef> kStages = {
     {"diffusion",
      {"bench_diffusion_tradeoff"},
      "ink diffusion: distance transform against rings, n against a converged result"},
+    {"strokes",
+     {"bench_strokes_tradeoff"},
+     "brush strokes: spline sampling against a silhouette of known radius; linking against the known chain count"},
     {"noise", {"bench_canvas_tradeoff"}, "paper canvas: N′ against the analytic Gabor spectrum; temporal coherence"},
     {"pipeline", {"bench_pipeline_tradeoff"}, "the whole frame at quality presets against a high-quality reference"},
 };
