@@ -90,6 +90,7 @@ class GbufferPass final : public RenderPass {
       copy(static_gbuffer_.depth(), gbuffer_.depth(), in);
       draw(in, gbuffer_, false, Which::Animated);
       if (in.timer) in.timer->end();
+      images.static_gbuffer = &static_gbuffer_;
     }
     SHANSHUI_GL_CHECK("gbuffer pass");
     images.gbuffer = &gbuffer_;

@@ -1,8 +1,11 @@
 // The brush strokes pass (seed 002, issue 24): each frame, the feature edges of every object
 // with strokes are found on the CPU (strokes/edges.h), kept where the G-buffer's depth shows
 // them (visibility.h), linked into chains and drawn as brush strips over the ink picture,
-// so diffusion and the canvas act on them as on any ink.
+// so diffusion and the canvas act on them as on any ink. When something in the scene moves,
+// the strokes of what stands still are kept as a layer (statistics: "strokes_static" when it
+// is redrawn, "strokes_animated" each frame) and only the moving objects' are found again.
 #include <algorithm>
+#include <cmath>
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -94,22 +97,70 @@ class StrokesPass final : public RenderPass {
       s.graph = strokes::buildEdgeGraph(s.mesh);
       meshes_.push_back(std::move(s));
     }
+    // The layer is worth keeping when something moves and something that stands still has strokes.
+    static_strokes_ = setup.scene.hasAnimation() &&
+                      std::any_of(meshes_.begin(), meshes_.end(),
+                                  [&](const StrokeMesh& m) { return !setup.scene.objects[m.object].animated(); });
     buildPrograms();
   }
 
   std::string name() const override { return "strokes"; }
-  void buildPrograms() override { program_ = Program({"brush_strokes.vert", "brush_strokes.frag"}); }
+  void buildPrograms() override {
+    Program strips({"brush_strokes.vert", "brush_strokes.frag"});
+    if (static_strokes_) layer_program_ = Program({"fullscreen.vert", "brush_strokes_layer.frag"});
+    program_ = std::move(strips);
+  }
   std::vector<std::string> variants() const override { return {""}; }
   void setScene(const scene::Scene& s) override { scene_ = s; }
-  void resize(int width, int height) override { target_ = Framebuffer(width, height, {GL_RGBA8}, false); }
+  void resize(int width, int height) override {
+    target_ = Framebuffer(width, height, {GL_RGBA8}, false);
+    if (static_strokes_) layer_ = Framebuffer(width, height, {GL_RGBA8}, false);
+    layer_key_.clear();
+  }
   const Framebuffer* target() const override { return &target_; }
 
   void run(const FrameInputs& in, FrameImages& images) override {
     SHANSHUI_CHECK(images.picture != nullptr && images.gbuffer != nullptr);
-    if (in.timer) in.timer->begin("strokes");
-    const int w = in.width, h = in.height;
+    // Seed 002's render states: with animated objects, the static objects' strokes are drawn
+    // into a layer only when the camera, size or parameters change, against the static
+    // objects' own depth (so nothing that moves hides them in the layer), and composited
+    // each frame under the animated objects' strokes.
+    const bool animated = images.static_gbuffer != nullptr;
+    if (animated && static_strokes_ && in.static_key != layer_key_) {
+      if (in.timer) in.timer->begin("strokes_static");
+      const float clear[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+      glClearNamedFramebufferfv(layer_.id(), GL_COLOR, 0, clear);
+      draw(strips(in, *images.static_gbuffer, Which::Static), layer_, true);
+      layer_key_ = in.static_key;
+      if (in.timer) in.timer->end();
+    }
+    if (in.timer) in.timer->begin(animated ? "strokes_animated" : "strokes");
     glCopyImageSubData(images.picture->id(), GL_TEXTURE_2D, 0, 0, 0, 0, target_.colour().id(), GL_TEXTURE_2D, 0, 0, 0,
-                       0, w, h, 1);
+                       0, in.width, in.height, 1);
+    if (animated && static_strokes_) composite(in, images);
+    draw(strips(in, *images.gbuffer, animated ? Which::Animated : Which::All), target_, false);
+    images.picture = &target_.colour();
+    if (in.timer) in.timer->end();
+  }
+
+  enum class Which { All, Static, Animated };
+
+  //! Strip vertices and the runs of each stroke.
+  struct Strips {
+    std::vector<float> vertices;
+    std::vector<GLint> firsts;
+    std::vector<GLsizei> counts;
+  };
+
+  //! The strokes of the chosen objects, visible against `gbuffer`'s depth.
+  Strips strips(const FrameInputs& in, const Framebuffer& gbuffer, Which which) const {
+    Strips out;
+    const auto chosen = [&](const StrokeMesh& sm) {
+      const bool moves = in.scene.objects[sm.object].animated();
+      return which == Which::All || (which == Which::Animated) == moves;
+    };
+    if (std::none_of(meshes_.begin(), meshes_.end(), chosen)) return out;
+    const int w = in.width, h = in.height;
     // The G-buffer's depth as the visibility reference (GL rows: bottom first).
     strokes::ReferenceImage ref;
     ref.width = w;
@@ -117,7 +168,7 @@ class StrokesPass final : public RenderPass {
     ref.depth.resize(static_cast<std::size_t>(w) * h);
     ref.id.assign(ref.depth.size(), -1);
     glPixelStorei(GL_PACK_ALIGNMENT, 1);
-    glGetTextureImage(images.gbuffer->depth().id(), 0, GL_DEPTH_COMPONENT, GL_FLOAT,
+    glGetTextureImage(gbuffer.depth().id(), 0, GL_DEPTH_COMPONENT, GL_FLOAT,
                       static_cast<GLsizei>(ref.depth.size() * sizeof(float)), ref.depth.data());
     const glm::dmat4 vp = glm::dmat4(in.camera.projection(static_cast<double>(w) / h)) * glm::dmat4(in.camera.view());
     const glm::dvec3 eye = in.camera.eye();
@@ -128,10 +179,8 @@ class StrokesPass final : public RenderPass {
       const double d = glm::length(in.world_bounds.corner(c) - eye);
       fadeRange = {std::min(fadeRange.x, d), std::max(fadeRange.y, d)};
     }
-    std::vector<float> vertices;
-    std::vector<GLint> firsts;
-    std::vector<GLsizei> counts;
     for (const StrokeMesh& sm : meshes_) {
+      if (!chosen(sm)) continue;
       const scene::BrushStrokeParams& p = scene_.objects[sm.object].strokes;
       const glm::dmat4 model = in.modelAt(sm.object);
       const glm::dmat4 toModel = glm::inverse(model);
@@ -142,9 +191,7 @@ class StrokesPass final : public RenderPass {
       vo.far = in.camera.far_plane;
       const auto seen = strokes::visibleSegments(edges, sm.graph, sm.mesh, vp * model, ref, vo);
       const auto chains = strokes::linkSegments(seen, {p.max_turn_deg, p.max_gap_px});
-      strokes::BrushOptions bo;
-      bo.width_px = std::clamp(p.width * h / 1024.0, 0.1, 256.0);
-      bo.min_pressure = p.min_pressure;
+      const strokes::BrushOptions bo = brushOptions(p, h);
       for (std::size_t c = 0; c < chains.size(); ++c) {
         std::vector<double> depth;
         const auto path = strokes::cardinalSpline(strokes::subdivided(chains[c], std::max(4.0, 2.0 * bo.width_px)),
@@ -156,8 +203,8 @@ class StrokesPass final : public RenderPass {
                                    static_cast<std::uint32_t>(start.y) ^ (sm.object << 48);
         const auto strip = strokes::strokeStrip(path, brushStyle(p.style), seed, bo);
         if (strip.size() < 4) continue;
-        firsts.push_back(static_cast<GLint>(vertices.size() / kFloats));
-        counts.push_back(static_cast<GLsizei>(strip.size()));
+        out.firsts.push_back(static_cast<GLint>(out.vertices.size() / kFloats));
+        out.counts.push_back(static_cast<GLsizei>(strip.size()));
         // Two strip vertices per path point; the ink at the point's 3D position.
         for (std::size_t k = 0; k < path.size(); ++k) {
           const glm::dvec4 ndc(path[k].x / w * 2.0 - 1.0, path[k].y / h * 2.0 - 1.0, depth[k] * 2.0 - 1.0, 1.0);
@@ -165,46 +212,80 @@ class StrokesPass final : public RenderPass {
           const auto ink =
               static_cast<float>(p.ink * presence(in, sm.object, toModel, glm::dvec3(world) / world.w, fadeRange));
           for (const strokes::StripVertex& v : {strip[2 * k], strip[2 * k + 1]}) {
-            vertices.insert(vertices.end(), {static_cast<float>(v.position.x), static_cast<float>(v.position.y),
-                                             v.along, v.across, v.pressure, ink});
+            out.vertices.insert(out.vertices.end(), {static_cast<float>(v.position.x), static_cast<float>(v.position.y),
+                                                     v.along, v.across, v.pressure, ink});
           }
         }
       }
     }
-    if (!firsts.empty()) {
-      glNamedBufferData(vbo_.id(), static_cast<GLsizeiptr>(vertices.size() * sizeof(float)), vertices.data(),
-                        GL_STREAM_DRAW);
-      glBindVertexArray(vao_.id());
-      glBindBuffer(GL_ARRAY_BUFFER, vbo_.id());
-      glEnableVertexAttribArray(0);
-      glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, kFloats * sizeof(float), nullptr);
-      glEnableVertexAttribArray(1);
-      glVertexAttribPointer(1, 4, GL_FLOAT, GL_FALSE, kFloats * sizeof(float),
-                            reinterpret_cast<void*>(2 * sizeof(float)));
-      glBindFramebuffer(GL_FRAMEBUFFER, target_.id());
-      glViewport(0, 0, w, h);
-      glDisable(GL_DEPTH_TEST);
-      glEnable(GL_BLEND);
-      glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ZERO, GL_ONE);
-      program_.use();
-      program_.set("u_size", glm::vec2(w, h));
-      program_.set("u_bristle_px", static_cast<float>(std::max(2.0, 6.0 * h / 1024.0)));
-      glMultiDrawArrays(GL_TRIANGLE_STRIP, firsts.data(), counts.data(), static_cast<GLsizei>(firsts.size()));
-      glDisable(GL_BLEND);
-      glBindBuffer(GL_ARRAY_BUFFER, 0);
-      SHANSHUI_GL_CHECK("strokes pass");
-    }
-    images.picture = &target_.colour();
-    if (in.timer) in.timer->end();
+    return out;
+  }
+
+  static strokes::BrushOptions brushOptions(const scene::BrushStrokeParams& p, int height) {
+    strokes::BrushOptions bo;
+    bo.width_px = std::clamp(p.width * height / 1024.0, 0.1, 256.0);
+    bo.min_pressure = p.min_pressure;
+    return bo;
+  }
+
+  //! Draws the strips over `target`; `premultiplied` accumulates them into an empty layer
+  //! (colour times coverage, and coverage) that composite() lays over a picture later.
+  void draw(const Strips& s, const Framebuffer& target, bool premultiplied) const {
+    if (s.firsts.empty()) return;
+    glNamedBufferData(vbo_.id(), static_cast<GLsizeiptr>(s.vertices.size() * sizeof(float)), s.vertices.data(),
+                      GL_STREAM_DRAW);
+    glBindVertexArray(vao_.id());
+    glBindBuffer(GL_ARRAY_BUFFER, vbo_.id());
+    glEnableVertexAttribArray(0);
+    glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, kFloats * sizeof(float), nullptr);
+    glEnableVertexAttribArray(1);
+    glVertexAttribPointer(1, 4, GL_FLOAT, GL_FALSE, kFloats * sizeof(float),
+                          reinterpret_cast<void*>(2 * sizeof(float)));
+    target.bind();
+    glDisable(GL_DEPTH_TEST);
+    glEnable(GL_BLEND);
+    glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, premultiplied ? GL_ONE : GL_ZERO,
+                        premultiplied ? GL_ONE_MINUS_SRC_ALPHA : GL_ONE);
+    program_.use();
+    program_.set("u_size", glm::vec2(target.width(), target.height()));
+    program_.set("u_bristle_px", static_cast<float>(std::max(2.0, 6.0 * target.height() / 1024.0)));
+    glMultiDrawArrays(GL_TRIANGLE_STRIP, s.firsts.data(), s.counts.data(), static_cast<GLsizei>(s.firsts.size()));
+    glDisable(GL_BLEND);
+    glBindBuffer(GL_ARRAY_BUFFER, 0);
+    SHANSHUI_GL_CHECK("strokes pass");
+  }
+
+  //! Lays the static strokes' layer over the picture (premultiplied "over"), except where an
+  //! animated object now stands in front of the static surface a stroke lies on or overruns.
+  void composite(const FrameInputs& in, const FrameImages& images) const {
+    double width_px = 0.0;
+    for (const StrokeMesh& sm : meshes_)
+      if (!in.scene.objects[sm.object].animated())
+        width_px = std::max(width_px, brushOptions(scene_.objects[sm.object].strokes, in.height).width_px);
+    target_.bind();
+    glDisable(GL_DEPTH_TEST);
+    glEnable(GL_BLEND);
+    glBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ZERO, GL_ONE);
+    glBindVertexArray(vao_.id());
+    layer_program_.use();
+    glBindTextureUnit(0, layer_.colour().id());
+    glBindTextureUnit(1, images.static_gbuffer->depth().id());
+    glBindTextureUnit(2, images.gbuffer->depth().id());
+    layer_program_.set("u_reach", static_cast<int>(std::ceil(0.5 * width_px)) + 1);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glDisable(GL_BLEND);
+    SHANSHUI_GL_CHECK("strokes layer");
   }
 
  private:
   scene::Scene scene_;
   std::vector<StrokeMesh> meshes_;
-  Program program_;
+  bool static_strokes_ = false;  //!< static objects' strokes are cached in layer_
+  Program program_, layer_program_;
   VertexArray vao_;
   Buffer vbo_;
-  Framebuffer target_;
+  Framebuffer target_, layer_;
+  std::string layer_key_;  //!< request layer_ was drawn for
 };
 
 }  // namespace
@@ -214,7 +295,7 @@ std::unique_ptr<RenderPass> makeStrokesPass(const PassSetup& setup) {
 }
 
 std::string strokesStructure(const scene::Scene& s) {
-  std::string key;
+  std::string key = s.hasAnimation() ? "animated|" : "";
   for (const scene::Object& o : s.objects) key += std::to_string(static_cast<int>(o.strokes.style));
   return key;
 }

@@ -1241,5 +1241,61 @@ TEST_F(Ink, BrushStrokesDrawTheVisibleEdgesOfACubeAndOnlyThem) {
   EXPECT_EQ(hiddenInked, 0);
 }
 
+// Seed 002's render states for strokes: with a spinning cube beside, behind and in front of
+// a still one, the still cube's strokes come from a layer drawn once, and each frame equals
+// (to the layer's rounding) the picture drawn without the layer, from a scene where the
+// spinning cube is simply placed at the angle it has reached.
+TEST_F(Ink, StaticStrokesAreALayerDrawnOnceAndMatchDrawingEverything) {
+  const json strokes = {{"style", "qinxian"}, {"width", 16.0}, {"ink", 1.0}, {"crease", 30.0}};
+  const mesh::Mesh cube = mesh::unitCube();
+  for (const glm::dvec3 at : {glm::dvec3(2.0, 0, 0), glm::dvec3(0.4, -1.8, 0.2), glm::dvec3(0.4, 1.8, 0.2)}) {
+    SCOPED_TRACE(testing::Message() << "spinning cube at " << at.x << "," << at.y << "," << at.z);
+    json j = {{"output", {{"fade", 0.0}}},
+              {"objects", json::array({{{"mesh", "still"}, {"strokes", strokes}, {"lines", {{"enabled", false}}}},
+                                       {{"mesh", "spinning"},
+                                        {"spin", 60.0},
+                                        {"strokes", strokes},
+                                        {"lines", {{"enabled", false}}},
+                                        {"transform", {{"translate", {at.x, at.y, at.z}}}}}})}};
+    for (json& o : j["objects"]) o["up"] = "z";
+    const scene::Scene s = scene::parseScene(j, "test", ".");
+    std::vector<scene::LoadedObject> loaded;
+    for (const scene::Object& o : s.objects)
+      loaded.push_back({std::make_shared<const scene::ObjectAsset>(scene::prepareAsset(cube, o)), nullptr});
+    InkRenderer r(s, loaded);
+    const OrbitCamera cam = sceneCamera(s, r.worldBounds(), 1.0, {-60, 25, 1.0});
+    FrameStats st;
+    r.render(cam, 192, 192, &st, true, 0.0);
+    EXPECT_EQ(names(st), (std::vector<std::string>{"gbuffer_static", "gbuffer_animated", "ink", "strokes_static",
+                                                   "strokes_animated"}));
+    const image::Image t1 = r.render(cam, 192, 192, &st, true, 0.5).colour(0).download(3);
+    EXPECT_EQ(names(st), (std::vector<std::string>{"gbuffer_animated", "ink", "strokes_animated"}))
+        << "the still cube's strokes are not found again";
+    json still = j;
+    still["objects"][1]["spin"] = 0.0;
+    still["objects"][1]["transform"]["rotate"] = {0, 0, 30.0};
+    const scene::Scene s2 = scene::parseScene(still, "test", ".");
+    InkRenderer r2(s2, loaded);
+    const image::Image ref = r2.render(cam, 192, 192, &st, true, 0.0).colour(0).download(3);
+    EXPECT_EQ(names(st), (std::vector<std::string>{"gbuffer", "ink", "strokes"}));
+    InkRenderer bare(scene::parseScene(
+                         [&] {
+                           json b = still;
+                           for (json& o : b["objects"]) o.erase("strokes");
+                           return b;
+                         }(),
+                         "test", "."),
+                     loaded);
+    const image::Image none = bare.render(cam, 192, 192).colour(0).download(3);
+    std::size_t differ = 0, inked = 0;
+    for (std::size_t i = 0; i < ref.pixels.size(); ++i) {
+      differ += std::abs(ref.pixels[i] - t1.pixels[i]) > 8.0f / 255;
+      inked += none.pixels[i] - ref.pixels[i] > 8.0f / 255;
+    }
+    EXPECT_GT(inked, ref.pixels.size() / 50) << "the strokes are there to compare";
+    EXPECT_LE(differ, inked / 100);
+  }
+}
+
 }  // namespace
 }  // namespace shanshui::render

@@ -53,8 +53,10 @@ struct FrameInputs {
 //! The images the passes hand on; a pass reads what earlier passes wrote.
 struct FrameImages {
   const Framebuffer* gbuffer = nullptr;  //!< normal + curvature, surface + id, depth
-  const Texture2D* canvas = nullptr;     //!< unit-variance paper noise (R32F)
-  const Texture2D* picture = nullptr;    //!< the picture so far (RGBA8)
+  //! With animated objects: the cached G-buffer of the static ones alone (null otherwise).
+  const Framebuffer* static_gbuffer = nullptr;
+  const Texture2D* canvas = nullptr;   //!< unit-variance paper noise (R32F)
+  const Texture2D* picture = nullptr;  //!< the picture so far (RGBA8)
 };
 
 class RenderPass {
