@@ -193,6 +193,8 @@ class StrokesPass final : public RenderPass {
       const auto chains = strokes::linkSegments(seen, {p.max_turn_deg, p.max_gap_px});
       const strokes::BrushOptions bo = brushOptions(p, h);
       for (std::size_t c = 0; c < chains.size(); ++c) {
+        const double kept = strokes::lengthInk(chains[c].length_px, p.short_px * h / 1024.0);
+        if (kept <= 0.0) continue;
         std::vector<double> depth;
         const auto path = strokes::cardinalSpline(strokes::subdivided(chains[c], std::max(4.0, 2.0 * bo.width_px)),
                                                   p.tension, 1.0, &depth);
@@ -209,8 +211,8 @@ class StrokesPass final : public RenderPass {
         for (std::size_t k = 0; k < path.size(); ++k) {
           const glm::dvec4 ndc(path[k].x / w * 2.0 - 1.0, path[k].y / h * 2.0 - 1.0, depth[k] * 2.0 - 1.0, 1.0);
           const glm::dvec4 world = inverseVp * ndc;
-          const auto ink =
-              static_cast<float>(p.ink * presence(in, sm.object, toModel, glm::dvec3(world) / world.w, fadeRange));
+          const auto ink = static_cast<float>(p.ink * kept *
+                                              presence(in, sm.object, toModel, glm::dvec3(world) / world.w, fadeRange));
           for (const strokes::StripVertex& v : {strip[2 * k], strip[2 * k + 1]}) {
             out.vertices.insert(out.vertices.end(), {static_cast<float>(v.position.x), static_cast<float>(v.position.y),
                                                      v.along, v.across, v.pressure, ink});

@@ -250,6 +250,11 @@ void describe(V& v, BrushStrokeParams& p) {
            p.max_gap_px, {0, 1000});
   v.number({"tension", "Cardinal spline tension: 0 Catmull-Rom, 1 straight between the pieces' ends"}, p.tension,
            {-1, 1});
+  v.number({"short",
+            "strokes shorter than this are left out (a painter does not draw scratches); ink rises to full "
+            "at three times it; 0 keeps every stroke",
+            Effect::Uniform, "pixels at 1024 high"},
+           p.short_px, {0, 1000});
 }
 
 template <typename V>

@@ -91,4 +91,10 @@ std::vector<StripVertex> strokeStrip(const std::vector<glm::dvec2>& path, Stroke
   return strip;
 }
 
+double lengthInk(double length_px, double short_px) {
+  if (!(short_px > 0.0)) return 1.0;
+  const double t = std::clamp((length_px - short_px) / (2.0 * short_px), 0.0, 1.0);
+  return t * t * (3.0 - 2.0 * t);
+}
+
 }  // namespace shanshui::strokes

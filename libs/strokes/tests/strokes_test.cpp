@@ -288,5 +288,24 @@ TEST(Brush, PressureCurvesHaveTheirStylesShapes) {
   test::expectErrorNaming([&] { strokeStrip({{0, 0}, {1, 0}}, StrokeStyle::Qinxian, 1, bad); }, "width", "0");
 }
 
+// Short strokes are left out: nothing under the length, full ink from three times it,
+// rising without a step in between; a length of 0 keeps every stroke.
+TEST(Brush, ShortStrokesFadeOutByLength) {
+  EXPECT_EQ(lengthInk(0.0, 16.0), 0.0);
+  EXPECT_EQ(lengthInk(16.0, 16.0), 0.0);
+  EXPECT_EQ(lengthInk(48.0, 16.0), 1.0);
+  EXPECT_EQ(lengthInk(1e9, 16.0), 1.0);
+  EXPECT_NEAR(lengthInk(32.0, 16.0), 0.5, 1e-12);  // halfway, by symmetry of the smooth step
+  double last = 0.0;
+  for (double l = 16.0; l <= 48.0; l += 0.25) {
+    const double k = lengthInk(l, 16.0);
+    EXPECT_GE(k, last);
+    EXPECT_LE(k - last, 0.02) << "no step at " << l;
+    last = k;
+  }
+  for (double l : {0.0, 0.5, 100.0}) EXPECT_EQ(lengthInk(l, 0.0), 1.0);
+  EXPECT_EQ(lengthInk(5.0, std::nan("")), 1.0);
+}
+
 }  // namespace
 }  // namespace shanshui::strokes

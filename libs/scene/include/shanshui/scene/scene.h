@@ -142,6 +142,7 @@ struct BrushStrokeParams {
   double max_turn_deg = 45.0;  //!< linking: the direction may turn this much where pieces join
   double max_gap_px = 5.0;     //!< linking: largest gap bridged, pixels
   double tension = 0.0;        //!< Cardinal spline tension: 0 Catmull-Rom, 1 straight
+  double short_px = 16.0;      //!< strokes shorter are left out, pixels at 1024 high (0: none)
   bool enabled() const { return style != BrushStyle::None; }
 };
 

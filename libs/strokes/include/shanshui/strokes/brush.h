@@ -36,6 +36,11 @@ StrokeStyle styleFor(StrokeStyle style, double length_px, const BrushOptions& op
 //! `seed` varies the willow leaf's turn from stroke to stroke (deterministically).
 double pressure(StrokeStyle style, double t, double length_px, std::uint64_t seed, const BrushOptions& options);
 
+//! How much ink a stroke `length_px` long keeps: a painter leaves out short scratches, so
+//! strokes under `short_px` are not drawn and the ink rises smoothly to full at three times
+//! that length. 1 for any length when short_px ≤ 0.
+double lengthInk(double length_px, double short_px);
+
 //! One side of the strip at a spline point.
 struct StripVertex {
   glm::dvec2 position;  //!< pixels
