@@ -5,6 +5,7 @@
 // The atmosphere and the dissolving border take the stroke back to the paper as they do the
 // surface under it (its ink times that presence, per point from the CPU).
 in vec4 v_stroke;  // along (pixels), across (-1..1), pressure, ink
+in vec3 v_colour;  // the object's line colour
 uniform float u_bristle_px;  // bristle streak length, pixels
 out vec4 frag;
 
@@ -19,5 +20,5 @@ void main() {
   // Dry where the pressure is low and the bristle is thin: up to 60 % less ink.
   float dry = clamp((1.0 - v_stroke.z) * 1.4 - 0.4, 0.0, 1.0) * bristle;
   float a = v_stroke.w * (0.45 + 0.55 * footprint) * (1.0 - 0.6 * dry);
-  frag = vec4(vec3(0.04), a);
+  frag = vec4(v_colour, a);
 }

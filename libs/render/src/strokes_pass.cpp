@@ -78,8 +78,8 @@ struct StrokeMesh {
 };
 
 // Per strip vertex: position (2), along, across, pressure, ink (the object's, times what the
-// atmosphere and the border leave standing).
-constexpr int kFloats = 6;
+// atmosphere and the border leave standing), colour (the object's line colour, 3).
+constexpr int kFloats = 9;
 
 class StrokesPass final : public RenderPass {
  public:
@@ -192,6 +192,7 @@ class StrokesPass final : public RenderPass {
       const auto seen = strokes::visibleSegments(edges, sm.graph, sm.mesh, vp * model, ref, vo);
       const auto chains = strokes::linkSegments(seen, {p.max_turn_deg, p.max_gap_px});
       const strokes::BrushOptions bo = brushOptions(p, h);
+      const glm::vec3 colour(scene_.objects[sm.object].lines.line_color);
       for (std::size_t c = 0; c < chains.size(); ++c) {
         const double kept = strokes::lengthInk(chains[c].length_px, p.short_px * h / 1024.0);
         if (kept <= 0.0) continue;
@@ -215,7 +216,7 @@ class StrokesPass final : public RenderPass {
                                               presence(in, sm.object, toModel, glm::dvec3(world) / world.w, fadeRange));
           for (const strokes::StripVertex& v : {strip[2 * k], strip[2 * k + 1]}) {
             out.vertices.insert(out.vertices.end(), {static_cast<float>(v.position.x), static_cast<float>(v.position.y),
-                                                     v.along, v.across, v.pressure, ink});
+                                                     v.along, v.across, v.pressure, ink, colour.r, colour.g, colour.b});
           }
         }
       }
@@ -243,6 +244,9 @@ class StrokesPass final : public RenderPass {
     glEnableVertexAttribArray(1);
     glVertexAttribPointer(1, 4, GL_FLOAT, GL_FALSE, kFloats * sizeof(float),
                           reinterpret_cast<void*>(2 * sizeof(float)));
+    glEnableVertexAttribArray(2);
+    glVertexAttribPointer(2, 3, GL_FLOAT, GL_FALSE, kFloats * sizeof(float),
+                          reinterpret_cast<void*>(6 * sizeof(float)));
     target.bind();
     glDisable(GL_DEPTH_TEST);
     glEnable(GL_BLEND);

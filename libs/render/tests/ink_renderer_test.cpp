@@ -1241,6 +1241,35 @@ TEST_F(Ink, BrushStrokesDrawTheVisibleEdgesOfACubeAndOnlyThem) {
   EXPECT_EQ(hiddenInked, 0);
 }
 
+// Strokes are drawn in the object's line colour (as its feature lines are): a red line
+// colour gives strokes whose red stays while green and blue go.
+TEST_F(Ink, BrushStrokesTakeTheObjectsLineColour) {
+  const mesh::Mesh cube = mesh::unitCube();
+  auto strokeTint = [&](const json& colour) {
+    const json object = {{"up", "z"},
+                         {"recentre", false},
+                         {"lines", {{"enabled", false}, {"line_color", colour}}},
+                         {"strokes", {{"style", "qinxian"}, {"width", 24.0}, {"ink", 1.0}}}};
+    const json top = {{"output", {{"fade", 0.0}}}};
+    json bare = object;
+    bare.erase("strokes");
+    const scene::Scene with = sceneWith(object, top), without = sceneWith(bare, top);
+    InkRenderer a(without, prepare(without, cube)), b(with, prepare(with, cube));
+    const OrbitCamera cam = sceneCamera(with, b.worldBounds(), 1.0, {37, 28, 0.8});
+    const image::Image before = a.render(cam, 128, 128).colour(0).download(3);
+    const image::Image after = b.render(cam, 128, 128).colour(0).download(3);
+    double tint = 0.0;
+    int n = 0;
+    for (int y = 0; y < 128; ++y)
+      for (int x = 0; x < 128; ++x)
+        if (before.at(x, y, 1) - after.at(x, y, 1) > 0.15f) tint += after.at(x, y, 0) - after.at(x, y, 1), ++n;
+    EXPECT_GT(n, 100);
+    return tint / std::max(n, 1);
+  };
+  EXPECT_GT(strokeTint({0.9, 0.05, 0.05}), 0.2);
+  EXPECT_NEAR(strokeTint({0.06, 0.06, 0.07}), 0.0, 0.03);
+}
+
 // Seed 002's render states for strokes: with a spinning cube beside, behind and in front of
 // a still one, the still cube's strokes come from a layer drawn once, and each frame equals
 // (to the layer's rounding) the picture drawn without the layer, from a scene where the
