@@ -1241,6 +1241,78 @@ TEST_F(Ink, BrushStrokesDrawTheVisibleEdgesOfACubeAndOnlyThem) {
   EXPECT_EQ(hiddenInked, 0);
 }
 
+// The stroke's width in the rendered image follows the style's pressure curve: a flat
+// square seen from above has four border strokes (its corners turn 90°, more than linking
+// bridges); across each, the inked run is even for the zither string, and thin at both
+// ends and full in between for the willow leaf.
+TEST_F(Ink, BrushStrokeWidthInTheImageFollowsThePressure) {
+  const mesh::Mesh square = mesh::heightGrid(11, 11, 0.1, [](double, double) { return 0.0; });
+  const int size = 512;
+  const double width = 64.0 * size / 1024.0, min_pressure = 0.15;
+  auto widths = [&](const char* style) {
+    const json object = {
+        {"up", "z"},
+        {"recentre", false},
+        {"lines", {{"enabled", false}}},
+        {"shading", {{"enabled", false}}},
+        {"strokes", {{"style", style}, {"width", 64.0}, {"ink", 1.0}, {"min_pressure", min_pressure}}}};
+    const json top = {{"output", {{"fade", 0.0}}}};
+    json bare = object;
+    bare.erase("strokes");
+    const scene::Scene with = sceneWith(object, top), without = sceneWith(bare, top);
+    InkRenderer a(without, prepare(without, square)), b(with, prepare(with, square));
+    const OrbitCamera cam = sceneCamera(with, b.worldBounds(), 1.0, {0, 89, 0.6});
+    const image::Image before = a.render(cam, size, size).colour(0).download(3);
+    const image::Image after = b.render(cam, size, size).colour(0).download(3);
+    const glm::dmat4 vp = glm::dmat4(cam.projection(1.0)) * glm::dmat4(cam.view());
+    auto px = [&](glm::dvec3 p) {
+      const glm::dvec4 c = vp * glm::dvec4(p, 1.0);
+      return glm::dvec2((c.x / c.w * 0.5 + 0.5) * size, (0.5 - c.y / c.w * 0.5) * size);
+    };
+    const glm::dvec3 corners[4] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+    // Per edge, the inked run across it at 17 points along it.
+    std::vector<std::vector<double>> out;
+    for (int e = 0; e < 4; ++e) {
+      const glm::dvec2 p = px(corners[e]), q = px(corners[(e + 1) % 4]);
+      const glm::dvec2 n = glm::normalize(glm::dvec2(q.y - p.y, p.x - q.x));
+      std::vector<double> run;
+      // Far enough from the corners that the scan does not reach the next edge's stroke.
+      const double margin = 0.6 * width / glm::distance(p, q);
+      EXPECT_LT(margin, 0.1);
+      for (int i = 0; i <= 16; ++i) {
+        const glm::dvec2 c = glm::mix(p, q, margin + (1.0 - 2.0 * margin) * i / 16.0);
+        int inked = 0;
+        for (double k = -width; k <= width; k += 0.5) {
+          const glm::ivec2 at(glm::floor(c + k * n));
+          if (at.x < 0 || at.y < 0 || at.x >= size || at.y >= size) continue;
+          inked += before.at(at.x, at.y, 1) - after.at(at.x, at.y, 1) > 0.05f;
+        }
+        run.push_back(0.5 * inked);
+      }
+      out.push_back(run);
+    }
+    return out;
+  };
+  for (const auto& run : widths("qinxian")) {
+    for (double w : run) EXPECT_NEAR(w, width, 0.15 * width);
+  }
+  // The willow leaf: one swell, thin at both ends (the scan starts a little way in, where
+  // the pressure has already risen), full in between.
+  for (const auto& run : widths("liuye")) {
+    const auto top = std::max_element(run.begin(), run.end());
+    EXPECT_NEAR(*top, width, 0.15 * width);
+    EXPECT_LT(run.front(), 0.6 * *top);
+    EXPECT_LT(run.back(), 0.6 * *top);
+    EXPECT_GE(std::min(run.front(), run.back()), min_pressure * width) << "the brush never leaves the paper";
+    for (auto it = run.begin(); it + 1 != run.end(); ++it) {
+      if (it < top)
+        EXPECT_GE(*(it + 1), *it - 1.5) << "rising to the swell";
+      else
+        EXPECT_LE(*(it + 1), *it + 1.5) << "falling after it";
+    }
+  }
+}
+
 // Strokes are drawn in the object's line colour (as its feature lines are): a red line
 // colour gives strokes whose red stays while green and blue go.
 TEST_F(Ink, BrushStrokesTakeTheObjectsLineColour) {
