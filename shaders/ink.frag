@@ -4,8 +4,8 @@
 // read once. Variants: LINES and SHADING (some object uses them), STROKES (some object draws
 // its lines as strokes: the centres come from ink_lines.frag), WRINKLE (some object has a
 // wrinkle texture), SINGLE_OBJECT (parameters without indexing), CANVAS (the paper grain,
-// when no diffusion pass comes after), DEBUG_OUTPUTS (line weight and tone as extra targets,
-// for tests).
+// when no diffusion pass comes after), PIGMENT (the presence the atmosphere leaves, in alpha,
+// for the pigment pass), DEBUG_OUTPUTS (line weight and tone as extra targets, for tests).
 #include "ink_objects.glsl"
 #ifdef SHADING
 #include "ink_gaussian_cdf.glsl"
@@ -146,13 +146,17 @@ void main() {
   // Composite: ink on paper, lines over the interior, then the atmosphere and the border
   // take it back towards the paper; strokes carry their own.
   vec3 colour = mix(u_paper * o.bg_color * tone, o.line_color, line_weight);
-  colour = mix(u_paper, colour, presence(o, position));
+  float here = presence(o, position);
+  colour = mix(u_paper, colour, here);
 #ifdef STROKES
   float stroke = strokeInk(p);
   colour = mix(colour, o.line_color, stroke);
   line_weight = max(line_weight, stroke);
 #endif
   o_colour = onPaper(p, colour);
+#ifdef PIGMENT
+  o_colour.a = here;  // the pigment pass thins its wash as the atmosphere thins the ink
+#endif
 #ifdef DEBUG_OUTPUTS
   o_line = vec2(line_weight, col);
   o_tone = tone;

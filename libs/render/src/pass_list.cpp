@@ -15,6 +15,9 @@ bool hasCanvas(const scene::Scene& s) {
 bool brushStrokes(const scene::Scene& s) {
   return s.usesBrushStrokes();
 }
+bool pigmented(const scene::Scene& s) {
+  return s.usesPigment();
+}
 bool diffuses(const scene::Scene& s) {
   return s.diffusion.enabled();
 }
@@ -29,6 +32,7 @@ const std::vector<PassEntry>& passList() {
       {"canvas", hasCanvas, canvasStructure, makeCanvasPass},
       {"ink", always, inkStructure, makeInkPass},
       {"strokes", brushStrokes, strokesStructure, makeStrokesPass},
+      {"pigment", pigmented, nothing, makePigmentPass},
       {"diffusion", diffuses, nothing, makeDiffusionPass},
   };
   return list;

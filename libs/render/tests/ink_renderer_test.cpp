@@ -17,6 +17,7 @@
 #include <nlohmann/json.hpp>
 
 #include "gl_test.h"
+#include "scene_in_memory.h"
 #include "shanshui/core/error.h"
 #include "shanshui/image/image_io.h"
 #include "shanshui/ink/diffusion.h"
@@ -37,19 +38,8 @@ using nlohmann::json;
 
 class Ink : public test::HeadlessGl {};
 
-// A one-object scene around a mesh given in memory (the file name is never read).
-scene::Scene sceneWith(const json& object_overrides, const json& top = json::object()) {
-  json j = top;
-  json o = {{"mesh", "memory.obj"}};
-  if (object_overrides.is_object()) o.update(object_overrides, true);
-  j["objects"] = json::array({o});
-  return scene::parseScene(j, "test", ".");
-}
-
-std::vector<scene::LoadedObject> prepare(const scene::Scene& s, const mesh::Mesh& m,
-                                         std::shared_ptr<const image::Image> wrinkle = nullptr) {
-  return {{std::make_shared<const scene::ObjectAsset>(scene::prepareAsset(m, s.objects[0])), std::move(wrinkle)}};
-}
+using test::prepare;
+using test::sceneWith;
 
 // The value below which a fraction q of v lies (v not empty).
 double quantile(std::vector<double> v, double q) {

@@ -57,6 +57,10 @@ bool Scene::usesStrokes() const {
   return anyObject(objects, [](const Object& o) { return o.lines.strokes(); });
 }
 
+bool Scene::usesPigment() const {
+  return anyObject(objects, [](const Object& o) { return o.pigment.enabled(); });
+}
+
 bool Scene::usesBrushStrokes() const {
   return anyObject(objects, [](const Object& o) { return o.strokes.enabled(); });
 }

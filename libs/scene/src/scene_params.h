@@ -79,6 +79,15 @@ inline constexpr std::array<Named<BrushStyle>, 7> kBrushStyles{{{"none", BrushSt
                                                                 {"jianbi", BrushStyle::Jianbi},
                                                                 {"zhuye", BrushStyle::Zhuye},
                                                                 {"mixed", BrushStyle::Mixed}}};
+inline constexpr std::array<Named<PigmentName>, 9> kPigmentNames{{{"none", PigmentName::None},
+                                                                  {"ochre", PigmentName::Ochre},
+                                                                  {"indigo", PigmentName::Indigo},
+                                                                  {"azurite", PigmentName::Azurite},
+                                                                  {"malachite", PigmentName::Malachite},
+                                                                  {"cinnabar", PigmentName::Cinnabar},
+                                                                  {"gamboge", PigmentName::Gamboge},
+                                                                  {"ink", PigmentName::Ink},
+                                                                  {"custom", PigmentName::Custom}}};
 inline constexpr std::array<Named<BorderMode>, 3> kBorderModes{
     {{"auto", BorderMode::Auto}, {"dissolve", BorderMode::Dissolve}, {"keep", BorderMode::Keep}}};
 
@@ -258,6 +267,42 @@ void describe(V& v, BrushStrokeParams& p) {
 }
 
 template <typename V>
+void describe(V& v, PigmentParams& p) {
+  v.choice({"name",
+            "a wash of colour over the object, composited by Kubelka-Munk over the ink: `ochre` (赭石, rock and "
+            "the foot of mountains), `indigo` (花青, distant ranges, foliage), `azurite` (石青) and `malachite` "
+            "(石绿, the opaque blue and green of the blue-green style), `cinnabar` (朱砂), `gamboge` (藤黄), `ink` "
+            "(墨 as a wash), `custom` (`on_white`, `on_black`); `none`: no pigment pass",
+            kRebuild},
+           p.name, kPigmentNames);
+  v.vec3({"on_white", "custom: colour of a unit layer over white", Effect::Uniform, "RGB"}, p.on_white, kUnit,
+         Vec::Color);
+  v.vec3({"on_black", "custom: colour of a unit layer over black, darker than on white in each channel",
+          Effect::Uniform, "RGB"},
+         p.on_black, kUnit, Vec::Color);
+  v.check("on_black", [&]() -> std::string {
+    if (p.name != PigmentName::Custom) return "";
+    for (int i = 0; i < 3; ++i) {
+      if (!(p.on_black[i] > 0.0 && p.on_white[i] < 1.0 && p.on_black[i] < p.on_white[i])) {
+        std::ostringstream s;
+        s << "channel " << i << ": on_black " << p.on_black[i] << ", on_white " << p.on_white[i]
+          << "; expected 0 < on_black < on_white < 1";
+        return s.str();
+      }
+    }
+    return "";
+  });
+  v.number({"thickness", "thickness of the wash, in layers of the pigment's unit (seed 003: 0.5)"}, p.thickness,
+           {0, 16});
+  v.number({"follow_ink", "0: an even wash; 1: the wash only where the ink under it is, thicker where darker"},
+           p.follow_ink, kUnit);
+  v.number({"texture",
+            "how much the wash's thickness varies with a noise that follows the surface (seed 003's "
+            "texture layer)"},
+           p.texture, kUnit);
+}
+
+template <typename V>
 void describe(V& v, Object& o) {
   v.text({"name", "shown in the viewer; empty: `objects.N`"}, o.name, Text::Plain);
   v.text({"mesh", "`.obj`, `.ply`, `.off`, repaired on load like `shanshui-repair`; give `mesh` or `dem`", kRebuild},
@@ -297,6 +342,7 @@ void describe(V& v, Object& o) {
   v.group("wrinkle", o.wrinkle, Table::Own);
   v.group("border", o.border, Table::Own);
   v.group("strokes", o.strokes, Table::Own);
+  v.group("pigment", o.pigment, Table::Own);
 }
 
 template <typename V>

@@ -247,6 +247,7 @@ TEST(Scene, RebuildKeysAreTheOnesThatChangeVariantsOrFiles) {
                                           "objects.*.wrinkle.uv",
                                           "objects.*.wrinkle.mapping",
                                           "objects.*.strokes.style",  // builds the strokes pass
+                                          "objects.*.pigment.name",   // builds the pigment pass
                                           "canvas.type",
                                           "canvas.static_pattern",
                                           "canvas.method"};

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "shanshui/pigment/kubelka_munk.h"
 #include "shanshui/render/camera.h"
 #include "shanshui/render/gl_resources.h"
 #include "shanshui/render/gpu_mesh.h"
@@ -110,6 +111,9 @@ std::string inkStructure(const scene::Scene&);
 std::unique_ptr<RenderPass> makeDiffusionPass(const PassSetup&);
 std::unique_ptr<RenderPass> makeStrokesPass(const PassSetup&);
 std::string strokesStructure(const scene::Scene&);
+std::unique_ptr<RenderPass> makePigmentPass(const PassSetup&);
+//! The pigment an object's wash is made of (a palette name, or its custom pair).
+pigment::Pigment objectPigment(const scene::PigmentParams& p);
 
 std::string joined(const std::vector<std::string>& v);
 

@@ -146,6 +146,21 @@ struct BrushStrokeParams {
   bool enabled() const { return style != BrushStyle::None; }
 };
 
+//! A wash of colour over the object (seeds 000 and 003): a pigment from the landscape
+//! painter's palette (pigment/palette.h), or `custom` by its colours on white and on black,
+//! composited by Kubelka–Munk over the ink picture.
+enum class PigmentName { None, Ochre, Indigo, Azurite, Malachite, Cinnabar, Gamboge, Ink, Custom };
+
+struct PigmentParams {
+  PigmentName name = PigmentName::None;
+  glm::dvec3 on_white{0.80, 0.62, 0.42};  //!< custom: a unit layer over white
+  glm::dvec3 on_black{0.20, 0.13, 0.07};  //!< custom: a unit layer over black
+  double thickness = 0.5;                 //!< of the wash, in unit layers (seed 003: 0.5)
+  double follow_ink = 0.5;                //!< 0 an even wash, 1 only where the ink is
+  double texture = 0.3;                   //!< the wash's thickness varies by this much (seed 003's texture layer)
+  bool enabled() const { return name != PigmentName::None; }
+};
+
 //! Which model axis points up. Terrain and shanshui's own files are Z-up; most modelling
 //! tools write OBJ/PLY Y-up. Auto: Z for DEMs, Y for meshes.
 enum class UpAxis { Auto, X, Y, Z };
@@ -176,6 +191,7 @@ struct Object {
   WrinkleParams wrinkle;
   BorderParams border;
   BrushStrokeParams strokes;
+  PigmentParams pigment;
   //! The wrinkle texture is drawn (a texture, and shading on).
   bool wrinkled() const { return !wrinkle.texture.empty() && shading.enabled; }
   bool dissolvesBorder() const {
@@ -326,6 +342,7 @@ struct Scene {
   bool usesStrokes() const;             //!< some object draws its lines as strokes
   bool usesSuggestiveContours() const;  //!< some object's strokes include suggestive contours
   bool usesBrushStrokes() const;        //!< some object has objects.N.strokes.style
+  bool usesPigment() const;             //!< some object has a pigment wash
   bool usesShading() const;
   bool hasAnimation() const;
   bool dissolvesBorders() const;

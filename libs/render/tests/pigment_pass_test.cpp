@@ -1,0 +1,125 @@
+// The pigment pass (issue 25) against the Kubelka–Munk reference on the CPU: each object
+// pixel's wash over the ink picture is the reference layer on that picture; the wash follows
+// the ink and the atmosphere as its keys say; a scene without pigment builds nothing for it.
+#include <algorithm>
+#include <cmath>
+
+#include <nlohmann/json.hpp>
+
+#include "gl_test.h"
+#include "scene_in_memory.h"
+#include "shanshui/pigment/kubelka_munk.h"
+#include "shanshui/pigment/palette.h"
+#include "shanshui/render/ink_renderer.h"
+#include "test_meshes.h"
+#include "test_support.h"
+
+namespace shanshui::render {
+namespace {
+
+using nlohmann::json;
+using test::prepare;
+using test::sceneWith;
+
+class Pigment : public test::HeadlessGl {};
+
+bool contains(const std::vector<std::string>& v, const std::string& x) {
+  return std::find(v.begin(), v.end(), x) != v.end();
+}
+
+TEST_F(Pigment, PassAndVariantAreBuiltOnlyForAScenesPigments) {
+  const scene::Scene plain = sceneWith({}), washed = sceneWith({{"pigment", {{"name", "ochre"}}}});
+  InkRenderer a(plain, prepare(plain, test::uvSphere(1.0))), b(washed, prepare(washed, test::uvSphere(1.0)));
+  EXPECT_FALSE(contains(a.passesBuilt(), "pigment"));
+  EXPECT_EQ(a.variants().at("ink").front().find("PIGMENT"), std::string::npos);
+  EXPECT_TRUE(contains(b.passesBuilt(), "pigment"));
+  EXPECT_NE(b.variants().at("ink").front().find("PIGMENT"), std::string::npos);
+  FrameStats st;
+  b.render(sceneCamera(washed, b.worldBounds(), 1.0, {20, 30, 1.0}), 64, 64, &st);
+  EXPECT_TRUE(std::any_of(st.passes.begin(), st.passes.end(), [](const PassTime& p) { return p.name == "pigment"; }));
+}
+
+// Every object pixel: the reference layer, thickness × the presence the ink pass left in
+// alpha, over the ink picture; the background untouched. With the distance fade on, so the
+// presence varies across the sphere.
+TEST_F(Pigment, WashIsTheKubelkaMunkLayerOverTheInkPicture) {
+  const json object = {{"pigment",
+                        {{"name", "custom"},
+                         {"on_white", {0.85, 0.6, 0.3}},
+                         {"on_black", {0.3, 0.1, 0.05}},
+                         {"thickness", 0.8},
+                         {"follow_ink", 0.0},
+                         {"texture", 0.0}}}};
+  const scene::Scene s = sceneWith(object, {{"output", {{"fade", 0.8}}}});
+  InkRenderer r(s, prepare(s, test::uvSphere(1.0)));
+  const OrbitCamera cam = sceneCamera(s, r.worldBounds(), 1.0, {20, 30, 1.0});
+  const image::Image out = r.render(cam, 96, 96).colour(0).download(3);
+  const image::Image ink = r.passTarget("ink")->colour(0).download(4);
+  const image::Image world = r.worldPositions();
+  const pigment::Coefficients c = pigment::coefficients({{0.85, 0.6, 0.3}, {0.3, 0.1, 0.05}});
+  double worst = 0.0, change = 0.0, lowest = 1.0, highest = 0.0;
+  int objectPixels = 0;
+  for (int y = 0; y < 96; ++y)
+    for (int x = 0; x < 96; ++x) {
+      const glm::dvec3 before(ink.at(x, y, 0), ink.at(x, y, 1), ink.at(x, y, 2));
+      const glm::dvec3 after(out.at(x, y, 0), out.at(x, y, 1), out.at(x, y, 2));
+      if (world.at(x, y, 3) < 0.5) {
+        worst = std::max(worst, glm::length(after - before));
+        continue;
+      }
+      const double presence = ink.at(x, y, 3);
+      lowest = std::min(lowest, presence);
+      highest = std::max(highest, presence);
+      const glm::dvec3 expected = pigment::onSubstrate(pigment::layer(c, 0.8 * presence), before);
+      for (int i = 0; i < 3; ++i) worst = std::max(worst, std::abs(after[i] - expected[i]));
+      change += glm::length(after - before);
+      ++objectPixels;
+    }
+  ASSERT_GT(objectPixels, 1000);
+  EXPECT_LE(worst, 2.5 / 255);
+  EXPECT_GT(change / objectPixels, 0.05) << "the wash is visible";
+  EXPECT_LT(lowest, highest - 0.1) << "the fade thins the wash across the sphere";
+}
+
+// follow_ink 1: bare paper (lit slopes in a light tone ladder) keeps no wash; the ink takes it.
+TEST_F(Pigment, AWashThatFollowsTheInkLeavesBarePaperBare) {
+  const json object = {{"lines", {{"enabled", false}}},
+                       {"shading", {{"tones", {0.3, 0.5, 1.0, 1.0, 1.0}}, {"sigma", 0.0}}},
+                       {"pigment", {{"name", "indigo"}, {"thickness", 1.5}, {"follow_ink", 1.0}, {"texture", 0.0}}}};
+  const scene::Scene s = sceneWith(object, {{"output", {{"fade", 0.0}}}});
+  InkRenderer r(s, prepare(s, test::uvSphere(1.0)));
+  const image::Image out = r.render(sceneCamera(s, r.worldBounds(), 1.0, {20, 30, 1.0}), 96, 96).colour(0).download(3);
+  const image::Image ink = r.passTarget("ink")->colour(0).download(3);
+  const image::Image world = r.worldPositions();
+  const glm::dvec3 paper = s.output.paper;
+  int bare = 0, inked = 0, bareChanged = 0, inkedChanged = 0;
+  for (int y = 0; y < 96; ++y)
+    for (int x = 0; x < 96; ++x) {
+      if (world.at(x, y, 3) < 0.5) continue;
+      const glm::dvec3 before(ink.at(x, y, 0), ink.at(x, y, 1), ink.at(x, y, 2));
+      const glm::dvec3 after(out.at(x, y, 0), out.at(x, y, 1), out.at(x, y, 2));
+      const double moved = glm::length(after - before);
+      if (glm::length(before - paper) < 2.0 / 255) {
+        ++bare;
+        bareChanged += moved > 1.5 / 255;
+      } else if (before.g < 0.5 * paper.g) {
+        ++inked;
+        inkedChanged += moved > 0.02;
+      }
+    }
+  ASSERT_GT(bare, 200);
+  ASSERT_GT(inked, 200);
+  EXPECT_EQ(bareChanged, 0);
+  EXPECT_EQ(inkedChanged, inked);
+}
+
+TEST_F(Pigment, ACustomPigmentThatDoesNotDarkenOnBlackIsRefusedByKey) {
+  test::expectErrorNaming(
+      [] {
+        sceneWith({{"pigment", {{"name", "custom"}, {"on_white", {0.5, 0.5, 0.5}}, {"on_black", {0.2, 0.6, 0.2}}}}});
+      },
+      "objects.0.pigment.on_black", "channel 1");
+}
+
+}  // namespace
+}  // namespace shanshui::render
