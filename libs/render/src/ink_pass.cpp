@@ -38,7 +38,7 @@ std::vector<std::string> inkDefines(const scene::Scene& s, bool debug_outputs) {
   if (s.usesShading()) d.emplace_back("SHADING");
   if (s.usesWrinkles()) d.emplace_back("WRINKLE");
   if (grainHere(s)) d.emplace_back("CANVAS");
-  if (s.usesPigment()) d.emplace_back("PIGMENT");
+  if (s.usesPigment() || s.usesShadow()) d.emplace_back("PIGMENT");
   addSurfaceDefines(s, d);
   if (debug_outputs) d.emplace_back("DEBUG_OUTPUTS");
   return d;

@@ -18,6 +18,9 @@ bool brushStrokes(const scene::Scene& s) {
 bool pigmented(const scene::Scene& s) {
   return s.usesPigment();
 }
+bool shadowed(const scene::Scene& s) {
+  return s.usesShadow();
+}
 bool diffuses(const scene::Scene& s) {
   return s.diffusion.enabled();
 }
@@ -33,6 +36,7 @@ const std::vector<PassEntry>& passList() {
       {"ink", always, inkStructure, makeInkPass},
       {"strokes", brushStrokes, strokesStructure, makeStrokesPass},
       {"pigment", pigmented, nothing, makePigmentPass},
+      {"shadow", shadowed, nothing, makeShadowPass},
       {"diffusion", diffuses, nothing, makeDiffusionPass},
   };
   return list;

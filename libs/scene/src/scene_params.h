@@ -480,6 +480,17 @@ void describe(V& v, Mist& m) {
 }
 
 template <typename V>
+void describe(V& v, ShadowParams& sh) {
+  v.group("pigment", sh.pigment, Table::Own);
+  v.integer({"resolution", "shadow map texels per side", Effect::Uniform, "texels"}, sh.resolution, {64, 8192});
+  v.number({"softness", "radius of the filtered shadow edge", Effect::Uniform, "shadow-map texels"}, sh.softness,
+           {0, 16});
+  v.number(
+      {"bias", "depth offset that keeps lit slopes from shadowing themselves", Effect::Uniform, "shadow-map texels"},
+      sh.bias, {0, 64});
+}
+
+template <typename V>
 void describe(V& v, Output& o) {
   v.integer({"width", "`--size WxH` overrides", Effect::Uniform, "pixels"}, o.width, {1, 16384});
   v.integer({"height", "`--size WxH` overrides", Effect::Uniform, "pixels"}, o.height, {1, 16384});
@@ -502,6 +513,7 @@ void describe(V& v, Scene& s) {
   v.group("canvas", s.canvas, Table::Own);
   v.group("diffusion", s.diffusion, Table::Own);
   v.group("mist", s.mist, Table::Own);
+  v.group("shadow", s.shadow, Table::Inline);
   v.group("output", s.output, Table::Own);
 }
 

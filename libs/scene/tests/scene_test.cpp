@@ -248,6 +248,7 @@ TEST(Scene, RebuildKeysAreTheOnesThatChangeVariantsOrFiles) {
                                           "objects.*.wrinkle.mapping",
                                           "objects.*.strokes.style",  // builds the strokes pass
                                           "objects.*.pigment.name",   // builds the pigment pass
+                                          "shadow.pigment.name",      // builds the shadow pass
                                           "canvas.type",
                                           "canvas.static_pattern",
                                           "canvas.method"};

@@ -114,6 +114,10 @@ std::string strokesStructure(const scene::Scene&);
 std::unique_ptr<RenderPass> makePigmentPass(const PassSetup&);
 //! The pigment an object's wash is made of (a palette name, or its custom pair).
 pigment::Pigment objectPigment(const scene::PigmentParams& p);
+std::unique_ptr<RenderPass> makeShadowPass(const PassSetup&);
+//! The shadow map's view and projection: orthographic along the light (towards_light points
+//! at it), framing the bounds' sphere.
+glm::dmat4 lightViewProjection(const glm::dvec3& towards_light, const mesh::Bounds& world_bounds);
 
 std::string joined(const std::vector<std::string>& v);
 

@@ -309,6 +309,16 @@ struct Mist {
   bool enabled() const { return density > 0; }
 };
 
+//! Cast shadows as a wash (seed 003): a shadow map from the light, and where it shows a
+//! surface in shadow, a layer of the shadow's pigment laid by Kubelka–Munk.
+struct ShadowParams {
+  PigmentParams pigment{PigmentName::None, {0.55, 0.6, 0.7}, {0.05, 0.06, 0.09}, 0.35, 0.0, 0.0};
+  int resolution = 2048;  //!< shadow map texels per side
+  double softness = 1.5;  //!< radius of the filtered edge, shadow-map texels
+  double bias = 2.0;      //!< depth offset against self-shadowing, shadow-map texels
+  bool enabled() const { return pigment.enabled(); }
+};
+
 //! The sheet: any size, or a hanging scroll (tall, kScrollAspect wide per unit of height).
 enum class Format { Free, VerticalScroll };
 inline constexpr double kScrollAspect = 0.4;
@@ -334,6 +344,7 @@ struct Scene {
   Canvas canvas;
   Diffusion diffusion;
   Mist mist;
+  ShadowParams shadow;
   Output output;
 
   std::filesystem::path resolve(const std::string& relative) const;
@@ -343,6 +354,7 @@ struct Scene {
   bool usesSuggestiveContours() const;  //!< some object's strokes include suggestive contours
   bool usesBrushStrokes() const;        //!< some object has objects.N.strokes.style
   bool usesPigment() const;             //!< some object has a pigment wash
+  bool usesShadow() const { return shadow.enabled(); }
   bool usesShading() const;
   bool hasAnimation() const;
   bool dissolvesBorders() const;
