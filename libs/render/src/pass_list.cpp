@@ -21,6 +21,9 @@ bool pigmented(const scene::Scene& s) {
 bool shadowed(const scene::Scene& s) {
   return s.usesShadow();
 }
+bool onPaperRelief(const scene::Scene& s) {
+  return s.substrate.enabled;
+}
 bool diffuses(const scene::Scene& s) {
   return s.diffusion.enabled();
 }
@@ -38,6 +41,7 @@ const std::vector<PassEntry>& passList() {
       {"pigment", pigmented, nothing, makePigmentPass},
       {"shadow", shadowed, nothing, makeShadowPass},
       {"diffusion", diffuses, nothing, makeDiffusionPass},
+      {"substrate", onPaperRelief, nothing, makeSubstratePass},
   };
   return list;
 }

@@ -8,6 +8,7 @@
 
 #include "gl_test.h"
 #include "scene_in_memory.h"
+#include "shanshui/noise/value_noise.h"
 #include "shanshui/pigment/kubelka_munk.h"
 #include "shanshui/pigment/palette.h"
 #include "shanshui/render/ink_renderer.h"
@@ -183,6 +184,118 @@ TEST_F(Pigment, ShadowWashFallsWhereTheBoxHidesThePlaneFromTheLight) {
   EXPECT_GT(shadowed, 600) << "the box casts a shadow of some size on the plane";
   EXPECT_GT(plain, 20000);
   EXPECT_LE(wrong, shadowed / 20) << "only the filtered edge may disagree";
+}
+
+// Seed 000 on a flat wash: a square of even grey (T = 0.6) filling a 256² view from above,
+// without a canvas, so the paper's height is the 256² value-noise tile, texel for pixel.
+struct FlatWash {
+  image::Image out;
+  std::vector<double> height;  // per pixel, row 0 at the top
+  glm::dvec3 paper;
+};
+
+FlatWash flatWash(json substrate, glm::dvec3 light = {-0.5, 0.3, 0.8}) {
+  substrate["enabled"] = true;
+  const json object = {
+      {"lines", {{"enabled", false}, {"bg_color", {0.6, 0.6, 0.6}}}}, {"shading", {{"enabled", false}}}, {"up", "z"}};
+  const scene::Scene s = sceneWith(
+      object,
+      {{"output", {{"fade", 0.0}}}, {"light", {{"direction", {light.x, light.y, light.z}}}}, {"substrate", substrate}});
+  const mesh::Mesh square = mesh::heightGrid(33, 33, 1.0 / 32, [](double, double) { return 0.0; });
+  InkRenderer r(s, prepare(s, square));
+  EXPECT_TRUE(contains(r.passesBuilt(), "substrate"));
+  FlatWash w;
+  w.out = r.render(sceneCamera(s, r.worldBounds(), 1.0, {0, 90, 1.6}), 256, 256).colour(0).download(3);
+  const image::Image world = r.worldPositions();
+  for (int y = 0; y < 256; ++y)
+    for (int x = 0; x < 256; ++x) EXPECT_EQ(world.at(x, y, 3), 1.0f) << "the square fills the view";
+  // The shader's tile: value noise, seed ^ 0x9A9E5, stored in 8 bits.
+  const image::Image noise = noise::erosionNoise(256, s.seed ^ 0x9A9E5ull);
+  for (int y = 0; y < 256; ++y)
+    for (int x = 0; x < 256; ++x) w.height.push_back(std::round(noise.at(x, y, 0) * 255.0) / 255.0);
+  w.paper = s.output.paper;
+  return w;
+}
+
+double correlation(const std::vector<double>& a, const std::vector<double>& b) {
+  double ma = 0, mb = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) ma += a[i], mb += b[i];
+  ma /= a.size();
+  mb /= b.size();
+  double sab = 0, saa = 0, sbb = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    sab += (a[i] - ma) * (b[i] - mb);
+    saa += (a[i] - ma) * (a[i] - ma);
+    sbb += (b[i] - mb) * (b[i] - mb);
+  }
+  return sab / std::sqrt(std::max(saa * sbb, 1e-300));
+}
+
+using Substrate = Pigment;
+
+// Dry brush: the bare share of the wash is the share of the paper lying below the
+// application a = dry_brush · (1 − ink) (the height's own distribution is the oracle), and
+// only pixels below it go bare; a higher threshold bares more.
+TEST_F(Substrate, DryBrushBaresThePapersValleysBelowTheThreshold) {
+  const double edge = 0.02;
+  double last = -1.0;
+  for (const double dry : {0.3, 0.6, 0.9}) {
+    const FlatWash w = flatWash(
+        {{"dry_brush", dry}, {"dry_edge", edge}, {"granulation", 0.0}, {"lighting", 0.0}, {"distortion", 0.0}});
+    const double a = dry * 0.6;  // ink = 1 − luma(T) = 0.4
+    int bare = 0, below = 0, belowEdge = 0, wrong = 0;
+    for (int i = 0; i < 256 * 256; ++i) {
+      const bool isBare = std::abs(w.out.pixels[3 * i + 1] - w.paper.g) < 2.0 / 255;
+      bare += isBare;
+      below += w.height[i] < a;
+      belowEdge += w.height[i] < a - edge;
+      wrong += isBare && w.height[i] >= a;
+    }
+    SCOPED_TRACE(testing::Message() << "dry_brush " << dry);
+    EXPECT_GE(bare, belowEdge);
+    EXPECT_LE(bare, below);
+    EXPECT_EQ(wrong, 0) << "a peak went bare";
+    EXPECT_GT(bare, last);
+    last = bare;
+  }
+  EXPECT_GT(last, 256 * 256 / 20);
+}
+
+// Granulation: pigment gathers in the valleys (negative correlation with height) and the
+// wash keeps its tone on average.
+TEST_F(Substrate, GranulationGathersPigmentInTheValleysAndKeepsTheTone) {
+  const FlatWash w = flatWash({{"dry_brush", 0.0}, {"granulation", 2.0}, {"lighting", 0.0}, {"distortion", 0.0}});
+  std::vector<double> pigment;
+  double mean = 0.0;
+  for (int i = 0; i < 256 * 256; ++i) {
+    const double t = w.out.pixels[3 * i + 1] / w.paper.g;
+    pigment.push_back(1.0 - t);
+    mean += t;
+  }
+  mean /= 256 * 256;
+  EXPECT_LT(correlation(pigment, w.height), -0.9);
+  EXPECT_NEAR(mean, 0.6, 0.03);
+  const auto [lo, hi] = std::minmax_element(pigment.begin(), pigment.end());
+  EXPECT_GT(*hi - *lo, 0.1) << "the effect is visible";
+}
+
+// Substrate lighting: the relief shows, the sheet keeps its brightness, and light from the
+// mirrored side shades it the other way.
+TEST_F(Substrate, LightingRakesTheReliefFromTheLightsSide) {
+  const json only = {{"dry_brush", 0.0}, {"granulation", 0.0}, {"lighting", 0.6}, {"distortion", 0.0}};
+  const FlatWash left = flatWash(only, {-1.0, 0.0, 0.6}), right = flatWash(only, {1.0, 0.0, 0.6});
+  std::vector<double> a, b;
+  double mean = 0.0;
+  for (int i = 0; i < 256 * 256; ++i) {
+    a.push_back(left.out.pixels[3 * i + 1]);
+    b.push_back(right.out.pixels[3 * i + 1]);
+    mean += a.back();
+  }
+  mean /= 256 * 256;
+  EXPECT_NEAR(mean / (0.6 * left.paper.g), 1.0, 0.03);
+  EXPECT_LT(correlation(a, b), -0.5);
+  const auto [lo, hi] = std::minmax_element(a.begin(), a.end());
+  EXPECT_GT(*hi - *lo, 0.05);
 }
 
 }  // namespace

@@ -343,6 +343,7 @@ void describe(V& v, Object& o) {
   v.group("border", o.border, Table::Own);
   v.group("strokes", o.strokes, Table::Own);
   v.group("pigment", o.pigment, Table::Own);
+  v.group("substrate", o.substrate, Table::Inline);
 }
 
 template <typename V>
@@ -480,6 +481,36 @@ void describe(V& v, Mist& m) {
 }
 
 template <typename V>
+void describe(V& v, SubstrateParams& p) {
+  v.boolean({"enabled",
+             "the paper's relief acts on the dried paint (seed 000): dry brush, granulation, lighting, "
+             "distortion; false: no substrate pass",
+             kRebuild},
+            p.enabled);
+  v.number({"roughness", "r of Eq. 1: how deep the paper's relief is (the canvas grain, or value noise without one)"},
+           p.roughness, {0, 4});
+  v.number({"dry_brush",
+            "dry brush: light ink leaves the paper's valleys bare up to this height (times the "
+            "object's weight and how light the ink is); 0 = none"},
+           p.dry_brush, kUnit);
+  v.number({"dry_edge", "height over which the dry brush's bare valleys fade into the ink"}, p.dry_edge, {0.001, 1});
+  v.number({"granulation",
+            "D of Eq. 4: pigment settling into the paper's valleys, stronger on light washes; 0 = "
+            "none"},
+           p.granulation, {0, 16});
+  v.number({"lighting", "d_s of Eq. 5: the scene's light raking the paper's relief; 0 = none"}, p.lighting, kUnit);
+  v.number({"distortion", "the picture is pushed along the paper's slopes by up to this much", Effect::Uniform,
+            "pixels at 1024 high"},
+           p.distortion, {0, 32});
+}
+
+template <typename V>
+void describe(V& v, SubstrateWeights& w) {
+  v.number({"dry_brush", "this object's share of substrate.dry_brush"}, w.dry_brush, {0, 4});
+  v.number({"granulation", "this object's share of substrate.granulation"}, w.granulation, {0, 4});
+}
+
+template <typename V>
 void describe(V& v, ShadowParams& sh) {
   v.group("pigment", sh.pigment, Table::Own);
   v.integer({"resolution", "shadow map texels per side", Effect::Uniform, "texels"}, sh.resolution, {64, 8192});
@@ -514,6 +545,7 @@ void describe(V& v, Scene& s) {
   v.group("diffusion", s.diffusion, Table::Own);
   v.group("mist", s.mist, Table::Own);
   v.group("shadow", s.shadow, Table::Inline);
+  v.group("substrate", s.substrate, Table::Own);
   v.group("output", s.output, Table::Own);
 }
 

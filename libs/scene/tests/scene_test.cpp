@@ -249,6 +249,7 @@ TEST(Scene, RebuildKeysAreTheOnesThatChangeVariantsOrFiles) {
                                           "objects.*.strokes.style",  // builds the strokes pass
                                           "objects.*.pigment.name",   // builds the pigment pass
                                           "shadow.pigment.name",      // builds the shadow pass
+                                          "substrate.enabled",        // builds the substrate pass
                                           "canvas.type",
                                           "canvas.static_pattern",
                                           "canvas.method"};

@@ -115,6 +115,7 @@ std::unique_ptr<RenderPass> makePigmentPass(const PassSetup&);
 //! The pigment an object's wash is made of (a palette name, or its custom pair).
 pigment::Pigment objectPigment(const scene::PigmentParams& p);
 std::unique_ptr<RenderPass> makeShadowPass(const PassSetup&);
+std::unique_ptr<RenderPass> makeSubstratePass(const PassSetup&);
 //! The shadow map's view and projection: orthographic along the light (towards_light points
 //! at it), framing the bounds' sphere.
 glm::dmat4 lightViewProjection(const glm::dvec3& towards_light, const mesh::Bounds& world_bounds);

@@ -161,6 +161,12 @@ struct PigmentParams {
   bool enabled() const { return name != PigmentName::None; }
 };
 
+//! An object's share of the substrate effects (seed 000 paints them per vertex; per object here).
+struct SubstrateWeights {
+  double dry_brush = 1.0;
+  double granulation = 1.0;
+};
+
 //! Which model axis points up. Terrain and shanshui's own files are Z-up; most modelling
 //! tools write OBJ/PLY Y-up. Auto: Z for DEMs, Y for meshes.
 enum class UpAxis { Auto, X, Y, Z };
@@ -192,6 +198,7 @@ struct Object {
   BorderParams border;
   BrushStrokeParams strokes;
   PigmentParams pigment;
+  SubstrateWeights substrate;
   //! The wrinkle texture is drawn (a texture, and shading on).
   bool wrinkled() const { return !wrinkle.texture.empty() && shading.enabled; }
   bool dissolvesBorder() const {
@@ -309,6 +316,18 @@ struct Mist {
   bool enabled() const { return density > 0; }
 };
 
+//! The paper's body (seed 000): its relief (the canvas's grain, or value noise without a
+//! canvas) as a height field and normals, which the dried paint follows.
+struct SubstrateParams {
+  bool enabled = false;      //!< builds the substrate pass
+  double roughness = 1.0;    //!< r of Eq. 1: the relief's depth
+  double dry_brush = 0.3;    //!< how high the bare valleys reach where the ink is light; 0 = none
+  double dry_edge = 0.08;    //!< the dry brush's edge, in height
+  double granulation = 1.0;  //!< D of Eq. 4; 0 = none
+  double lighting = 0.25;    //!< d_s of Eq. 5: the lit relief's share of the tone; 0 = none
+  double distortion = 1.0;   //!< pixels at 1024 high the image is pushed by the paper's slopes
+};
+
 //! Cast shadows as a wash (seed 003): a shadow map from the light, and where it shows a
 //! surface in shadow, a layer of the shadow's pigment laid by Kubelka–Munk.
 struct ShadowParams {
@@ -345,6 +364,7 @@ struct Scene {
   Diffusion diffusion;
   Mist mist;
   ShadowParams shadow;
+  SubstrateParams substrate;
   Output output;
 
   std::filesystem::path resolve(const std::string& relative) const;
