@@ -15,7 +15,8 @@ uniform float u_softness;  // texels
 uniform vec4 u_s_thickness;
 uniform vec3 u_a;
 uniform vec3 u_b;
-out vec4 o_colour;
+layout(location = 0) out vec4 o_colour;
+layout(location = 1) out float o_shade;  // for the edges pass: 0 lit .. 1 in shadow
 
 // 0 lit, 1 in shadow, at a world position.
 float shadowAt(vec3 world) {
@@ -43,11 +44,13 @@ void main() {
   ivec2 p = ivec2(gl_FragCoord.xy);
   vec4 picture = texelFetch(u_picture, p, 0);
   o_colour = picture;
+  o_shade = 0.0;
   float depth = texelFetch(u_depth, p, 0).r;
   if (depth >= 1.0) return;
   vec2 ndc = (vec2(p) + 0.5) / vec2(textureSize(u_depth, 0)) * 2.0 - 1.0;
   vec4 w = u_inverse_view_projection * vec4(ndc, depth * 2.0 - 1.0, 1.0);
   float shade = shadowAt(w.xyz / w.w);
+  o_shade = shade;
   float thickness = u_s_thickness.w * shade * picture.a;
   if (thickness <= 0.0) return;
   o_colour = vec4(kmOnGround(u_s_thickness.xyz, u_a, u_b, thickness, picture.rgb), picture.a);

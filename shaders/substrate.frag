@@ -59,7 +59,10 @@ void main() {
     int id = int(round(texelFetch(u_surface_id, p, 0).a * 255.0)) - 1;
     if (id >= 0 && id < weights.length()) w = weights[id];
   }
-  vec3 t = clamp(picture.rgb / max(u_paper, vec3(1e-3)), 0.0, 1.0);
+  // The transmittance up to the paper; grain brighter than the nominal paper keeps its excess.
+  vec3 ratio = picture.rgb / max(u_paper, vec3(1e-3));
+  vec3 t = clamp(ratio, 0.0, 1.0);
+  vec3 excess = ratio - t;
   float ink = 1.0 - luma(t);
   float a = u_dry_brush * w.x * (1.0 - ink);
   t = mix(t, vec3(1.0), smoothstep(0.0, u_dry_edge, a - h));
@@ -70,5 +73,5 @@ void main() {
   t = pow(t, vec3(max(1.0 + d * (0.1 - 0.2 * h) * u_granulation, 0.0)));
   float flat_lit = 1.0 - (1.0 - max(u_light.z, 0.0)) * u_lighting;
   float lit = (1.0 - (1.0 - max(dot(u_light, n), 0.0)) * u_lighting) / max(flat_lit, 1e-3);
-  o_colour = vec4(clamp(t * u_paper * lit, 0.0, 1.0), picture.a);
+  o_colour = vec4(clamp((t + excess) * u_paper * lit, 0.0, 1.0), picture.a);
 }

@@ -24,6 +24,9 @@ bool shadowed(const scene::Scene& s) {
 bool onPaperRelief(const scene::Scene& s) {
   return s.substrate.enabled;
 }
+bool edgesDarken(const scene::Scene& s) {
+  return s.edges.enabled;
+}
 bool diffuses(const scene::Scene& s) {
   return s.diffusion.enabled();
 }
@@ -40,6 +43,7 @@ const std::vector<PassEntry>& passList() {
       {"strokes", brushStrokes, strokesStructure, makeStrokesPass},
       {"pigment", pigmented, nothing, makePigmentPass},
       {"shadow", shadowed, nothing, makeShadowPass},
+      {"edges", edgesDarken, edgesStructure, makeEdgesPass},
       {"diffusion", diffuses, nothing, makeDiffusionPass},
       {"substrate", onPaperRelief, nothing, makeSubstratePass},
   };

@@ -54,7 +54,7 @@ class ShadowPass final : public RenderPass {
     }
   }
 
-  void resize(int width, int height) override { target_ = Framebuffer(width, height, {GL_RGBA8}, false); }
+  void resize(int width, int height) override { target_ = Framebuffer(width, height, {GL_RGBA8, GL_R8}, false); }
   const Framebuffer* target() const override { return &target_; }
 
   void run(const FrameInputs& in, FrameImages& images) override {
@@ -90,6 +90,7 @@ class ShadowPass final : public RenderPass {
     glDrawArrays(GL_TRIANGLES, 0, 3);
     SHANSHUI_GL_CHECK("shadow pass");
     images.picture = &target_.colour();
+    images.shadow = &target_.colour(1);
     if (in.timer) in.timer->end();
   }
 

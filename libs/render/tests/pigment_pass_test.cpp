@@ -298,5 +298,76 @@ TEST_F(Substrate, LightingRakesTheReliefFromTheLightsSide) {
   EXPECT_GT(*hi - *lo, 0.05);
 }
 
+// Edge darkening (seed 003) on a grey square seen from above on paper: the wash darkens
+// within the blur's reach of its border and nowhere else; the paper stays as it was. With
+// wobble, the straight border wanders, by at most the wobble.
+struct Square {
+  image::Image with, without;
+  int lo = 0, hi = 0;  // the square's first and last pixel column (and row) without wobble
+};
+
+Square edgedSquare(const json& edges) {
+  const json object = {
+      {"lines", {{"enabled", false}, {"bg_color", {0.6, 0.6, 0.6}}}}, {"shading", {{"enabled", false}}}, {"up", "z"}};
+  json top = {{"output", {{"fade", 0.0}}}, {"edges", edges}};
+  top["edges"]["enabled"] = true;
+  const scene::Scene s = sceneWith(object, top), s0 = sceneWith(object, {{"output", {{"fade", 0.0}}}});
+  const mesh::Mesh square = mesh::heightGrid(33, 33, 1.0 / 32, [](double, double) { return 0.0; });
+  InkRenderer r(s, prepare(s, square)), r0(s0, prepare(s0, square));
+  EXPECT_TRUE(contains(r.passesBuilt(), "edges"));
+  EXPECT_FALSE(contains(r0.passesBuilt(), "edges"));
+  const OrbitCamera cam = sceneCamera(s, r.worldBounds(), 1.0, {0, 90, 0.6});
+  Square q;
+  q.with = r.render(cam, 256, 256).colour(0).download(3);
+  q.without = r0.render(cam, 256, 256).colour(0).download(3);
+  const image::Image world = r0.worldPositions();
+  q.lo = 256;
+  for (int x = 0; x < 256; ++x)
+    if (world.at(x, 128, 3) > 0.5) q.lo = std::min(q.lo, x), q.hi = std::max(q.hi, x);
+  return q;
+}
+
+TEST_F(Substrate, EdgeDarkeningDarkensAWashWithinReachOfItsBorderOnly) {
+  const double radius = 16.0 * 256 / 1024.0;  // px at this size
+  const Square q = edgedSquare({{"strength", 1.0}, {"radius", 16.0}, {"samples", 5}, {"wobble", 0.0}});
+  ASSERT_GT(q.hi - q.lo, 100);
+  int rim = 0, rimDarker = 0, changedFar = 0;
+  for (int y = 0; y < 256; ++y)
+    for (int x = 0; x < 256; ++x) {
+      const double d = q.without.at(x, y, 1) - q.with.at(x, y, 1);
+      const int in = std::min({x - q.lo, q.hi - x, y - q.lo, q.hi - y});  // distance inside, px
+      if (in >= 1 && in <= radius - 1.0) {
+        ++rim;
+        rimDarker += d > 0.02;
+      } else if (in > radius + 3.0 || in < -radius - 3.0) {
+        changedFar += std::abs(d) > 1.5 / 255;
+      }
+    }
+  EXPECT_GT(rim, 300);
+  EXPECT_GE(rimDarker, rim * 95 / 100);
+  EXPECT_EQ(changedFar, 0);
+}
+
+TEST_F(Substrate, WobblyEdgesWanderByAtMostTheWobble) {
+  const double wobble = 8.0 * 256 / 1024.0;
+  const Square q = edgedSquare({{"strength", 0.0}, {"wobble", 8.0}, {"wobble_scale", 24.0}});
+  // Per row, where the left border now is.
+  std::vector<double> border;
+  for (int y = q.lo + 8; y <= q.hi - 8; ++y) {
+    int x = 0;
+    while (x < 128 && std::abs(q.with.at(x, y, 1) - q.without.at(128, 128, 1)) > 0.05) ++x;
+    border.push_back(x);
+  }
+  double mean = 0, var = 0, worst = 0;
+  for (double b : border) mean += b;
+  mean /= border.size();
+  for (double b : border) {
+    var += (b - mean) * (b - mean);
+    worst = std::max(worst, std::abs(b - q.lo));
+  }
+  EXPECT_GT(std::sqrt(var / border.size()), 0.3) << "the border wanders";
+  EXPECT_LE(worst, wobble + 1.0);
+}
+
 }  // namespace
 }  // namespace shanshui::render

@@ -505,6 +505,18 @@ void describe(V& v, SubstrateParams& p) {
 }
 
 template <typename V>
+void describe(V& v, EdgeParams& e) {
+  v.boolean({"enabled", "edge darkening and wobbly edges (seed 003); false: no edges pass", kRebuild}, e.enabled);
+  v.number({"strength", "pigment at an edge is this much denser: T^(1 + strength)"}, e.strength, {0, 8});
+  v.number({"radius", "half-width of the jittered blur that finds edges", Effect::Uniform, "pixels at 1024 high"},
+           e.radius, {0.5, 64});
+  v.integer({"samples", "taps per side of that blur (seed 003: 5, i.e. 25 taps)"}, e.samples, {1, 15});
+  v.number({"wobble", "how far the edges wander", Effect::Uniform, "pixels at 1024 high"}, e.wobble, {0, 32});
+  v.number({"wobble_scale", "size of the wander's noise features", Effect::Uniform, "pixels at 1024 high"},
+           e.wobble_scale, {1, 1024});
+}
+
+template <typename V>
 void describe(V& v, SubstrateWeights& w) {
   v.number({"dry_brush", "this object's share of substrate.dry_brush"}, w.dry_brush, {0, 4});
   v.number({"granulation", "this object's share of substrate.granulation"}, w.granulation, {0, 4});
@@ -546,6 +558,7 @@ void describe(V& v, Scene& s) {
   v.group("mist", s.mist, Table::Own);
   v.group("shadow", s.shadow, Table::Inline);
   v.group("substrate", s.substrate, Table::Own);
+  v.group("edges", s.edges, Table::Own);
   v.group("output", s.output, Table::Own);
 }
 

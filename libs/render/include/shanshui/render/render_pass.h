@@ -58,6 +58,7 @@ struct FrameImages {
   const Framebuffer* static_gbuffer = nullptr;
   const Texture2D* canvas = nullptr;   //!< unit-variance paper noise (R32F)
   const Texture2D* picture = nullptr;  //!< the picture so far (RGBA8)
+  const Texture2D* shadow = nullptr;   //!< 0 lit .. 1 in shadow (R8), when the shadow pass ran
 };
 
 class RenderPass {
@@ -116,6 +117,8 @@ std::unique_ptr<RenderPass> makePigmentPass(const PassSetup&);
 pigment::Pigment objectPigment(const scene::PigmentParams& p);
 std::unique_ptr<RenderPass> makeShadowPass(const PassSetup&);
 std::unique_ptr<RenderPass> makeSubstratePass(const PassSetup&);
+std::unique_ptr<RenderPass> makeEdgesPass(const PassSetup&);
+std::string edgesStructure(const scene::Scene&);
 //! The shadow map's view and projection: orthographic along the light (towards_light points
 //! at it), framing the bounds' sphere.
 glm::dmat4 lightViewProjection(const glm::dvec3& towards_light, const mesh::Bounds& world_bounds);

@@ -328,6 +328,16 @@ struct SubstrateParams {
   double distortion = 1.0;   //!< pixels at 1024 high the image is pushed by the paper's slopes
 };
 
+//! Edge darkening and wobbly edges (seed 003 §4.2): pigment pools where a wash ends.
+struct EdgeParams {
+  bool enabled = false;      //!< builds the edges pass
+  double strength = 0.6;     //!< how much denser the pigment is at an edge
+  double radius = 6.0;       //!< of the blur that finds edges, pixels at 1024 high
+  int samples = 5;           //!< taps per side of the blur (seed 003: 5, 25 taps)
+  double wobble = 1.5;       //!< how far edges wander, pixels at 1024 high
+  double wobble_scale = 24;  //!< size of the wander's noise features, pixels at 1024 high
+};
+
 //! Cast shadows as a wash (seed 003): a shadow map from the light, and where it shows a
 //! surface in shadow, a layer of the shadow's pigment laid by Kubelka–Munk.
 struct ShadowParams {
@@ -365,6 +375,7 @@ struct Scene {
   Mist mist;
   ShadowParams shadow;
   SubstrateParams substrate;
+  EdgeParams edges;
   Output output;
 
   std::filesystem::path resolve(const std::string& relative) const;
