@@ -1,12 +1,14 @@
-// The substrate pass (issue 25; seed 000): the paper's relief — the canvas's grain when the
-// scene has a canvas, else a tile of value noise — acts on the finished picture: dry brush,
-// granulation, lighting and distortion (shaders/substrate.frag has the equations). Built
-// when substrate.enabled; last in the list, on the dried paint.
+// The substrate pass (issue 25; seed 000): the paper's relief — a scanned paper when the
+// scene names one, the canvas's grain when it has a canvas, else a tile of value noise — acts on the finished picture:
+// dry brush, granulation, lighting and distortion (shaders/substrate.frag has the equations). Built when
+// substrate.enabled; last in the list, on the dried paint.
 #include <algorithm>
 
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "shanshui/core/error.h"
+#include "shanshui/image/convert.h"
+#include "shanshui/image/image_io.h"
 #include "shanshui/noise/value_noise.h"
 #include "shanshui/render/gl_check.h"
 #include "shanshui/render/render_pass.h"
@@ -18,9 +20,18 @@ namespace {
 class SubstratePass final : public RenderPass {
  public:
   explicit SubstratePass(const PassSetup& setup)
-      : from_canvas_(setup.scene.canvas.type != scene::CanvasType::None),
+      : from_canvas_(setup.scene.substrate.texture.empty() && setup.scene.canvas.type != scene::CanvasType::None),
         vao_(VertexArray::create()),
         weights_(Buffer::create()) {
+    if (!setup.scene.substrate.texture.empty()) {
+      // A scan of paper: its grey is the height, stretched to [0, 1] so that any scan's
+      // exposure gives the same relief depth (roughness scales it).
+      image::Image grey = image::toGrey(image::loadImage(setup.scene.resolve(setup.scene.substrate.texture)));
+      const auto [lo, hi] = std::minmax_element(grey.pixels.begin(), grey.pixels.end());
+      const float low = *lo, span = std::max(*hi - *lo, 1e-6f);
+      for (float& v : grey.pixels) v = (v - low) / span;
+      height_ = Texture2D::fromImage(grey, GL_R16);
+    }
     glCreateSamplers(1, &sampler_);
     glSamplerParameteri(sampler_, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
     glSamplerParameteri(sampler_, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
@@ -44,7 +55,7 @@ class SubstratePass final : public RenderPass {
     for (const scene::Object& o : s.objects)
       w.emplace_back(static_cast<float>(o.substrate.dry_brush), static_cast<float>(o.substrate.granulation));
     glNamedBufferData(weights_.id(), static_cast<GLsizeiptr>(w.size() * sizeof(glm::vec2)), w.data(), GL_STATIC_DRAW);
-    if (!from_canvas_ && seed_ != s.seed) {
+    if (!from_canvas_ && !height_ && seed_ != s.seed) {
       noise_ = Texture2D::fromImage(noise::erosionNoise(256, s.seed ^ 0x9A9E5ull), GL_RG8);
       seed_ = s.seed;
     }
@@ -65,7 +76,7 @@ class SubstratePass final : public RenderPass {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, weights_.id());
     glBindTextureUnit(0, images.picture->id());
     glBindSampler(0, sampler_);
-    glBindTextureUnit(1, from_canvas_ ? images.canvas->id() : noise_->id());
+    glBindTextureUnit(1, from_canvas_ ? images.canvas->id() : height_ ? height_->id() : noise_->id());
     glBindTextureUnit(2, images.gbuffer->colour(1).id());
     glBindTextureUnit(3, images.gbuffer->depth().id());
     const scene::SubstrateParams& p = in.scene.substrate;
@@ -92,6 +103,7 @@ class SubstratePass final : public RenderPass {
   Buffer weights_;
   GLuint sampler_ = 0;
   std::optional<Texture2D> noise_;
+  std::optional<Texture2D> height_;  //!< from the scanned paper
   std::optional<std::uint64_t> seed_;
   Framebuffer target_;
 };

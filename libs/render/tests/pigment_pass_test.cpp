@@ -8,6 +8,7 @@
 
 #include "gl_test.h"
 #include "scene_in_memory.h"
+#include "shanshui/image/image_io.h"
 #include "shanshui/noise/value_noise.h"
 #include "shanshui/pigment/kubelka_munk.h"
 #include "shanshui/pigment/palette.h"
@@ -277,6 +278,31 @@ TEST_F(Substrate, GranulationGathersPigmentInTheValleysAndKeepsTheTone) {
   EXPECT_NEAR(mean, 0.6, 0.03);
   const auto [lo, hi] = std::minmax_element(pigment.begin(), pigment.end());
   EXPECT_GT(*hi - *lo, 0.1) << "the effect is visible";
+}
+
+// A scanned paper (substrate.texture): its grey is the height, tiled a texel a pixel. Stripes
+// four pixels wide, black then white: dry brush bares the black (low) columns only.
+TEST_F(Substrate, AScannedPaperGivesTheHeight) {
+  const test::TempDir dir;
+  image::Image stripes(8, 8, 1);
+  for (int y = 0; y < 8; ++y)
+    for (int x = 0; x < 8; ++x) stripes.at(x, y, 0) = x < 4 ? 0.2f : 0.9f;
+  image::saveImage(stripes, dir / "paper.png");
+  const FlatWash w = flatWash({{"texture", (dir / "paper.png").string()},
+                               {"dry_brush", 0.6},
+                               {"dry_edge", 0.02},
+                               {"granulation", 0.0},
+                               {"lighting", 0.0},
+                               {"distortion", 0.0}});
+  int bareLow = 0, bareHigh = 0;
+  for (int y = 0; y < 256; ++y)
+    for (int x = 0; x < 256; ++x) {
+      const bool bare = std::abs(w.out.at(x, y, 1) - w.paper.g) < 2.0 / 255;
+      (x % 8 < 4 ? bareLow : bareHigh) += bare;
+    }
+  EXPECT_EQ(bareLow, 128 * 256);
+  EXPECT_EQ(bareHigh, 0);
+  test::expectErrorNaming([&] { flatWash({{"texture", (dir / "missing.png").string()}}); }, "missing.png", "");
 }
 
 // Substrate lighting: the relief shows, the sheet keeps its brightness, and light from the

@@ -226,6 +226,7 @@ void saveScene(const Scene& s, const std::filesystem::path& path) {
     rebase(o.dem);
     rebase(o.wrinkle.texture);
   }
+  rebase(saved.substrate.texture);
   // A file name that is not UTF-8 is written with U+FFFD in its place rather than failing.
   const std::string text = toJson(saved).dump(2, ' ', false, json::error_handler_t::replace) + "\n";
   writeFileAtomically(path, text);

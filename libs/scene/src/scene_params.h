@@ -487,8 +487,12 @@ void describe(V& v, SubstrateParams& p) {
              "distortion; false: no substrate pass",
              kRebuild},
             p.enabled);
-  v.number({"roughness", "r of Eq. 1: how deep the paper's relief is (the canvas grain, or value noise without one)"},
-           p.roughness, {0, 4});
+  v.text({"texture",
+          "a scanned paper whose grey is its height, tiled a texel a pixel; empty: the canvas's grain "
+          "(value noise without a canvas)",
+          kRebuild},
+         p.texture, Text::File);
+  v.number({"roughness", "r of Eq. 1: how deep the paper's relief is"}, p.roughness, {0, 4});
   v.number({"dry_brush",
             "dry brush: light ink leaves the paper's valleys bare up to this height (times the "
             "object's weight and how light the ink is); 0 = none"},

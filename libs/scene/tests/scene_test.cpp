@@ -250,6 +250,7 @@ TEST(Scene, RebuildKeysAreTheOnesThatChangeVariantsOrFiles) {
                                           "objects.*.pigment.name",   // builds the pigment pass
                                           "shadow.pigment.name",      // builds the shadow pass
                                           "substrate.enabled",        // builds the substrate pass
+                                          "substrate.texture",        // a file
                                           "edges.enabled",            // builds the edges pass
                                           "canvas.type",
                                           "canvas.static_pattern",

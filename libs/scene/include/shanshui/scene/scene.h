@@ -316,10 +316,11 @@ struct Mist {
   bool enabled() const { return density > 0; }
 };
 
-//! The paper's body (seed 000): its relief (the canvas's grain, or value noise without a
-//! canvas) as a height field and normals, which the dried paint follows.
+//! The paper's body (seed 000): its relief (a scanned paper, the canvas's grain, or value
+//! noise without either) as a height field and normals, which the dried paint follows.
 struct SubstrateParams {
   bool enabled = false;      //!< builds the substrate pass
+  std::string texture;       //!< a scanned paper (grey = height), a texel a pixel; empty: the canvas
   double roughness = 1.0;    //!< r of Eq. 1: the relief's depth
   double dry_brush = 0.3;    //!< how high the bare valleys reach where the ink is light; 0 = none
   double dry_edge = 0.08;    //!< the dry brush's edge, in height
