@@ -45,6 +45,9 @@ const std::vector<StageDef> kStages = {
     {"strokes",
      {"bench_strokes_tradeoff"},
      "brush strokes: spline sampling against a silhouette of known radius; linking against the known chain count"},
+    {"paper",
+     {"bench_paper_tradeoff"},
+     "paper and pigment: edge darkening's taps against 15 x 15; shadow map resolution against an analytic shadow"},
     {"noise", {"bench_canvas_tradeoff"}, "paper canvas: N′ against the analytic Gabor spectrum; temporal coherence"},
     {"pipeline", {"bench_pipeline_tradeoff"}, "the whole frame at quality presets against a high-quality reference"},
 };

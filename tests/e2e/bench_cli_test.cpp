@@ -76,7 +76,8 @@ TEST(BenchCli, QuickStagesWriteTablesPointsAndPlots) {
                            test::quote(dir.path()));
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const std::string index = readText(dir / "README.md");
-  const char* programs[] = {"quilt", "param", "curvature", "ink", "diffusion", "strokes", "canvas", "pipeline"};
+  const char* programs[] = {"quilt",   "param", "curvature", "ink",     "diffusion",
+                            "strokes", "paper", "canvas",    "pipeline"};
   for (const char* program : programs) {
     EXPECT_NE(index.find(std::string("| bench_") + program + "_tradeoff |"), std::string::npos) << program;
   }
@@ -109,8 +110,8 @@ TEST(BenchCli, QuickStagesWriteTablesPointsAndPlots) {
   }
   // quilt 2, param 2 (the developable ridge, the charts of a cube), curvature 4 (object space, per pixel, the CDF, the
   // wrinkle filter), diffusion 2, canvas 4 (N′: spectrum and Gaussianity; tiles: spectrum and warping against patch),
-  // strokes 2 (spline sampling, linking), pipeline 1; and the pictures.
-  EXPECT_EQ(plots, 17) << index;
+  // strokes 2 (spline sampling, linking), paper 2 (edge taps, shadow map), pipeline 1; and the pictures.
+  EXPECT_EQ(plots, 19) << index;
   EXPECT_GE(colours(image::loadImage(dir / "canvas_dolly.png")), 3u);
   EXPECT_TRUE(fs::exists(dir / "pipeline_presets.png"));
 

@@ -3,6 +3,8 @@
 // surface is hidden from the light (shaders/shadow_wash.frag). The map is drawn again only
 // when the light, the objects' poses or its size change. Built only when shadow.pigment
 // names a pigment.
+#include <sstream>
+
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "shanshui/core/error.h"
@@ -62,9 +64,11 @@ class ShadowPass final : public RenderPass {
     if (in.timer) in.timer->begin("shadow");
     const glm::dmat4 light = lightViewProjection(in.scene.light.direction, in.world_bounds);
     // The map depends on the light and the objects' poses, not on the camera.
-    const std::string key =
-        std::to_string(in.scene.light.direction.x) + "," + std::to_string(in.scene.light.direction.y) + "," +
-        std::to_string(in.scene.light.direction.z) + (in.scene.hasAnimation() ? "|t=" + std::to_string(in.time) : "");
+    std::ostringstream k;
+    k.precision(17);
+    k << in.scene.light.direction.x << "," << in.scene.light.direction.y << "," << in.scene.light.direction.z;
+    if (in.scene.hasAnimation()) k << "|t=" << in.time;
+    const std::string key = k.str();
     if (key != map_key_) {
       drawMap(in, light);
       map_key_ = key;

@@ -514,7 +514,10 @@ void describe(V& v, EdgeParams& e) {
   v.number({"strength", "pigment at an edge is this much denser: T^(1 + strength)"}, e.strength, {0, 8});
   v.number({"radius", "half-width of the jittered blur that finds edges", Effect::Uniform, "pixels at 1024 high"},
            e.radius, {0.5, 64});
-  v.integer({"samples", "taps per side of that blur (seed 003: 5, i.e. 25 taps)"}, e.samples, {1, 15});
+  v.integer({"samples",
+             "taps per side of that blur (seed 003: 5, i.e. 25 taps; 3 costs half for 0.1 levels more "
+             "error, docs/bench/paper_tradeoff.md)"},
+            e.samples, {1, 15});
   v.number({"wobble", "how far the edges wander", Effect::Uniform, "pixels at 1024 high"}, e.wobble, {0, 32});
   v.number({"wobble_scale", "size of the wander's noise features", Effect::Uniform, "pixels at 1024 high"},
            e.wobble_scale, {1, 1024});
