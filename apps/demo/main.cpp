@@ -257,6 +257,23 @@ int main(int argc, char** argv) {
       results.push_back(runner.run(st));
       stages.push_back(st);
     }
+    // Seeds 000 and 003: a light-colour wash, painted shadows, pooled edges, the paper's relief.
+    {
+      const fs::path scene = s / "scenes/light_colour.json";
+      if (!fs::exists(scene)) throw shanshui::makeError(scene.string(), ": not found");
+      Stage st{"light_colour",
+               "shanshui-render",
+               {scene.string(), "-o", (o / "light_colour.png").string(), "--stats",
+                (o / "light_colour_stats.json").string()},
+               {scene, s / "terrain/mount_st_helens.dem", s / "textures/rain_strokes_wrinkle.png"},
+               {o / "light_colour.png", o / "light_colour_stats.json"}};
+      if (quick) {
+        st.args.insert(st.args.end(), {"--set", "output.height=120", "--set", "output.width=160", "--set",
+                                       "objects.0.max_vertices=4000"});
+      }
+      results.push_back(runner.run(st));
+      stages.push_back(st);
+    }
     if (!reference.empty()) {
       fs::copy_file(reference, assets / ("reference" + fs::path(reference).extension().string()),
                     fs::copy_options::overwrite_existing);
@@ -354,13 +371,17 @@ int main(int argc, char** argv) {
     md << "\n\nThe level distance with seed 002's brush strokes along its silhouettes and creases "
           "(`objects.N.strokes.style: liuye`, willow leaf: thin, thick, thin):\n\n"
           "![level strokes](level_strokes.png)";
+    md << "\n\nThe deep distance in light colour (seeds 000 and 003, `samples/scenes/light_colour.json`): an ochre "
+          "wash laid by Kubelka-Munk over the ink, indigo cast shadows from a shadow map, pigment pooled at the "
+          "edges of the washes, and the paper's relief under the dried paint:\n\n"
+          "![light colour](light_colour.png)";
     md << "\n\nWhat a painter would look at, measured (`look` in `shanshui-render --stats`; docs/render.md): "
           "share of paper-tone pixels, share and mean width of the dark marks, ink of the far third of the "
           "land over the near third, longest straight edge over the width.\n\n"
        << "| picture | paper share | dark share | dark width px | far / near ink | longest straight |\n"
        << "|---|---|---|---|---|---|\n";
     for (const std::string& name : {std::string("mountain"), std::string("high"), std::string("deep"),
-                                    std::string("level"), std::string("level_strokes")}) {
+                                    std::string("level"), std::string("level_strokes"), std::string("light_colour")}) {
       const fs::path f = o / (name + "_stats.json");
       const json st = fs::exists(f) ? json::parse(readFile(f), nullptr, false) : json();
       md << "| " << name;

@@ -396,7 +396,7 @@ TEST(Cli, DemoRunsTheChainThenReusesWhatIsUpToDate) {
   const std::filesystem::path samples = dir / "samples", out = dir / "out";
   for (const char* f : {"textures/rain_strokes_scan.png", "textures/rain_strokes_wrinkle.png",
                         "terrain/mount_st_helens.dem", "scenes/default.json", "scenes/high_distance.json",
-                        "scenes/deep_distance.json", "scenes/level_distance.json"}) {
+                        "scenes/deep_distance.json", "scenes/level_distance.json", "scenes/light_colour.json"}) {
     std::filesystem::create_directories((samples / f).parent_path());
     std::filesystem::copy_file(test::sourceDir() / "samples" / f, samples / f);
   }
@@ -409,7 +409,7 @@ TEST(Cli, DemoRunsTheChainThenReusesWhatIsUpToDate) {
       {"enhance", "running"},       {"quilt", "running"},         {"terrain", "running"},
       {"param", "running"},         {"still", "running"},         {"orbit", "running"},
       {"high_distance", "running"}, {"deep_distance", "running"}, {"level_distance", "running"},
-      {"level_strokes", "running"}, {"stability", "running"}};
+      {"level_strokes", "running"}, {"light_colour", "running"},  {"stability", "running"}};
   EXPECT_EQ(demoStages(r.output), all_ran);
   for (const char* f : {"report.md", "mountain.png", "orbit_0000.png", "orbit_0001.png", "assets/wrinkle.png",
                         "assets/st_helens_uv.obj", "assets/checker.png", "assets/scan.png"}) {
@@ -421,6 +421,8 @@ TEST(Cli, DemoRunsTheChainThenReusesWhatIsUpToDate) {
   EXPECT_NE(report.find("| deep | 0."), std::string::npos) << "the look statistics of each picture";
   EXPECT_NE(report.find("![level strokes](level_strokes.png)"), std::string::npos);
   EXPECT_NE(report.find("| level_strokes | 0."), std::string::npos);
+  EXPECT_NE(report.find("![light colour](light_colour.png)"), std::string::npos);
+  EXPECT_NE(report.find("| light_colour | 0."), std::string::npos);
   EXPECT_NE(report.find("L2 stretch"), std::string::npos);
   EXPECT_EQ(report.find(dir.path().string()), std::string::npos) << "the report's links are relative";
   // The stability table of this run (its fast cases with --quick), on a fresh machine too.
@@ -448,6 +450,7 @@ TEST(Cli, DemoRunsTheChainThenReusesWhatIsUpToDate) {
                                                                       {"deep_distance", "reused"},
                                                                       {"level_distance", "reused"},
                                                                       {"level_strokes", "reused"},
+                                                                      {"light_colour", "reused"},
                                                                       {"stability", "reused"}}));
 
   // A reference picture goes beside the paintings; a missing one is named before any work.
