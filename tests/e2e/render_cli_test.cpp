@@ -68,6 +68,24 @@ TEST(RenderCli, StatsListThePassesBuiltAndTheirGpuTimePerFrame) {
   EXPECT_NE(image::loadImage(dir / "f_0000.png").pixels, image::loadImage(dir / "f_0002.png").pixels);
 }
 
+// The light-colour sample builds and runs the paper-and-pigment passes (the default sample,
+// above, builds none of them), each with the variant its inputs need.
+TEST(RenderCli, TheLightColourSampleRunsThePigmentShadowEdgesAndSubstratePasses) {
+  test::TempDir dir;
+  const auto r = run(bin("shanshui-render") + " " + quote(test::sourceDir() / "samples/scenes/light_colour.json") +
+                     " -o " + quote(dir / "f.png") + " --size 160x120 --stats " + quote(dir / "s.json") +
+                     " --set objects.0.max_vertices=5000");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const json s = readJson(dir / "s.json");
+  EXPECT_EQ(s["passes_built"], json({"gbuffer", "canvas", "ink", "pigment", "shadow", "edges", "substrate"}));
+  EXPECT_NE(s["variants"]["ink"][0].get<std::string>().find("PIGMENT"), std::string::npos);
+  EXPECT_EQ(s["variants"]["edges"], json({"SHADOW"}));
+  EXPECT_EQ(s["variants"]["substrate"], json({"CANVAS"}));
+  ASSERT_EQ(s["frames"].size(), 1u);
+  EXPECT_EQ(passNames(s["frames"][0]),
+            std::set<std::string>({"gbuffer", "canvas", "lines", "ink", "pigment", "shadow", "edges", "substrate"}));
+}
+
 TEST(RenderCli, ASceneWithoutWrinklesCanvasOrDiffusionRunsNoneOfThem) {
   test::TempDir dir;
   const auto r =
