@@ -333,12 +333,34 @@ TEST(Stability, RendererOnStiffScenesAndParameters) {
       {"diffusion absorb 1000, residual 0",
        "diffusion.iterations=10 --set diffusion.absorb=1000 --set diffusion.residual=0"},
       {"diffusion with the canvas's absorbency at 0", "diffusion.iterations=5 --set canvas.absorbency=0"},
+      {"pigment 16 layers thick, following the ink, texture 1",
+       "objects.0.pigment.name='\"ochre\"' --set objects.0.pigment.thickness=16 --set objects.0.pigment.follow_ink=1 "
+       "--set objects.0.pigment.texture=1"},
+      {"custom pigment at the limits (on white 0.999, on black 1e-6)",
+       "objects.0.pigment.name='\"custom\"' --set objects.0.pigment.on_white=[0.999,0.999,0.999] --set "
+       "objects.0.pigment.on_black=[1e-6,1e-6,0.998]"},
+      {"shadow map 8192, softness 16, bias 0",
+       "shadow.pigment.name='\"ink\"' --set shadow.resolution=8192 --set shadow.softness=16 --set shadow.bias=0"},
+      {"shadow map 64, light straight up",
+       "shadow.pigment.name='\"indigo\"' --set shadow.resolution=64 --set "
+       "light.direction=[0,0,1]"},
+      {"edges 15 x 15 taps, radius 64, wobble 32",
+       "edges.enabled=true --set edges.samples=15 --set edges.radius=64 --set edges.wobble=32 --set edges.strength=8"},
+      {"substrate at every maximum",
+       "substrate.enabled=true --set substrate.roughness=4 --set "
+       "substrate.granulation=16 --set substrate.dry_brush=1 --set substrate.lighting=1 "
+       "--set substrate.distortion=32 --set substrate.dry_edge=0.001"},
+      {"substrate without a canvas (value noise)", "substrate.enabled=true --set canvas.type=none"},
   };
   for (const Set& s : sets) {
     runCase("render", s.name, r + quote(dem) + small + " --set " + s.sets, out, "", imageIsFinite(64, 48));
   }
   runCase("render", "curve factor -1", r + quote(dem) + small + " --set objects.0.lines.curve_factor=-1", out,
           "curve_factor", imageIsFinite(64, 48));
+  runCase("render", "custom pigment darker on white than on black",
+          r + quote(dem) + small +
+              " --set objects.0.pigment.name='\"custom\"' --set objects.0.pigment.on_black=[0.9,0.1,0.1]",
+          out, "objects.0.pigment.on_black", imageIsFinite(64, 48));
   runCase("render", "canvas impulses NaN", r + quote(dem) + small + " --set canvas.impulses=nan", out,
           "canvas.impulses", imageIsFinite(64, 48));
 }
