@@ -51,10 +51,13 @@ class SubstratePass final : public RenderPass {
   std::vector<std::string> variants() const override { return {from_canvas_ ? "CANVAS" : ""}; }
 
   void setScene(const scene::Scene& s) override {
-    std::vector<glm::vec2> w;
-    for (const scene::Object& o : s.objects)
-      w.emplace_back(static_cast<float>(o.substrate.dry_brush), static_cast<float>(o.substrate.granulation));
-    glNamedBufferData(weights_.id(), static_cast<GLsizeiptr>(w.size() * sizeof(glm::vec2)), w.data(), GL_STATIC_DRAW);
+    std::vector<glm::vec4> w;
+    for (const scene::Object& o : s.objects) {
+      const scene::SubstrateWeights& k = o.substrate;
+      w.emplace_back(static_cast<float>(k.dry_brush), static_cast<float>(k.granulation), static_cast<float>(k.lighting),
+                     static_cast<float>(k.distortion));
+    }
+    glNamedBufferData(weights_.id(), static_cast<GLsizeiptr>(w.size() * sizeof(glm::vec4)), w.data(), GL_STATIC_DRAW);
     if (!from_canvas_ && !height_ && seed_ != s.seed) {
       noise_ = Texture2D::fromImage(noise::erosionNoise(256, s.seed ^ 0x9A9E5ull), GL_RG8);
       seed_ = s.seed;

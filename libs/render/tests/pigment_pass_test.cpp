@@ -195,10 +195,11 @@ struct FlatWash {
   glm::dvec3 paper;
 };
 
-FlatWash flatWash(json substrate, glm::dvec3 light = {-0.5, 0.3, 0.8}) {
+FlatWash flatWash(json substrate, glm::dvec3 light = {-0.5, 0.3, 0.8}, const json& weights = json::object()) {
   substrate["enabled"] = true;
-  const json object = {
+  json object = {
       {"lines", {{"enabled", false}, {"bg_color", {0.6, 0.6, 0.6}}}}, {"shading", {{"enabled", false}}}, {"up", "z"}};
+  if (!weights.empty()) object["substrate"] = weights;
   const scene::Scene s = sceneWith(
       object,
       {{"output", {{"fade", 0.0}}}, {"light", {{"direction", {light.x, light.y, light.z}}}}, {"substrate", substrate}});
@@ -278,6 +279,21 @@ TEST_F(Substrate, GranulationGathersPigmentInTheValleysAndKeepsTheTone) {
   EXPECT_NEAR(mean, 0.6, 0.03);
   const auto [lo, hi] = std::minmax_element(pigment.begin(), pigment.end());
   EXPECT_GT(*hi - *lo, 0.1) << "the effect is visible";
+}
+
+// Each effect is weighted per object: a weight of 0 draws the object as if the effect were off
+// (distortion moves nothing on an even wash, so it is not among them).
+TEST_F(Substrate, AnObjectsWeightOfZeroTurnsItsEffectOff) {
+  const json none = {{"dry_brush", 0.0}, {"granulation", 0.0}, {"lighting", 0.0}, {"distortion", 0.0}};
+  const FlatWash off = flatWash(none);
+  for (const char* effect : {"dry_brush", "granulation", "lighting"}) {
+    SCOPED_TRACE(effect);
+    json on = none;
+    on[effect] = 0.8;
+    const FlatWash full = flatWash(on), weighted = flatWash(on, {-0.5, 0.3, 0.8}, {{effect, 0.0}});
+    EXPECT_NE(full.out.pixels, off.out.pixels) << "the effect shows at weight 1";
+    EXPECT_EQ(weighted.out.pixels, off.out.pixels);
+  }
 }
 
 // A scanned paper (substrate.texture): its grey is the height, tiled a texel a pixel. Stripes

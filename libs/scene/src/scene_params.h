@@ -527,6 +527,9 @@ template <typename V>
 void describe(V& v, SubstrateWeights& w) {
   v.number({"dry_brush", "this object's share of substrate.dry_brush"}, w.dry_brush, {0, 4});
   v.number({"granulation", "this object's share of substrate.granulation"}, w.granulation, {0, 4});
+  v.number({"lighting", "this object's share of substrate.lighting (the bare paper takes 1)"}, w.lighting, {0, 4});
+  v.number({"distortion", "this object's share of substrate.distortion (the bare paper takes 1)"}, w.distortion,
+           {0, 4});
 }
 
 template <typename V>

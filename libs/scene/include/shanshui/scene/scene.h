@@ -165,6 +165,8 @@ struct PigmentParams {
 struct SubstrateWeights {
   double dry_brush = 1.0;
   double granulation = 1.0;
+  double lighting = 1.0;
+  double distortion = 1.0;
 };
 
 //! Which model axis points up. Terrain and shanshui's own files are Z-up; most modelling
