@@ -96,6 +96,14 @@ uniform float u_object_id;     // (index + 1) / 255
 
 layout(location = 0) out vec4 o_normal_curvature;  // RGBA16: n / 2 + 1/2, k / (1 + k)
 layout(location = 1) out vec4 o_surface_id;  // erosion noise, added noise, wrinkle luma, id
+#ifdef VELOCITY
+// Seed 004's velocity buffer: how far this point moved on screen since the previous frame,
+// in pixels; alpha 1 marks a surface (the target is cleared to 0).
+in vec4 v_clip;
+in vec4 v_previous_clip;
+uniform vec2 u_viewport;
+layout(location = 2) out vec4 o_velocity;
+#endif
 
 void main() {
   vec3 n = normalize(v_normal);
@@ -123,4 +131,8 @@ void main() {
   wrinkle = texture(u_wrinkle, v_uv * u_repeat).r;
 #endif
   o_surface_id = vec4(noise, wrinkle, u_object_id);
+#ifdef VELOCITY
+  vec2 now = v_clip.xy / v_clip.w, before = v_previous_clip.xy / v_previous_clip.w;
+  o_velocity = vec4((now - before) * 0.5 * u_viewport, 0.0, 1.0);
+#endif
 }

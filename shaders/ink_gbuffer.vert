@@ -2,7 +2,7 @@
 // G-buffer pass. Only what the variant needs is interpolated (llvmpipe pays per varying):
 // normal always; erosion-noise coordinates (SURFACE), UVs (WRINKLE), per-vertex curvature
 // (OBJECT_CURVATURE), world position for screen-space derivatives (SCREEN_CURVATURE,
-// WRINKLE_SLOPE).
+// WRINKLE_SLOPE); clip positions now and a frame ago (VELOCITY).
 layout(location = 0) in vec3 a_position;
 layout(location = 1) in vec3 a_normal;
 #ifdef WRINKLE
@@ -21,6 +21,11 @@ uniform float u_noise_frequency;  // noise texture repetitions per model unit
 out vec2 v_noise_uv;
 #endif
 
+#ifdef VELOCITY
+uniform mat4 u_previous_model_view_projection;  // the previous frame's pose and camera
+out vec4 v_clip;
+out vec4 v_previous_clip;
+#endif
 uniform mat4 u_model;
 uniform mat3 u_normal_matrix;
 uniform mat4 u_view_projection;
@@ -43,4 +48,8 @@ void main() {
   v_noise_uv = a_position.xy * u_noise_frequency;  // fixed to the model: moves with it
 #endif
   gl_Position = u_view_projection * world;
+#ifdef VELOCITY
+  v_clip = gl_Position;
+  v_previous_clip = u_previous_model_view_projection * vec4(a_position, 1.0);
+#endif
 }

@@ -148,7 +148,10 @@ int main(int argc, char** argv) {
     for (int i = 0; i < frames; ++i) {
       render::FrameStats fs;
       const double time = i / fps;
-      const image::Image img = renderer.renderImage(render::frameKey(sc, i, frames, orbit), &fs, time);
+      // Motion blur's velocities: the camera where it was one blur interval earlier.
+      const scene::CameraKey previous = render::frameKey(sc, i - sc.motion_blur.interval * fps, frames, orbit);
+      const image::Image img = renderer.renderImage(render::frameKey(sc, i, frames, orbit), &fs, time,
+                                                    sc.motion_blur.enabled && frames > 1 ? &previous : nullptr);
       const std::filesystem::path path = framePath(output, i, frames);
       outputs.stage(path, image::encodeImage(img, path, image::PixelDepth::UInt8, {.smallest = smallest}));
       nlohmann::json f = {

@@ -23,13 +23,16 @@ std::vector<std::string> objectDefines(const scene::Scene& s, const scene::Objec
   if (o.wrinkled()) d.emplace_back("WRINKLE");
   if (o.wrinkled() && o.wrinkle.mapping == scene::WrinkleMapping::Slope) d.emplace_back("WRINKLE_SLOPE");
   if (o.lines.enabled) d.emplace_back(scene::perVertex(o.lines.curvature) ? "OBJECT_CURVATURE" : "SCREEN_CURVATURE");
+  if (s.motion_blur.enabled) d.emplace_back("VELOCITY");
   return d;
 }
 
 class GbufferPass final : public RenderPass {
  public:
   explicit GbufferPass(const PassSetup& setup)
-      : shading_(setup.scene.usesShading()), animated_(setup.scene.hasAnimation()) {
+      : shading_(setup.scene.usesShading()),
+        animated_(setup.scene.hasAnimation()),
+        velocity_(setup.scene.motion_blur.enabled) {
     for (const scene::Object& o : setup.scene.objects) {
       const std::vector<std::string> defines = objectDefines(setup.scene, o);
       const auto it =
@@ -68,8 +71,11 @@ class GbufferPass final : public RenderPass {
     // Normal and curvature in 16-bit unsigned normalised channels (encoded in
     // shaders/ink_gbuffer.frag): llvmpipe converts to half floats in software, and an
     // RGBA16F target cost ~10 ms more a frame at 1024² (measured side by side).
-    gbuffer_ = Framebuffer(width, height, {GL_RGBA16, GL_RGBA8}, true);
-    if (animated_) static_gbuffer_ = Framebuffer(width, height, {GL_RGBA16, GL_RGBA8}, true);
+    // Motion blur adds the velocity (pixels per interval, and 1 where a surface is).
+    std::vector<GLenum> formats{GL_RGBA16, GL_RGBA8};
+    if (velocity_) formats.push_back(GL_RGBA16F);
+    gbuffer_ = Framebuffer(width, height, formats, true);
+    if (animated_) static_gbuffer_ = Framebuffer(width, height, formats, true);
     static_key_.clear();
   }
 
@@ -86,7 +92,7 @@ class GbufferPass final : public RenderPass {
         static_key_ = in.static_key;
       }
       if (in.timer) in.timer->begin("gbuffer_animated");
-      for (int i = 0; i < 2; ++i) copy(static_gbuffer_.colour(i), gbuffer_.colour(i), in);
+      for (int i = 0; i < (velocity_ ? 3 : 2); ++i) copy(static_gbuffer_.colour(i), gbuffer_.colour(i), in);
       copy(static_gbuffer_.depth(), gbuffer_.depth(), in);
       draw(in, gbuffer_, false, Which::Animated);
       if (in.timer) in.timer->end();
@@ -117,6 +123,10 @@ class GbufferPass final : public RenderPass {
       // (depth below 1), so clearing them would be wasted bandwidth.
       const float far_depth = 1.0f;
       glClearNamedFramebufferfv(target.id(), GL_DEPTH, 0, &far_depth);
+      if (velocity_) {  // the blur reads it everywhere: alpha 0 is "no surface"
+        const float none[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+        glClearNamedFramebufferfv(target.id(), GL_COLOR, 2, none);
+      }
     }
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
@@ -134,6 +144,11 @@ class GbufferPass final : public RenderPass {
       p.set("u_normal_matrix", glm::mat3(glm::transpose(glm::inverse(glm::dmat3(model)))));
       p.set("u_view_projection", view_projection);
       p.set("u_object_id", static_cast<float>(i + 1) / 255.0f);
+      if (velocity_) {
+        p.set("u_previous_model_view_projection",
+              glm::mat4(in.previousViewProjection() * in.modelAt(i, in.time - in.scene.motion_blur.interval)));
+        p.set("u_viewport", glm::vec2(in.width, in.height));
+      }
       if (o.lines.enabled && o.lines.curvature == scene::CurvatureSource::Screen) {
         p.set("u_feature_size", static_cast<float>(g.feature_size));
       }
@@ -159,7 +174,7 @@ class GbufferPass final : public RenderPass {
     }
   }
 
-  bool shading_, animated_;
+  bool shading_, animated_, velocity_;
   std::vector<Variant> programs_;
   std::vector<int> program_of_;  //!< per object, index into programs_
   std::optional<Texture2D> noise_;

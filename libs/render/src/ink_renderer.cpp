@@ -86,14 +86,15 @@ OrbitCamera sceneCamera(const scene::Scene& s, const mesh::Bounds& world_bounds,
   return cam;
 }
 
-scene::CameraKey frameKey(const scene::Scene& s, int index, int count, double orbit_deg) {
+scene::CameraKey frameKey(const scene::Scene& s, double index, int count, double orbit_deg) {
   const scene::Camera& c = s.camera;
   scene::CameraKey key{c.azimuth_deg, c.elevation_deg, c.zoom};
   if (count <= 1) return key;
   if (!c.path.empty()) {
     if (c.path.size() == 1) return c.path[0];
-    const double x = static_cast<double>(index) / (count - 1) * static_cast<double>(c.path.size() - 1);
-    const std::size_t i = std::min(static_cast<std::size_t>(x), c.path.size() - 2);
+    // Between frames (motion blur's previous pose) too; before the first, along the first leg.
+    const double x = index / (count - 1) * static_cast<double>(c.path.size() - 1);
+    const std::size_t i = x <= 0.0 ? 0 : std::min(static_cast<std::size_t>(x), c.path.size() - 2);
     const double t = x - static_cast<double>(i);
     const scene::CameraKey &a = c.path[i], &b = c.path[i + 1];
     return {a.azimuth_deg + t * (b.azimuth_deg - a.azimuth_deg),
@@ -250,7 +251,7 @@ std::string InkRenderer::requestKey(const OrbitCamera& c, int width, int height)
 }
 
 const Framebuffer& InkRenderer::render(const OrbitCamera& camera, int width, int height, FrameStats* stats, bool timing,
-                                       double time) {
+                                       double time, const OrbitCamera* previous_camera) {
   const auto start = std::chrono::steady_clock::now();
   if (width != width_ || height != height_) {
     for (Built& b : passes_) b.pass->resize(width, height);
@@ -258,7 +259,10 @@ const Framebuffer& InkRenderer::render(const OrbitCamera& camera, int width, int
     height_ = height;
     last_key_.clear();
   }
-  const std::string static_key = requestKey(camera, width, height);
+  std::string static_key = requestKey(camera, width, height);
+  // With motion blur the velocities depend on where the camera was a frame ago too.
+  if (scene_.motion_blur.enabled && previous_camera)
+    static_key += "|from " + requestKey(*previous_camera, width, height);
   std::string key = static_key;
   if (scene_.hasAnimation()) key += "|t=" + std::to_string(time);
   if (key == last_key_) {
@@ -267,8 +271,16 @@ const Framebuffer& InkRenderer::render(const OrbitCamera& camera, int width, int
           true, std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count(), {}};
     return *last_output_;
   }
-  const FrameInputs in{
-      scene_, objects_, world_bounds_, camera, width, height, time, static_key, timing ? &timer_ : nullptr};
+  const FrameInputs in{scene_,
+                       objects_,
+                       world_bounds_,
+                       camera,
+                       width,
+                       height,
+                       time,
+                       static_key,
+                       timing ? &timer_ : nullptr,
+                       scene_.motion_blur.enabled ? previous_camera : nullptr};
   FrameImages images;
   for (Built& b : passes_) {
     const Texture2D* before = images.picture;
@@ -316,10 +328,13 @@ image::Image InkRenderer::normalsAndCurvature() const {
   return out;
 }
 
-image::Image InkRenderer::renderImage(const scene::CameraKey& key, FrameStats* stats, double time) {
+image::Image InkRenderer::renderImage(const scene::CameraKey& key, FrameStats* stats, double time,
+                                      const scene::CameraKey* previous_key) {
   const int w = scene_.output.pixelWidth(), h = scene_.output.pixelHeight();
   const OrbitCamera cam = camera(key, static_cast<double>(w) / h);
-  const Framebuffer& fb = render(cam, w, h, stats, true, time);
+  std::optional<OrbitCamera> previous;
+  if (previous_key) previous = camera(*previous_key, static_cast<double>(w) / h);
+  const Framebuffer& fb = render(cam, w, h, stats, true, time, previous ? &*previous : nullptr);
   return fb.colour(0).download(3);
 }
 

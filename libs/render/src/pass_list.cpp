@@ -27,6 +27,9 @@ bool onPaperRelief(const scene::Scene& s) {
 bool edgesDarken(const scene::Scene& s) {
   return s.edges.enabled;
 }
+bool blursMotion(const scene::Scene& s) {
+  return s.motion_blur.enabled;
+}
 bool diffuses(const scene::Scene& s) {
   return s.diffusion.enabled();
 }
@@ -45,6 +48,7 @@ const std::vector<PassEntry>& passList() {
       {"shadow", shadowed, nothing, makeShadowPass},
       {"edges", edgesDarken, edgesStructure, makeEdgesPass},
       {"diffusion", diffuses, nothing, makeDiffusionPass},
+      {"motion_blur", blursMotion, nothing, makeMotionBlurPass},
       {"substrate", onPaperRelief, nothing, makeSubstratePass},
   };
   return list;
@@ -56,16 +60,23 @@ std::string joined(const std::vector<std::string>& v) {
   return s;
 }
 
-glm::dmat4 FrameInputs::modelAt(std::size_t i) const {
+glm::dmat4 FrameInputs::modelAt(std::size_t i, double t) const {
   // A spinning object turns about the vertical axis through its centre (the origin of its
   // uploaded coordinates).
   const scene::Object& o = scene.objects[i];
   const glm::dmat4& model = objects[i].model;
-  return o.animated() ? glm::rotate(model, glm::radians(o.spin_deg_per_s * time), glm::dvec3(0, 0, 1)) : model;
+  if (!o.animated()) return model;
+  return glm::translate(glm::dmat4(1.0), o.velocity * t) *
+         glm::rotate(model, glm::radians(o.spin_deg_per_s * t), glm::dvec3(0, 0, 1));
 }
 
 glm::mat4 FrameInputs::viewProjection() const {
   return camera.projection(static_cast<double>(width) / height) * camera.view();
+}
+
+glm::dmat4 FrameInputs::previousViewProjection() const {
+  const OrbitCamera& c = previous_camera ? *previous_camera : camera;
+  return glm::dmat4(c.projection(static_cast<double>(width) / height)) * glm::dmat4(c.view());
 }
 
 }  // namespace shanshui::render

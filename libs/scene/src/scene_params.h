@@ -337,6 +337,11 @@ void describe(V& v, Object& o) {
             "the static ones",
             Effect::Uniform, "degrees/s"},
            o.spin_deg_per_s, {-36000, 36000});
+  v.vec3({"velocity",
+          "moves along a straight line from where the transform puts it at time 0; a moving object is drawn over "
+          "the cached layer of the static ones",
+          Effect::Uniform, "world units/s"},
+         o.velocity, kAnyCoordinate, Vec::Vector);
   v.group("lines", o.lines, Table::Own);
   v.group("shading", o.shading, Table::Own);
   v.group("wrinkle", o.wrinkle, Table::Own);
@@ -524,6 +529,25 @@ void describe(V& v, EdgeParams& e) {
 }
 
 template <typename V>
+void describe(V& v, MotionBlurParams& m) {
+  v.boolean({"enabled",
+             "ink dragged behind moving objects (seed 004): a velocity target in the G-buffer and a blur "
+             "pass; false: neither",
+             kRebuild},
+            m.enabled);
+  v.number({"interval", "seconds between frames: a velocity is how far a point moves in one", Effect::Uniform, "s"},
+           m.interval, {1e-4, 10});
+  v.number({"length", "k of Eqs. 6-7: the trail is k times the distance moved per interval"}, m.length, {0, 64});
+  v.number({"paint", "a of Eq. 6: paint dragged along the trail; from 0.5 up it reaches the trail's end"}, m.paint,
+           kUnit);
+  v.number({"water", "w of Eq. 7: water carried; from 0.5 up it lasts the trail, below it runs dry on the way"},
+           m.water, kUnit);
+  v.number({"bristles", "paint varying across the trail, bristle by bristle (seed 004 section 3.5)"}, m.bristles,
+           kUnit);
+  v.number({"granulation", "paint settling in the paper's valleys along the trail (Eq. 8)"}, m.granulation, kUnit);
+}
+
+template <typename V>
 void describe(V& v, SubstrateWeights& w) {
   v.number({"dry_brush", "this object's share of substrate.dry_brush"}, w.dry_brush, {0, 4});
   v.number({"granulation", "this object's share of substrate.granulation"}, w.granulation, {0, 4});
@@ -569,6 +593,7 @@ void describe(V& v, Scene& s) {
   v.group("shadow", s.shadow, Table::Inline);
   v.group("substrate", s.substrate, Table::Own);
   v.group("edges", s.edges, Table::Own);
+  v.group("motion_blur", s.motion_blur, Table::Own);
   v.group("output", s.output, Table::Own);
 }
 

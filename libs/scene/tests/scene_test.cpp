@@ -252,6 +252,7 @@ TEST(Scene, RebuildKeysAreTheOnesThatChangeVariantsOrFiles) {
                                           "substrate.enabled",        // builds the substrate pass
                                           "substrate.texture",        // a file
                                           "edges.enabled",            // builds the edges pass
+                                          "motion_blur.enabled",      // velocity target, blur pass
                                           "canvas.type",
                                           "canvas.static_pattern",
                                           "canvas.method"};

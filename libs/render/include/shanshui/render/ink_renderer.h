@@ -41,7 +41,8 @@ OrbitCamera sceneCamera(const scene::Scene& s, const mesh::Bounds& world_bounds,
 
 //! The camera key of frame `index` of `count`: along camera.path when the scene has one,
 //! else the scene camera turned by orbit_deg · index / count around +Z.
-scene::CameraKey frameKey(const scene::Scene& s, int index, int count, double orbit_deg);
+//! A fractional index gives the camera between frames (or, below 0, before the first).
+scene::CameraKey frameKey(const scene::Scene& s, double index, int count, double orbit_deg);
 
 class InkRenderer {
  public:
@@ -64,12 +65,15 @@ class InkRenderer {
   //! layer ("gbuffer_static", only when the camera, size or parameters change) and the
   //! animated ones over a copy of it ("gbuffer_animated"). With timing, waits for the GPU and
   //! fills stats->passes with GPU times.
+  //! `previous_camera`: where the camera was scene.motion_blur.interval earlier, for motion
+  //! blur's velocities (null: where it is now).
   const Framebuffer& render(const OrbitCamera& camera, int width, int height, FrameStats* stats = nullptr,
-                            bool timing = true, double time = 0.0);
+                            bool timing = true, double time = 0.0, const OrbitCamera* previous_camera = nullptr);
 
   //! Renders a frame of the scene's own camera (key) at the scene's output size and reads it
   //! back: RGB, row 0 at the top.
-  image::Image renderImage(const scene::CameraKey& key, FrameStats* stats = nullptr, double time = 0.0);
+  image::Image renderImage(const scene::CameraKey& key, FrameStats* stats = nullptr, double time = 0.0,
+                           const scene::CameraKey* previous_key = nullptr);
 
   //! Recompiles every program from the current shader sources; on a compile error the old
   //! programs stay and the error is thrown.

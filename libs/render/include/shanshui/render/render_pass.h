@@ -45,10 +45,15 @@ struct FrameInputs {
   double time = 0.0;          //!< seconds, for spinning objects
   std::string static_key;     //!< changes when anything but the time changes
   GpuTimer* timer = nullptr;  //!< time each pass under its name when set
+  //! The camera a frame ago (motion blur's velocities); null: the same as now.
+  const OrbitCamera* previous_camera = nullptr;
 
-  //! Model matrix of object i at the frame's time.
-  glm::dmat4 modelAt(std::size_t i) const;
+  //! Model matrix of object i at the frame's time, or at time t.
+  glm::dmat4 modelAt(std::size_t i) const { return modelAt(i, time); }
+  glm::dmat4 modelAt(std::size_t i, double t) const;
   glm::mat4 viewProjection() const;
+  //! The previous frame's camera's (scene.motion_blur.interval earlier).
+  glm::dmat4 previousViewProjection() const;
 };
 
 //! The images the passes hand on; a pass reads what earlier passes wrote.
@@ -117,6 +122,7 @@ std::unique_ptr<RenderPass> makePigmentPass(const PassSetup&);
 pigment::Pigment objectPigment(const scene::PigmentParams& p);
 std::unique_ptr<RenderPass> makeShadowPass(const PassSetup&);
 std::unique_ptr<RenderPass> makeSubstratePass(const PassSetup&);
+std::unique_ptr<RenderPass> makeMotionBlurPass(const PassSetup&);
 std::unique_ptr<RenderPass> makeEdgesPass(const PassSetup&);
 std::string edgesStructure(const scene::Scene&);
 //! The shadow map's view and projection: orthographic along the light (towards_light points

@@ -193,7 +193,10 @@ struct Object {
   //! Degrees per second the object turns about the vertical axis through its centre; an
   //! object with a spin is animated and drawn over the cached static layer.
   double spin_deg_per_s = 0.0;
-  bool animated() const { return spin_deg_per_s != 0.0; }
+  //! World units per second the object moves along a straight path (from its transform's
+  //! place at time 0); a moving object is animated like a spinning one.
+  glm::dvec3 velocity{0.0};
+  bool animated() const { return spin_deg_per_s != 0.0 || velocity != glm::dvec3(0.0); }
   LineParams lines;
   ShadingParams shading;
   WrinkleParams wrinkle;
@@ -341,6 +344,17 @@ struct EdgeParams {
   double wobble_scale = 24;  //!< size of the wander's noise features, pixels at 1024 high
 };
 
+//! Ink dragged behind moving objects (seed 004): a velocity buffer and a blur pass.
+struct MotionBlurParams {
+  bool enabled = false;        //!< builds the velocity target and the blur pass
+  double interval = 1.0 / 24;  //!< seconds between frames: velocities are per interval
+  double length = 3.0;         //!< k: the trail is k × |v| long (v in pixels per interval)
+  double paint = 0.7;          //!< a: paint carried along the trail (≥ 0.5 reaches its end)
+  double water = 0.7;          //!< w: water carried (≥ 0.5 lasts the trail; less runs dry)
+  double bristles = 0.5;       //!< paint varying across the trail, bristle by bristle
+  double granulation = 0.3;    //!< paint settling in the paper's valleys along the trail
+};
+
 //! Cast shadows as a wash (seed 003): a shadow map from the light, and where it shows a
 //! surface in shadow, a layer of the shadow's pigment laid by Kubelka–Munk.
 struct ShadowParams {
@@ -379,6 +393,7 @@ struct Scene {
   ShadowParams shadow;
   SubstrateParams substrate;
   EdgeParams edges;
+  MotionBlurParams motion_blur;
   Output output;
 
   std::filesystem::path resolve(const std::string& relative) const;
