@@ -155,7 +155,8 @@ int main(int argc, char** argv) {
       const std::filesystem::path path = framePath(output, i, frames);
       outputs.stage(path, image::encodeImage(img, path, image::PixelDepth::UInt8, {.smallest = smallest}));
       nlohmann::json f = {
-          {"index", i}, {"time", time}, {"file", path.string()}, {"frame_ms", fs.frame_ms}, {"cached", fs.cached}};
+          {"index", i},          {"time", time},         {"file", path.string()}, {"frame_ms", fs.frame_ms},
+          {"cached", fs.cached}, {"redrawn", fs.redrawn}};
       f["passes"] = nlohmann::json::object();
       for (const auto& p : fs.passes) f["passes"][p.name] = p.gpu_ms;
       if (!stats_path.empty()) {  // what a painter would look at (docs/render.md), on the scene's surfaces

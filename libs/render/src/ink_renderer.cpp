@@ -104,6 +104,44 @@ scene::CameraKey frameKey(const scene::Scene& s, double index, int count, double
   return key;
 }
 
+std::optional<glm::ivec4> InkRenderer::animatedRegion(const FrameInputs& in) const {
+  // The animated objects' bounds now (and, with motion blur, where their trails reach back
+  // to), in pixels, grown by the farthest any pass reads around a pixel: line and stroke
+  // widths, edge darkening's blur, the substrate's distortion, a margin for the rest.
+  const glm::dmat4 vp = glm::dmat4(in.viewProjection());
+  const double px = in.height / 1024.0;
+  double grow = 12.0 * px + 8.0;
+  for (const scene::Object& o : in.scene.objects)
+    grow = std::max(grow, 8.0 + 2.0 * std::max(o.lines.width, o.strokes.width) * px);
+  if (in.scene.edges.enabled) grow += (in.scene.edges.radius + in.scene.edges.wobble) * px;
+  if (in.scene.substrate.enabled) grow += in.scene.substrate.distortion * px;
+  std::vector<double> times{in.time};
+  if (in.scene.motion_blur.enabled)
+    times.push_back(in.time - in.scene.motion_blur.length * in.scene.motion_blur.interval);
+  glm::dvec2 lo(1e300), hi(-1e300);
+  bool any = false;
+  for (std::size_t i = 0; i < in.objects.size(); ++i) {
+    if (!in.scene.objects[i].animated()) continue;
+    const glm::dvec3 half = 0.5 * in.objects[i].model_bounds.size();
+    for (double t : times) {
+      const glm::dmat4 m = vp * in.modelAt(i, t);
+      for (int c = 0; c < 8; ++c) {
+        const glm::dvec4 q =
+            m * glm::dvec4((c & 1 ? 1 : -1) * half.x, (c & 2 ? 1 : -1) * half.y, (c & 4 ? 1 : -1) * half.z, 1.0);
+        if (q.w <= 1e-9) return glm::ivec4(0, 0, in.width, in.height);  // behind the eye: all of it
+        const glm::dvec2 p = (glm::dvec2(q) / q.w * 0.5 + 0.5) * glm::dvec2(in.width, in.height);
+        lo = glm::min(lo, p);
+        hi = glm::max(hi, p);
+        any = true;
+      }
+    }
+  }
+  if (!any) return std::nullopt;
+  const glm::ivec2 a = glm::clamp(glm::ivec2(glm::floor(lo - grow)), glm::ivec2(0), glm::ivec2(in.width, in.height));
+  const glm::ivec2 b = glm::clamp(glm::ivec2(glm::ceil(hi + grow)), glm::ivec2(0), glm::ivec2(in.width, in.height));
+  return glm::ivec4(a, b);
+}
+
 std::string InkRenderer::structureKey(const scene::Scene& s) {
   // The scene's rebuild keys (files, object count, variant switches) and, per pass of the
   // list, whether the scene wants it and the compile-time choices it makes.
@@ -268,7 +306,7 @@ const Framebuffer& InkRenderer::render(const OrbitCamera& camera, int width, int
   if (key == last_key_) {
     if (stats)
       *stats = FrameStats{
-          true, std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count(), {}};
+          true, std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count(), {}, 0.0};
     return *last_output_;
   }
   const FrameInputs in{scene_,
@@ -281,16 +319,37 @@ const Framebuffer& InkRenderer::render(const OrbitCamera& camera, int width, int
                        static_key,
                        timing ? &timer_ : nullptr,
                        scene_.motion_blur.enabled ? previous_camera : nullptr};
+  // Seed 002's state C for every pass: when only animated objects changed since the last
+  // frame, the passes redraw only the region they cover now and covered then (each target
+  // outside it still holds the last frame, which there shows the static objects as they
+  // are), grown by how far a pass reads around a pixel.
+  std::optional<glm::ivec4> region;
+  const std::optional<glm::ivec4> moving = scene_.hasAnimation() ? animatedRegion(in) : std::nullopt;
+  if (moving && static_key == last_static_key_ && last_moving_ && !scene_.usesShadow()) {
+    const glm::ivec4 r(glm::min(glm::ivec2(*moving), glm::ivec2(*last_moving_)),
+                       glm::max(glm::ivec2(moving->z, moving->w), glm::ivec2(last_moving_->z, last_moving_->w)));
+    if (static_cast<double>(r.z - r.x) * (r.w - r.y) < 0.6 * width * height) region = r;
+  }
+  FrameInputs scoped = in;
+  if (region) {
+    scoped.region = &*region;
+    glEnable(GL_SCISSOR_TEST);
+    glScissor(region->x, region->y, region->z - region->x, region->w - region->y);
+  }
   FrameImages images;
   for (Built& b : passes_) {
     const Texture2D* before = images.picture;
-    b.pass->run(in, images);
+    b.pass->run(scoped, images);
     if (images.picture != before) last_output_ = b.pass->target();
   }
+  glDisable(GL_SCISSOR_TEST);
+  last_static_key_ = static_key;
+  last_moving_ = moving;
   const double aspect = static_cast<double>(width) / height;
   last_inverse_view_projection_ = glm::inverse(glm::dmat4(camera.projection(aspect)) * glm::dmat4(camera.view()));
 
   FrameStats out;
+  out.redrawn = region ? static_cast<double>(region->z - region->x) * (region->w - region->y) / (width * height) : 1.0;
   if (timing)
     out.passes = timer_.collect();
   else

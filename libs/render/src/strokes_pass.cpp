@@ -135,8 +135,10 @@ class StrokesPass final : public RenderPass {
       if (in.timer) in.timer->end();
     }
     if (in.timer) in.timer->begin(animated ? "strokes_animated" : "strokes");
-    glCopyImageSubData(images.picture->id(), GL_TEXTURE_2D, 0, 0, 0, 0, target_.colour().id(), GL_TEXTURE_2D, 0, 0, 0,
-                       0, in.width, in.height, 1);
+    // Only the region that changed (copies ignore the scissor); the rest keeps its strokes.
+    const glm::ivec4 r = in.region ? *in.region : glm::ivec4(0, 0, in.width, in.height);
+    glCopyImageSubData(images.picture->id(), GL_TEXTURE_2D, 0, r.x, r.y, 0, target_.colour().id(), GL_TEXTURE_2D, 0,
+                       r.x, r.y, 0, r.z - r.x, r.w - r.y, 1);
     if (animated && static_strokes_) composite(in, images);
     draw(strips(in, *images.gbuffer, animated ? Which::Animated : Which::All), target_, false);
     images.picture = &target_.colour();

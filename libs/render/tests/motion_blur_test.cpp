@@ -173,5 +173,45 @@ TEST_F(MotionBlur, TheTrailIsLengthTimesSpeedAndStillObjectsAreUntouched) {
   }
 }
 
+// Animated frames redraw only the region the moving objects cover now and covered in the
+// last frame; every frame equals the one a fresh renderer draws in full, with every pass
+// that can run (canvas, lines, shading, strokes, pigment, edges, substrate, motion blur).
+TEST_F(MotionBlur, AnimatedFramesRedrawOnlyWhatMovedAndMatchAFullRedraw) {
+  json still = {{"mesh", "ground"}, {"up", "z"}, {"strokes", {{"style", "liuye"}}}, {"pigment", {{"name", "ochre"}}}};
+  json ball = {{"mesh", "ball"}, {"up", "z"}, {"velocity", {0.8, 0.0, 0.0}}, {"spin", 40.0}};
+  ball["transform"] = {{"scale", {0.3, 0.3, 0.3}}, {"translate", {-1.0, 0.0, 0.8}}};
+  const json j = {{"objects", json::array({still, ball})},
+                  {"canvas", {{"type", "rice_paper"}}},
+                  {"edges", {{"enabled", true}}},
+                  {"substrate", {{"enabled", true}}},
+                  {"motion_blur", {{"enabled", true}, {"interval", 0.1}}}};
+  const scene::Scene s = scene::parseScene(j, "test", ".");
+  const mesh::Mesh ground = mesh::heightGrid(
+      33, 33, 0.1, [](double x, double y) { return 0.3 * std::sin(2.0 * x) * std::cos(1.5 * y); },
+      glm::dvec3(-1.6, -1.6, 0.0));
+  const std::vector<mesh::Mesh> meshes{ground, test::uvSphere(1.0)};
+  InkRenderer r(s, load(s, meshes));
+  const OrbitCamera cam = sceneCamera(s, r.worldBounds(), 4.0 / 3.0, {-30, 35, 1.0});
+  const int w = 160, h = 120;
+  for (int frame = 0; frame < 4; ++frame) {
+    SCOPED_TRACE(testing::Message() << "frame " << frame);
+    const double time = 0.1 * frame;
+    FrameStats st;
+    const image::Image continued = r.render(cam, w, h, &st, true, time).colour(0).download(3);
+    if (frame > 0) {
+      EXPECT_LT(st.redrawn, 0.6) << "only the moving ball's region";
+      EXPECT_GT(st.redrawn, 0.0);
+    }
+    InkRenderer fresh(s, load(s, meshes));
+    FrameStats full;
+    const image::Image expected = fresh.render(cam, w, h, &full, true, time).colour(0).download(3);
+    EXPECT_EQ(full.redrawn, 1.0);
+    std::size_t differ = 0;
+    for (std::size_t i = 0; i < expected.pixels.size(); ++i)
+      differ += std::abs(expected.pixels[i] - continued.pixels[i]) > 1.5f / 255;
+    EXPECT_EQ(differ, 0u);
+  }
+}
+
 }  // namespace
 }  // namespace shanshui::render

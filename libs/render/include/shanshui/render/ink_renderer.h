@@ -27,6 +27,7 @@ struct FrameStats {
   bool cached = false;           //!< nothing changed: the previous image was presented
   double frame_ms = 0.0;         //!< CPU wall time of the call (including the wait when timing)
   std::vector<PassTime> passes;  //!< passes that ran, in order, with GPU milliseconds
+  double redrawn = 1.0;          //!< share of the picture the passes drew (less when only animated objects changed)
 };
 
 //! The camera of a scene for one view: orbit parameters from the scene (or a path key),
@@ -132,6 +133,9 @@ class InkRenderer {
   void setObjects(const scene::Scene& s);
   void collectVariants();
   std::string requestKey(const OrbitCamera& camera, int width, int height) const;
+  //! Where the animated objects are, in GL pixels (x0, y0, x1, y1), grown by what the passes
+  //! read around a pixel; none without animated objects.
+  std::optional<glm::ivec4> animatedRegion(const FrameInputs& in) const;
 
   scene::Scene scene_;
   std::vector<SceneObjectGpu> objects_;
@@ -146,6 +150,8 @@ class InkRenderer {
   const Framebuffer* last_output_ = nullptr;  //!< the picture's framebuffer
   GpuTimer timer_;
   std::string last_key_;
+  std::string last_static_key_;            //!< the last frame's request less its time
+  std::optional<glm::ivec4> last_moving_;  //!< the animated objects' region in the last frame
   glm::dmat4 last_inverse_view_projection_{1.0};
 };
 

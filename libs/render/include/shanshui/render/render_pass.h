@@ -47,6 +47,9 @@ struct FrameInputs {
   GpuTimer* timer = nullptr;  //!< time each pass under its name when set
   //! The camera a frame ago (motion blur's velocities); null: the same as now.
   const OrbitCamera* previous_camera = nullptr;
+  //! When set, only this region (GL pixels x0, y0, x1, y1; the scissor is set to it) changed
+  //! since the last frame: passes may draw only there, their targets keep the rest.
+  const glm::ivec4* region = nullptr;
 
   //! Model matrix of object i at the frame's time, or at time t.
   glm::dmat4 modelAt(std::size_t i) const { return modelAt(i, time); }
