@@ -118,6 +118,15 @@ class InkPass final : public RenderPass {
       glClearTexImage(stroke_ink_.id(), 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
       glBindImageTexture(3, stroke_ink_.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
       strokes_.bind();
+      if (in.region) {
+        // A stroke's centre stamps ink up to its width around it: centres just outside the
+        // redrawn region reach into it, so they are stamped too.
+        double widest = 0.0;
+        for (const scene::Object& o : in.scene.objects) widest = std::max(widest, o.lines.width);
+        const int grow = 2 * (static_cast<int>(std::ceil(widest * in.height / 1024.0)) / 2) + 4;  // whole quads
+        const glm::ivec4& r = *in.region;
+        glScissor(r.x - grow, r.y - grow, r.z - r.x + 2 * grow, r.w - r.y + 2 * grow);
+      }
       glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
       lines_->use();
       setSurfaceUniforms(*lines_, in);
@@ -128,6 +137,10 @@ class InkPass final : public RenderPass {
       }
       glDrawArrays(GL_TRIANGLES, 0, 3);
       glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+      if (in.region) {
+        const glm::ivec4& r = *in.region;
+        glScissor(r.x, r.y, r.z - r.x, r.w - r.y);
+      }
       glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
       if (in.timer) in.timer->end();
       SHANSHUI_GL_CHECK("ink lines");

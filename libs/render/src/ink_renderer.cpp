@@ -328,7 +328,10 @@ const Framebuffer& InkRenderer::render(const OrbitCamera& camera, int width, int
   if (moving && static_key == last_static_key_ && last_moving_ && !scene_.usesShadow()) {
     const glm::ivec4 r(glm::min(glm::ivec2(*moving), glm::ivec2(*last_moving_)),
                        glm::max(glm::ivec2(moving->z, moving->w), glm::ivec2(last_moving_->z, last_moving_->w)));
-    if (static_cast<double>(r.z - r.x) * (r.w - r.y) < 0.6 * width * height) region = r;
+    // On whole 2×2 quads: shaders that sample with implicit derivatives (the border's and the
+    // mist's noise) need both pixels of a quad; at a scissor edge the rasteriser drops one.
+    const glm::ivec4 quads(r.x & ~1, r.y & ~1, std::min((r.z + 1) & ~1, width), std::min((r.w + 1) & ~1, height));
+    if (static_cast<double>(quads.z - quads.x) * (quads.w - quads.y) < 0.6 * width * height) region = quads;
   }
   FrameInputs scoped = in;
   if (region) {

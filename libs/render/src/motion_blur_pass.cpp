@@ -86,7 +86,9 @@ class MotionBlurPass final : public RenderPass {
                          0, in.width, in.height, 1);
     } else {
       glBindVertexArray(vao_.id());
-      // The fastest motion per tile, then within reach of each tile.
+      // The fastest motion per tile, then within reach of each tile: every tile, whatever
+      // region the frame redraws (the scissor is in the picture's pixels, not the tiles').
+      glDisable(GL_SCISSOR_TEST);
       tile_max_.bind();
       tiles_program_.use();
       glBindTextureUnit(0, images.gbuffer->colour(2).id());
@@ -97,6 +99,7 @@ class MotionBlurPass final : public RenderPass {
       glBindTextureUnit(0, tile_max_.colour().id());
       neighbours_program_.set("u_radius", static_cast<int>(std::ceil(reach / kTile)));
       glDrawArrays(GL_TRIANGLES, 0, 3);
+      if (in.region) glEnable(GL_SCISSOR_TEST);
       target_.bind();
       program_.use();
       glBindTextureUnit(0, images.picture->id());

@@ -175,13 +175,20 @@ TEST_F(MotionBlur, TheTrailIsLengthTimesSpeedAndStillObjectsAreUntouched) {
 
 // Animated frames redraw only the region the moving objects cover now and covered in the
 // last frame; every frame equals the one a fresh renderer draws in full, with every pass
-// that can run (canvas, lines, shading, strokes, pigment, edges, substrate, motion blur).
+// that can run (canvas, lines as strokes, shading, mist, a dissolving border, brush strokes,
+// pigment, edges, substrate, motion blur).
 TEST_F(MotionBlur, AnimatedFramesRedrawOnlyWhatMovedAndMatchAFullRedraw) {
-  json still = {{"mesh", "ground"}, {"up", "z"}, {"strokes", {{"style", "liuye"}}}, {"pigment", {{"name", "ochre"}}}};
+  json still = {{"mesh", "ground"},
+                {"up", "z"},
+                {"strokes", {{"style", "liuye"}}},
+                {"pigment", {{"name", "ochre"}}},
+                {"lines", {{"width", 3.0}}},
+                {"border", {{"mode", "dissolve"}}}};
   json ball = {{"mesh", "ball"}, {"up", "z"}, {"velocity", {0.8, 0.0, 0.0}}, {"spin", 40.0}};
   ball["transform"] = {{"scale", {0.3, 0.3, 0.3}}, {"translate", {-1.0, 0.0, 0.8}}};
   const json j = {{"objects", json::array({still, ball})},
                   {"canvas", {{"type", "rice_paper"}}},
+                  {"mist", {{"density", 0.6}, {"height", 0.3}}},
                   {"edges", {{"enabled", true}}},
                   {"substrate", {{"enabled", true}}},
                   {"motion_blur", {{"enabled", true}, {"interval", 0.1}}}};
