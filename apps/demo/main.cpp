@@ -274,6 +274,23 @@ int main(int argc, char** argv) {
       results.push_back(runner.run(st));
       stages.push_back(st);
     }
+    // Seed 004: a boat drifting below the mountain, three frames with motion blur and without.
+    for (const bool blur : {true, false}) {
+      const fs::path scene = s / "scenes/moving_boat.json";
+      if (!fs::exists(scene)) throw shanshui::makeError(scene.string(), ": not found");
+      const std::string name = blur ? "moving" : "moving_sharp";
+      Stage st{blur ? "moving_boat" : "moving_boat_sharp",
+               "shanshui-render",
+               {scene.string(), "-o", (o / (name + ".png")).string(), "--frames", "3", "--orbit", "0", "--fps", "2",
+                "--size", quick ? "160x80" : "640x320", "--stats", (o / (name + "_stats.json")).string(), "--set",
+                blur ? "motion_blur.enabled=true" : "motion_blur.enabled=false"},
+               {scene, s / "terrain/mount_st_helens.dem", s / "textures/rain_strokes_wrinkle.png",
+                s / "meshes/fishing_boat.obj"},
+               {o / (name + "_stats.json")}};
+      if (quick) st.args.insert(st.args.end(), {"--set", "objects.0.max_vertices=4000"});
+      results.push_back(runner.run(st));
+      stages.push_back(st);
+    }
     if (!reference.empty()) {
       fs::copy_file(reference, assets / ("reference" + fs::path(reference).extension().string()),
                     fs::copy_options::overwrite_existing);
@@ -375,6 +392,11 @@ int main(int argc, char** argv) {
           "wash laid by Kubelka-Munk over the ink, indigo cast shadows from a shadow map, pigment pooled at the "
           "edges of the washes, and the paper's relief under the dried paint:\n\n"
           "![light colour](light_colour.png)";
+    md << "\n\nSomething moving (seed 004, `samples/scenes/moving_boat.json`): a fishing boat drifting below the "
+          "mountain, three frames half a second apart, with motion blur (ink dragged behind it, running dry on "
+          "the paper's grain) and without:\n\n"
+          "![moving 0](moving_0000.png) ![moving 1](moving_0001.png) ![moving 2](moving_0002.png)\n\n"
+          "![sharp 0](moving_sharp_0000.png) ![sharp 1](moving_sharp_0001.png) ![sharp 2](moving_sharp_0002.png)";
     md << "\n\nWhat a painter would look at, measured (`look` in `shanshui-render --stats`; docs/render.md): "
           "share of paper-tone pixels, share and mean width of the dark marks, ink of the far third of the "
           "land over the near third, longest straight edge over the width.\n\n"

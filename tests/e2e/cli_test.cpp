@@ -394,9 +394,10 @@ std::map<std::string, std::string> demoStages(const std::string& output) {
 TEST(Cli, DemoRunsTheChainThenReusesWhatIsUpToDate) {
   test::TempDir dir;
   const std::filesystem::path samples = dir / "samples", out = dir / "out";
-  for (const char* f : {"textures/rain_strokes_scan.png", "textures/rain_strokes_wrinkle.png",
-                        "terrain/mount_st_helens.dem", "scenes/default.json", "scenes/high_distance.json",
-                        "scenes/deep_distance.json", "scenes/level_distance.json", "scenes/light_colour.json"}) {
+  for (const char* f :
+       {"textures/rain_strokes_scan.png", "textures/rain_strokes_wrinkle.png", "terrain/mount_st_helens.dem",
+        "scenes/default.json", "scenes/high_distance.json", "scenes/deep_distance.json", "scenes/level_distance.json",
+        "scenes/light_colour.json", "scenes/moving_boat.json", "meshes/fishing_boat.obj"}) {
     std::filesystem::create_directories((samples / f).parent_path());
     std::filesystem::copy_file(test::sourceDir() / "samples" / f, samples / f);
   }
@@ -405,11 +406,20 @@ TEST(Cli, DemoRunsTheChainThenReusesWhatIsUpToDate) {
       "cd " + quote(dir.path()) + " && " + bin("shanshui-demo") + " --quick --frames 2 --samples samples --out out";
   auto r = run(demo);
   ASSERT_EQ(r.exit_code, 0) << r.output;
-  const std::map<std::string, std::string> all_ran = {
-      {"enhance", "running"},       {"quilt", "running"},         {"terrain", "running"},
-      {"param", "running"},         {"still", "running"},         {"orbit", "running"},
-      {"high_distance", "running"}, {"deep_distance", "running"}, {"level_distance", "running"},
-      {"level_strokes", "running"}, {"light_colour", "running"},  {"stability", "running"}};
+  const std::map<std::string, std::string> all_ran = {{"enhance", "running"},
+                                                      {"quilt", "running"},
+                                                      {"terrain", "running"},
+                                                      {"param", "running"},
+                                                      {"still", "running"},
+                                                      {"orbit", "running"},
+                                                      {"high_distance", "running"},
+                                                      {"deep_distance", "running"},
+                                                      {"level_distance", "running"},
+                                                      {"level_strokes", "running"},
+                                                      {"light_colour", "running"},
+                                                      {"moving_boat", "running"},
+                                                      {"moving_boat_sharp", "running"},
+                                                      {"stability", "running"}};
   EXPECT_EQ(demoStages(r.output), all_ran);
   for (const char* f : {"report.md", "mountain.png", "orbit_0000.png", "orbit_0001.png", "assets/wrinkle.png",
                         "assets/st_helens_uv.obj", "assets/checker.png", "assets/scan.png"}) {
@@ -423,6 +433,9 @@ TEST(Cli, DemoRunsTheChainThenReusesWhatIsUpToDate) {
   EXPECT_NE(report.find("| level_strokes | 0."), std::string::npos);
   EXPECT_NE(report.find("![light colour](light_colour.png)"), std::string::npos);
   EXPECT_NE(report.find("| light_colour | 0."), std::string::npos);
+  EXPECT_NE(report.find("![moving 2](moving_0002.png)"), std::string::npos);
+  EXPECT_TRUE(std::filesystem::exists(out / "moving_0002.png"));
+  EXPECT_TRUE(std::filesystem::exists(out / "moving_sharp_0002.png"));
   EXPECT_NE(report.find("L2 stretch"), std::string::npos);
   EXPECT_EQ(report.find(dir.path().string()), std::string::npos) << "the report's links are relative";
   // The stability table of this run (its fast cases with --quick), on a fresh machine too.
@@ -451,6 +464,8 @@ TEST(Cli, DemoRunsTheChainThenReusesWhatIsUpToDate) {
                                                                       {"level_distance", "reused"},
                                                                       {"level_strokes", "reused"},
                                                                       {"light_colour", "reused"},
+                                                                      {"moving_boat", "reused"},
+                                                                      {"moving_boat_sharp", "reused"},
                                                                       {"stability", "reused"}}));
 
   // A reference picture goes beside the paintings; a missing one is named before any work.
