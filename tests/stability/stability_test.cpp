@@ -351,6 +351,11 @@ TEST(Stability, RendererOnStiffScenesAndParameters) {
        "substrate.granulation=16 --set substrate.dry_brush=1 --set substrate.lighting=1 "
        "--set substrate.distortion=32 --set substrate.dry_edge=0.001"},
       {"substrate without a canvas (value noise)", "substrate.enabled=true --set canvas.type=none"},
+      {"motion blur: the land spinning 36000 degrees/s, trail 64, interval 10 s, no paint, no water",
+       "motion_blur.enabled=true --set objects.0.spin=36000 --set motion_blur.length=64 --set "
+       "motion_blur.interval=10 --set motion_blur.paint=0 --set motion_blur.water=0"},
+      {"motion blur: the land flying off at 1e9 units/s",
+       "motion_blur.enabled=true --set objects.0.velocity=[1e9,0,0] --set motion_blur.interval=1e-4"},
   };
   for (const Set& s : sets) {
     runCase("render", s.name, r + quote(dem) + small + " --set " + s.sets, out, "", imageIsFinite(64, 48));

@@ -87,6 +87,35 @@ TEST_F(MotionBlur, VelocityIsTheProjectedMotionOfEachPointOverOneInterval) {
   }
 }
 
+// A still object seen from a moving camera: each point's velocity is the difference of its
+// projections through the camera now and the camera an interval ago.
+TEST_F(MotionBlur, AMovingCameraGivesEachPointItsProjectedMotion) {
+  const json j = {{"objects", json::array({plainObject("sphere")})}, {"motion_blur", {{"enabled", true}}}};
+  const scene::Scene s = scene::parseScene(j, "test", ".");
+  InkRenderer r(s, load(s, {test::uvSphere(1.0)}));
+  const OrbitCamera now = sceneCamera(s, r.worldBounds(), 1.0, {30, 35, 0.8});
+  OrbitCamera before = now;
+  before.azimuth_deg -= 10.0;
+  before.elevation_deg += 4.0;
+  const int size = 128;
+  r.render(now, size, size, nullptr, true, 0.0, &before);
+  const image::Image velocity = r.passTarget("gbuffer")->colour(2).download(4);
+  const image::Image world = r.worldPositions();
+  const glm::dmat4 a = glm::dmat4(now.projection(1.0)) * glm::dmat4(now.view());
+  const glm::dmat4 b = glm::dmat4(before.projection(1.0)) * glm::dmat4(before.view());
+  double worst = 0.0, largest = 0.0;
+  for (int y = 0; y < size; ++y)
+    for (int x = 0; x < size; ++x) {
+      if (world.at(x, y, 3) < 0.5) continue;
+      const glm::dvec3 p(world.at(x, y, 0), world.at(x, y, 1), world.at(x, y, 2));
+      const glm::dvec2 expected = glPixel(a, p, size, size) - glPixel(b, p, size, size);
+      worst = std::max(worst, glm::length(glm::dvec2(velocity.at(x, y, 0), velocity.at(x, y, 1)) - expected));
+      largest = std::max(largest, glm::length(expected));
+    }
+  EXPECT_GT(largest, 2.0);
+  EXPECT_LT(worst, 0.05 * largest + 0.02);
+}
+
 TEST_F(MotionBlur, AStillSceneHasNoVelocityAndIsNotBlurred) {
   const json j = {{"objects", json::array({plainObject("sphere")})}, {"motion_blur", {{"enabled", true}}}};
   const scene::Scene s = scene::parseScene(j, "test", ".");
