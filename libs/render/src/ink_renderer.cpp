@@ -223,11 +223,15 @@ void InkRenderer::collectVariants() {
 void InkRenderer::setDebugOutputs(bool on) {
   for (Built& b : passes_) b.pass->setDebugOutputs(on);
   collectVariants();
+  last_key_.clear();
+  last_static_key_.clear();  // the next frame draws everything again
 }
 
 void InkRenderer::reloadShaders() {
   for (Built& b : passes_) b.pass->buildPrograms();
   collectVariants();
+  last_key_.clear();
+  last_static_key_.clear();
 }
 
 void InkRenderer::setScene(const scene::Scene& s) {
