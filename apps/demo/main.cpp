@@ -257,6 +257,25 @@ int main(int argc, char** argv) {
       results.push_back(runner.run(st));
       stages.push_back(st);
     }
+    // Seed 002's strokes on a mesh too (the sample boat), beside its feature lines.
+    for (const bool strokes : {false, true}) {
+      const fs::path mesh = s / "meshes/fishing_boat.obj";
+      if (!fs::exists(mesh)) throw shanshui::makeError(mesh.string(), ": not found");
+      const std::string name = strokes ? "boat_strokes" : "boat_lines";
+      Stage st{name,
+               "shanshui-render",
+               {mesh.string(), "-o", (o / (name + ".png")).string(), "--size", quick ? "160x100" : "480x320", "--set",
+                "objects.0.up=\"z\""},
+               {mesh},
+               {o / (name + ".png")}};
+      if (strokes) {
+        st.args.insert(st.args.end(),
+                       {"--set", "objects.0.strokes.style=\"liuye\"", "--set", "objects.0.strokes.width=6", "--set",
+                        "objects.0.strokes.crease=40", "--set", "objects.0.lines.enabled=false"});
+      }
+      results.push_back(runner.run(st));
+      stages.push_back(st);
+    }
     // Seeds 000 and 003: a light-colour wash, painted shadows, pooled edges, the paper's relief.
     {
       const fs::path scene = s / "scenes/light_colour.json";
@@ -387,7 +406,9 @@ int main(int argc, char** argv) {
     }
     md << "\n\nThe level distance with seed 002's brush strokes along its silhouettes and creases "
           "(`objects.N.strokes.style: liuye`, willow leaf: thin, thick, thin):\n\n"
-          "![level strokes](level_strokes.png)";
+          "![level strokes](level_strokes.png)\n\nOn a mesh (the sample boat): its feature lines, and liuye brush "
+          "strokes along its silhouettes, borders and creases instead:\n\n"
+          "![boat lines](boat_lines.png) ![boat strokes](boat_strokes.png)";
     md << "\n\nThe deep distance in light colour (seeds 000 and 003, `samples/scenes/light_colour.json`): an ochre "
           "wash laid by Kubelka-Munk over the ink, indigo cast shadows from a shadow map, pigment pooled at the "
           "edges of the washes, and the paper's relief under the dried paint:\n\n"

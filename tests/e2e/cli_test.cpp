@@ -419,6 +419,8 @@ TEST(Cli, DemoRunsTheChainThenReusesWhatIsUpToDate) {
                                                       {"light_colour", "running"},
                                                       {"moving_boat", "running"},
                                                       {"moving_boat_sharp", "running"},
+                                                      {"boat_lines", "running"},
+                                                      {"boat_strokes", "running"},
                                                       {"stability", "running"}};
   EXPECT_EQ(demoStages(r.output), all_ran);
   for (const char* f : {"report.md", "mountain.png", "orbit_0000.png", "orbit_0001.png", "assets/wrinkle.png",
@@ -434,6 +436,8 @@ TEST(Cli, DemoRunsTheChainThenReusesWhatIsUpToDate) {
   EXPECT_NE(report.find("![light colour](light_colour.png)"), std::string::npos);
   EXPECT_NE(report.find("| light_colour | 0."), std::string::npos);
   EXPECT_NE(report.find("![moving 2](moving_0002.png)"), std::string::npos);
+  EXPECT_NE(report.find("![boat strokes](boat_strokes.png)"), std::string::npos);
+  EXPECT_TRUE(std::filesystem::exists(out / "boat_strokes.png"));
   EXPECT_TRUE(std::filesystem::exists(out / "moving_0002.png"));
   EXPECT_TRUE(std::filesystem::exists(out / "moving_sharp_0002.png"));
   EXPECT_NE(report.find("L2 stretch"), std::string::npos);
@@ -466,6 +470,8 @@ TEST(Cli, DemoRunsTheChainThenReusesWhatIsUpToDate) {
                                                                       {"light_colour", "reused"},
                                                                       {"moving_boat", "reused"},
                                                                       {"moving_boat_sharp", "reused"},
+                                                                      {"boat_lines", "reused"},
+                                                                      {"boat_strokes", "reused"},
                                                                       {"stability", "reused"}}));
 
   // A reference picture goes beside the paintings; a missing one is named before any work.
