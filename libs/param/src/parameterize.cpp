@@ -426,9 +426,20 @@ mesh::Mesh parameterize(const mesh::Mesh& input, const ParamOptions& opts, Param
   if (opts.method == Method::Auto) r.decision = decision.str();
   r.seconds = std::chrono::duration<double>(Clock::now() - start).count();
   if (r.distortion.l2_stretch > opts.max_stretch && !opts.accept_over_stretch) {
+    // Methods the budget left out may have done better: say so, and how to let them run.
+    std::string skipped;
+    for (const MethodTrial& t : r.trials) {
+      if (!t.ran && t.note.find("budget") != std::string::npos)
+        skipped += (skipped.empty() ? "" : ", ") + std::string(methodName(t.method));
+    }
+    std::ostringstream left_out;
+    if (!skipped.empty())
+      left_out << "; the --budget of " << opts.budget_seconds << " s left out " << skipped
+               << ", which a larger budget would try";
     throw makeError(what, ": the best map (", methodName(r.method), ") has L2 stretch ", r.distortion.l2_stretch,
                     ", above --max-stretch ", opts.max_stretch,
-                    "; raise it or pass --accept-stretch to keep the map anyway (tried ", trialSummary(r), ")");
+                    "; raise it or pass --accept-stretch to keep the map anyway (tried ", trialSummary(r), ")",
+                    left_out.str());
   }
   return best;
 }

@@ -278,6 +278,24 @@ TEST(Parameterize, AMapAboveTheStretchLimitIsAnErrorUnlessAccepted) {
   EXPECT_TRUE(measureDistortion(out).valid());
 }
 
+// When the budget left methods out, the refusal says which, and that a larger budget would
+// try them: a closed cube with no time tries one method (the first always runs).
+TEST(Parameterize, ARefusalNamesWhatTheBudgetLeftOut) {
+  ParamOptions o;
+  o.budget_seconds = 0.0;
+  o.max_stretch = 1.0;
+  ParamReport r;
+  try {
+    parameterize(test::uvSphere(1.0, 12, 24), o, &r, "ball.off");
+    ADD_FAILURE() << "no refusal";
+  } catch (const Error& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find("--max-stretch"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("a larger budget would try"), std::string::npos) << msg;
+    EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
+  }
+}
+
 TEST(Parameterize, ClosedSphereIsCutOpenAlongOneSeam) {
   const mesh::Mesh sphere = test::uvSphere(2.0, 16, 32);
   for (Method method : {Method::Auto, Method::Tutte, Method::Lscm, Method::Arap}) {
