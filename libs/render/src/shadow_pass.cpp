@@ -43,6 +43,7 @@ class ShadowPass final : public RenderPass {
   void setScene(const scene::Scene& s) override {
     scene_ = s;
     coefficients_ = pigment::coefficients(objectPigment(s.shadow.pigment), "shadow.pigment");
+    map_key_.clear();  // transforms may have moved: draw the map again
     if (map_.width() != s.shadow.resolution) {
       map_ = Framebuffer(s.shadow.resolution, s.shadow.resolution, {}, true);
       const GLuint t = map_.depth().id();
