@@ -30,6 +30,7 @@ layout(rg32f, binding = 1) readonly uniform image2D u_capacity;  // I_p / n · a
 layout(rg32f, binding = 2) writeonly uniform image2D u_next;
 layout(r8ui, binding = 3) readonly uniform uimage2D u_active;  // one texel per work group
 uniform float u_residual;
+uniform ivec2 u_areas_lo;  // the window's first work-group area (the dispatch covers its areas)
 
 const int B = BLOCK, T = BLOCK / 2;  // columns and texels an invocation owns
 
@@ -37,10 +38,11 @@ const int B = BLOCK, T = BLOCK / 2;  // columns and texels an invocation owns
 #define NEIGHBOURS(a, b, c, k) (a[k] + a[k + 1] + a[k + 2] + b[k] + b[k + 2] + c[k] + c[k + 1] + c[k + 2])
 
 void main() {
-  if (imageLoad(u_active, ivec2(gl_WorkGroupID.xy)).r == 0u) return;
+  const ivec2 area = u_areas_lo + ivec2(gl_WorkGroupID.xy);
+  if (imageLoad(u_active, area).r == 0u) return;
   ivec2 size = imageSize(u_ink);  // in texels
-  int t0 = int(gl_GlobalInvocationID.x) * T;  // first texel owned; columns x0 = 2 · t0 …
-  int y0 = int(gl_WorkGroupID.y) * STRIP_ROWS;
+  int t0 = (area.x * GROUP_INVOCATIONS + int(gl_LocalInvocationID.x)) * T;  // first texel owned; columns x0 = 2 · t0 …
+  int y0 = area.y * STRIP_ROWS;
   if (t0 >= size.x) return;
   float e0[B + 6], e1[B + 6], e2[B + 6];   // excess, columns x0 − 3 …, rows r − 2, r − 1, r
   float d0[B + 4], d1[B + 4], d2[B + 4];   // demand, columns x0 − 2 …, rows r − 3 … r − 1

@@ -15,6 +15,7 @@ layout(rg32f, binding = 3) uniform image2D u_main;  // the ink, raised where a r
 uniform int u_ring_steps;
 layout(r8ui, binding = 4) readonly uniform uimage2D u_near;
 uniform float u_ring_ink[RING_TABLE];  // f^r for r = 0 … d (pow per pixel costs more on llvmpipe)
+uniform ivec2 u_lo, u_hi;  // the window computed (pixels, u_lo on whole blocks): its edge is the column's end
 
 // One step of a sweep: the carried stroke is one pixel further; the pixel's stored one
 // wins if its key is no larger, else the carried one is stored (when `store`). Returns
@@ -27,13 +28,14 @@ void step(ivec2 p, inout uint key, bool store) {
 }
 
 void main() {
-  const int x = 2 * int(gl_GlobalInvocationID.x);  // the pair's first column
-  ivec2 size = imageSize(u_nearest);
+  const int x = u_lo.x + 2 * int(gl_GlobalInvocationID.x);  // the pair's first column
+  const ivec2 size = u_hi;
   if (x >= size.x) return;
   const int columns = min(2, size.x - x);
-  const int blocks = (size.y + BLOCK_SIZE - 1) / BLOCK_SIZE, bx = x / BLOCK_SIZE;  // one block column (BLOCK_SIZE is even)
+  const int first = u_lo.y / BLOCK_SIZE, blocks = (size.y + BLOCK_SIZE - 1) / BLOCK_SIZE,
+            bx = x / BLOCK_SIZE;  // one block column (BLOCK_SIZE is even)
   uvec2 key = uvec2(kFar);
-  for (int b = 0; b < blocks; ++b) {
+  for (int b = first; b < blocks; ++b) {
     if (imageLoad(u_near, ivec2(bx, b)).r == 0u) {
       key = uvec2(kFar);
       continue;
@@ -42,7 +44,7 @@ void main() {
       for (int i = 0; i < columns; ++i) step(ivec2(x + i, y), key[i], true);
   }
   key = uvec2(kFar);
-  for (int b = blocks - 1; b >= 0; --b) {
+  for (int b = blocks - 1; b >= first; --b) {
     if (imageLoad(u_near, ivec2(bx, b)).r == 0u) {
       key = uvec2(kFar);
       continue;

@@ -22,17 +22,18 @@ uniform float u_threshold;
 layout(r8ui, binding = 3) writeonly uniform uimage2D u_seeds;
 layout(r8ui, binding = 4) writeonly uniform uimage2D u_strokes;
 uniform float u_residual;
+uniform ivec2 u_lo, u_hi;  // the window computed (pixels; u_lo on whole work-group areas)
 
 void main() {
-  ivec2 size = imageSize(u_colour);
-  int x = 2 * int(gl_GlobalInvocationID.x);  // the texel's first column
+  const ivec2 size = u_hi;
+  int x = u_lo.x + 2 * int(gl_GlobalInvocationID.x);  // the texel's first column
   if (x >= size.x) return;
-  const bool pair = x + 1 < size.x;
+  const bool pair = x + 1 < imageSize(u_colour).x;
   // The tile's columns, by float division: exact for integers below 2^23, and vectorises
   // where an integer % does not.
   const vec2 tile = vec2(textureSize(u_absorbency, 0));
   const ivec2 tx = ivec2(vec2(x, x + 1) - tile.x * floor(vec2(x, x + 1) / tile.x));
-  const int y0 = int(gl_WorkGroupID.y) * STRIP_ROWS, y1 = min(y0 + STRIP_ROWS, size.y);
+  const int y0 = u_lo.y + int(gl_WorkGroupID.y) * STRIP_ROWS, y1 = min(y0 + STRIP_ROWS, size.y);
   bool seed = false, stroke = false;
   for (int y = y0; y < y1; ++y) {
     int ty = int(float(y) - tile.y * floor(float(y) / tile.y));

@@ -21,12 +21,14 @@ uniform float u_canvas_contrast;
 #else
 layout(r8ui, binding = 5) readonly uniform uimage2D u_active;  // one texel per AREA_W × AREA_H pixels
 #endif
+uniform ivec2 u_lo, u_hi;            // the window computed (pixels; u_lo on whole work-group areas)
+uniform ivec2 u_store_lo, u_store_hi;  // the pixels written: the window less its margin
 
 void main() {
-  ivec2 size = imageSize(u_out);
-  int x = 2 * int(gl_GlobalInvocationID.x);  // the pair's first column
+  const ivec2 size = u_hi;
+  int x = u_lo.x + 2 * int(gl_GlobalInvocationID.x);  // the pair's first column
   if (x >= size.x) return;
-  const int y0 = int(gl_WorkGroupID.y) * STRIP_ROWS, y1 = min(y0 + STRIP_ROWS, size.y);
+  const int y0 = u_lo.y + int(gl_WorkGroupID.y) * STRIP_ROWS, y1 = min(y0 + STRIP_ROWS, size.y);
 #ifndef CANVAS
   // The pair lies in one area (AREA_W is even) and the strip in one row of areas.
   if (imageLoad(u_active, ivec2(x / AREA_W, y0 / AREA_H)).r == 0u) return;
@@ -36,6 +38,7 @@ void main() {
     vec2 after = imageLoad(u_after, ivec2(x / 2, y)).rg;
     for (int i = 0; i < columns; ++i) {
       ivec2 p = ivec2(x + i, y);
+      if (any(lessThan(p, u_store_lo)) || any(greaterThanEqual(p, u_store_hi))) continue;
       vec4 colour = imageLoad(u_colour, p);
       vec3 c = colour.rgb;
       float before = inkOf(c, u_paper);

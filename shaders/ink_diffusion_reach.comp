@@ -10,10 +10,11 @@ layout(r8ui, binding = 0) readonly uniform uimage2D u_marks;
 layout(r8ui, binding = 1) writeonly uniform uimage2D u_reached;
 uniform ivec2 u_area;
 uniform int u_reach;
+uniform ivec2 u_lo, u_hi;  // the window computed, in texels of u_reached (marks outside it are read too)
 
 void main() {
-  ivec2 g = ivec2(gl_GlobalInvocationID.xy);
-  if (any(greaterThanEqual(g, imageSize(u_reached)))) return;
+  ivec2 g = u_lo + ivec2(gl_GlobalInvocationID.xy);
+  if (any(greaterThanEqual(g, u_hi))) return;
   ivec2 lo = max(g * u_area - u_reach, ivec2(0)) / BLOCK_SIZE;
   ivec2 hi = min((g * u_area + u_area - 1 + u_reach) / BLOCK_SIZE, imageSize(u_marks) - 1);
   uint reached = 0u;

@@ -19,14 +19,15 @@ layout(r32ui, binding = 1) uniform uimage2D u_nearest;
 uniform float u_threshold;
 uniform int u_ring_steps;
 layout(r8ui, binding = 3) readonly uniform uimage2D u_near;
+uniform ivec2 u_lo, u_hi;  // the window computed (pixels, u_lo on whole blocks): its edge is the row's end
 
 void main() {
-  int y = int(gl_GlobalInvocationID.x);
-  ivec2 size = imageSize(u_nearest);
+  int y = u_lo.y + int(gl_GlobalInvocationID.x);
+  const ivec2 size = u_hi;
   if (y >= size.y) return;
-  const int blocks = (size.x + BLOCK_SIZE - 1) / BLOCK_SIZE, by = y / BLOCK_SIZE;
+  const int first = u_lo.x / BLOCK_SIZE, blocks = (size.x + BLOCK_SIZE - 1) / BLOCK_SIZE, by = y / BLOCK_SIZE;
   uint key = kFar;
-  for (int b = 0; b < blocks; ++b) {
+  for (int b = first; b < blocks; ++b) {
     if (imageLoad(u_near, ivec2(b, by)).r == 0u) {
       key = kFar;
       continue;
@@ -38,7 +39,7 @@ void main() {
     }
   }
   key = kFar;
-  for (int b = blocks - 1; b >= 0; --b) {
+  for (int b = blocks - 1; b >= first; --b) {
     if (imageLoad(u_near, ivec2(b, by)).r == 0u) {
       key = kFar;
       continue;

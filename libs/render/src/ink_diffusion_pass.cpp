@@ -106,8 +106,15 @@ void InkDiffusionPass::run(const Texture2D& colour, const Texture2D& absorbency,
   run(colour, PaperTexture{&absorbency}, o, paper, output, timer);
 }
 
+int InkDiffusionPass::dependence(const ink::DiffusionOptions& o) {
+  // The main region takes a ring's ink from strokes within d. An iteration's new ink at a
+  // pixel comes from its neighbours' supplies, a supply depends on the demands of the
+  // donor's neighbours, and a demand on the excess around the receiver: three pixels.
+  return o.ring_steps + 3 * o.iterations;
+}
+
 void InkDiffusionPass::run(const Texture2D& colour, const PaperTexture& texture, const ink::DiffusionOptions& o,
-                           const glm::vec3& paper, const Texture2D& output, GpuTimer* timer) {
+                           const glm::vec3& paper, const Texture2D& output, GpuTimer* timer, const glm::ivec4* region) {
   ink::validate(o);
   SHANSHUI_CHECK(texture.absorbency != nullptr);
   const int w = colour.width(), h = colour.height();
@@ -117,15 +124,43 @@ void InkDiffusionPass::run(const Texture2D& colour, const PaperTexture& texture,
   SHANSHUI_CHECK(!texture.grain || texture.grain->format() == GL_RG32F);
   ensureSize(w, h);
   if (timer) timer->begin("diffusion");
+  // The window the passes compute: the whole picture, or the region grown by how far the
+  // result depends on the picture, on whole work-group areas. Everything this run reads
+  // outside the window (the ink and capacity images) only moves results within that
+  // distance of its edge, which are not written; the block marks outside it are still the
+  // last runs' marks of a picture unchanged there.
+  const glm::ivec2 area(kAreaWidth, kStripRows);
+  glm::ivec2 lo(0), hi(w, h);
+  glm::ivec4 store(0, 0, w, h);
+  if (region) {
+    store = glm::ivec4(glm::clamp(glm::ivec2(*region), glm::ivec2(0), glm::ivec2(w, h)),
+                       glm::clamp(glm::ivec2(region->z, region->w), glm::ivec2(0), glm::ivec2(w, h)));
+    const int margin = dependence(o);
+    lo = glm::max(glm::ivec2(store) - margin, glm::ivec2(0)) / area * area;
+    hi = glm::min((glm::ivec2(store.z, store.w) + margin + area - 1) / area * area, glm::ivec2(w, h));
+  }
+  last_window_ = glm::ivec4(lo, hi);
+  if (store.z <= store.x || store.w <= store.y) {
+    if (timer) timer->end();
+    return;
+  }
+  const glm::ivec2 size = hi - lo;
+  const glm::ivec2 blocks_lo = lo / kMarkBlock, blocks_hi = (hi + kMarkBlock - 1) / kMarkBlock;
+  const auto window = [&](const Program& p) {
+    p.set("u_lo", lo);
+    p.set("u_hi", hi);
+  };
   // Per-pixel passes: an invocation per pair of columns and kStripRows rows.
-  const GLuint sx = groups(packedWidth(w), kLineGroup), sy = groups(h, kStripRows);
+  const GLuint sx = groups(packedWidth(size.x), kLineGroup), sy = groups(size.y, kStripRows);
 
   // The ink goes straight into main_, which the main region then raises; the marks of ink
   // above the residual and of strokes per block go into seeds_ and strokes_.
   const GLubyte zero = 0;
-  glClearTexImage(seeds_.id(), 0, GL_RED_INTEGER, GL_UNSIGNED_BYTE, &zero);
-  glClearTexImage(strokes_.id(), 0, GL_RED_INTEGER, GL_UNSIGNED_BYTE, &zero);
+  for (const Texture2D* marks : {&seeds_, &strokes_})
+    glClearTexSubImage(marks->id(), 0, blocks_lo.x, blocks_lo.y, 0, blocks_hi.x - blocks_lo.x,
+                       blocks_hi.y - blocks_lo.y, 1, GL_RED_INTEGER, GL_UNSIGNED_BYTE, &zero);
   extract_.use();
+  window(extract_);
   extract_.set("u_paper", paper);
   extract_.set("u_absorbency_map", texture.absorbency_map);
   extract_.set("u_absorb", static_cast<float>(o.iterations > 0 ? o.absorb / o.iterations : 0.0));
@@ -144,18 +179,20 @@ void InkDiffusionPass::run(const Texture2D& colour, const PaperTexture& texture,
   // Both store only strokes within d over an image cleared to "far" (a fill costs far less
   // than a store per pixel), and the columns raise the extracted ink only where a ring does.
   if (o.ring_steps > 0) {
-    reach(strokes_, near_, glm::ivec2(kMarkBlock), o.ring_steps);
+    reach(strokes_, near_, glm::ivec2(kMarkBlock), o.ring_steps, glm::ivec4(blocks_lo, blocks_hi));
     const GLuint far = 0xFFFFFFFFu;  // kFar of shaders/ink_diffusion_nearest.glsl
-    glClearTexImage(nearest_.id(), 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &far);
+    glClearTexSubImage(nearest_.id(), 0, lo.x, lo.y, 0, size.x, size.y, 1, GL_RED_INTEGER, GL_UNSIGNED_INT, &far);
     rows_.use();
+    window(rows_);
     rows_.set("u_threshold", static_cast<float>(o.threshold));
     rows_.set("u_ring_steps", o.ring_steps);
     bindImage(0, main_, GL_READ_ONLY);
     bindImage(1, nearest_, GL_READ_WRITE);
     bindImage(3, near_, GL_READ_ONLY);
-    glDispatchCompute(groups(h, kLineGroup), 1, 1);
+    glDispatchCompute(groups(size.y, kLineGroup), 1, 1);
     barrier();
     columns_.use();
+    window(columns_);
     columns_.set("u_ring_steps", o.ring_steps);
     std::vector<float> ring_ink(static_cast<std::size_t>(o.ring_steps) + 1);
     for (int r = 0; r <= o.ring_steps; ++r) ring_ink[r] = static_cast<float>(std::pow(o.attenuation, r));
@@ -163,33 +200,34 @@ void InkDiffusionPass::run(const Texture2D& colour, const PaperTexture& texture,
                         ring_ink.data());
     bindImage(3, main_, GL_READ_WRITE);
     bindImage(4, near_, GL_READ_ONLY);
-    glDispatchCompute(groups(packedWidth(w), kLineGroup), 1, 1);
+    glDispatchCompute(groups(packedWidth(size.x), kLineGroup), 1, 1);
     barrier();
   }
   last_iterations_ = o.iterations;
   // The areas where anything can change: ink above the residual lies within d of a marked
   // block (a ring lies within d of its stroke, and holds no more ink than it) and moves
   // one pixel per iteration; rings lie within d of a stroke, which is marked too.
-  reach(seeds_, active_tex_, glm::ivec2(kAreaWidth, kStripRows), o.iterations + o.ring_steps);
+  const glm::ivec2 areas_lo = lo / area, areas_hi = (hi + area - 1) / area;
+  reach(seeds_, active_tex_, area, o.iterations + o.ring_steps, glm::ivec4(areas_lo, areas_hi));
   if (o.iterations > 0) {
     // Both ping-pong images start as the main region, so areas left out hold it throughout.
-    glCopyImageSubData(main_.id(), GL_TEXTURE_2D, 0, 0, 0, 0, next_.id(), GL_TEXTURE_2D, 0, 0, 0, 0, packedWidth(w), h,
-                       1);
+    glCopyImageSubData(main_.id(), GL_TEXTURE_2D, 0, lo.x / 2, lo.y, 0, next_.id(), GL_TEXTURE_2D, 0, lo.x / 2, lo.y, 0,
+                       packedWidth(hi.x) - lo.x / 2, size.y, 1);
     barrier();
   }
 
   // Boundary diffusion: n iterations, ping-pong between main_ and next_.
   Texture2D* cur = &main_;
   Texture2D* nxt = &next_;
-  const GLuint bx = groups(w, kAreaWidth), by = groups(h, kStripRows);
   boundary_.use();
   boundary_.set("u_residual", static_cast<float>(o.residual));
+  boundary_.set("u_areas_lo", areas_lo);
   bindImage(1, capacity_, GL_READ_ONLY);
   bindImage(3, active_tex_, GL_READ_ONLY);
   for (int it = 0; it < o.iterations; ++it) {
     bindImage(0, *cur, GL_READ_ONLY);
     bindImage(2, *nxt, GL_WRITE_ONLY);
-    glDispatchCompute(bx, by, 1);
+    glDispatchCompute(areas_hi.x - areas_lo.x, areas_hi.y - areas_lo.y, 1);
     barrier();
     std::swap(cur, nxt);
   }
@@ -206,12 +244,16 @@ void InkDiffusionPass::run(const Texture2D& colour, const PaperTexture& texture,
     bindImage(4, *texture.grain, GL_READ_ONLY);
   } else {
     if (output.id() != colour.id()) {
-      glCopyImageSubData(colour.id(), GL_TEXTURE_2D, 0, 0, 0, 0, output.id(), GL_TEXTURE_2D, 0, 0, 0, 0, w, h, 1);
+      glCopyImageSubData(colour.id(), GL_TEXTURE_2D, 0, store.x, store.y, 0, output.id(), GL_TEXTURE_2D, 0, store.x,
+                         store.y, 0, store.z - store.x, store.w - store.y, 1);
       barrier();
     }
     bindImage(5, active_tex_, GL_READ_ONLY);
   }
   out->use();
+  window(*out);
+  out->set("u_store_lo", glm::ivec2(store));
+  out->set("u_store_hi", glm::ivec2(store.z, store.w));
   out->set("u_paper", paper);
   bindImage(1, *cur, GL_READ_ONLY);
   bindImage(2, output, GL_WRITE_ONLY);
@@ -222,16 +264,18 @@ void InkDiffusionPass::run(const Texture2D& colour, const PaperTexture& texture,
   SHANSHUI_GL_CHECK("diffusion pass");
 }
 
-void InkDiffusionPass::reach(const Texture2D& marks, const Texture2D& reached, glm::ivec2 area, int pixels) const {
+void InkDiffusionPass::reach(const Texture2D& marks, const Texture2D& reached, glm::ivec2 area, int pixels,
+                             glm::ivec4 window) const {
   reach_.use();
   reach_.set("u_area", area);
   reach_.set("u_reach", pixels);
+  reach_.set("u_lo", glm::ivec2(window));
+  reach_.set("u_hi", glm::ivec2(window.z, window.w));
   bindImage(0, marks, GL_READ_ONLY);
   bindImage(1, reached, GL_WRITE_ONLY);
-  glDispatchCompute(groups(reached.width(), 8), groups(reached.height(), 8), 1);
+  glDispatchCompute(groups(window.z - window.x, 8), groups(window.w - window.y, 8), 1);
   barrier();
 }
-
 image::Image InkDiffusionPass::inkAfter() const {
   const image::Image packed = after_->download(2);
   image::Image ink(out_.width(), out_.height(), 1);
@@ -284,7 +328,7 @@ class DiffusionStage final : public RenderPass {
                static_cast<float>(in.scene.canvas.contrast)};
     }
     pass_->run(*images.picture, paper, in.scene.diffusion, glm::vec3(in.scene.output.paper), target_.colour(0),
-               in.timer);
+               in.timer, in.region);
     images.picture = &target_.colour(0);
   }
   const Framebuffer* target() const override { return &target_; }

@@ -9,6 +9,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "shanshui/core/error.h"
+#include "shanshui/render/ink_diffusion_pass.h"
 
 namespace shanshui::render {
 
@@ -107,7 +108,8 @@ scene::CameraKey frameKey(const scene::Scene& s, double index, int count, double
 std::optional<glm::ivec4> InkRenderer::animatedRegion(const FrameInputs& in) const {
   // The animated objects' bounds now (and, with motion blur, where their trails reach back
   // to), in pixels, grown by the farthest any pass reads around a pixel: line and stroke
-  // widths, edge darkening's blur, the substrate's distortion, a margin for the rest.
+  // widths, edge darkening's blur, how far the diffusion carries a change, the substrate's
+  // distortion, a margin for the rest.
   const glm::dmat4 vp = glm::dmat4(in.viewProjection());
   const double px = in.height / 1024.0;
   double grow = 12.0 * px + 8.0;
@@ -115,6 +117,7 @@ std::optional<glm::ivec4> InkRenderer::animatedRegion(const FrameInputs& in) con
     grow = std::max(grow, 8.0 + 2.0 * std::max(o.lines.width, o.strokes.width) * px);
   if (in.scene.edges.enabled) grow += (in.scene.edges.radius + in.scene.edges.wobble) * px;
   if (in.scene.substrate.enabled) grow += in.scene.substrate.distortion * px;
+  if (in.scene.diffusion.enabled()) grow += InkDiffusionPass::dependence(in.scene.diffusion);
   std::vector<double> times{in.time};
   if (in.scene.motion_blur.enabled)
     times.push_back(in.time - in.scene.motion_blur.length * in.scene.motion_blur.interval);

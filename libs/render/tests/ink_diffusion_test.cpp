@@ -227,6 +227,77 @@ TEST_F(InkGpu, InPlaceEqualsASeparateOutput) {
   }
 }
 
+// Animated frames: a run limited to the region where the picture changed (grown by the
+// pass's dependence) gives, everywhere, what a whole run of the new picture gives, over a
+// chain of changes in different places, with and without a canvas grain. Left at the
+// changed pixels alone, the result is wrong around them: the growth is needed.
+TEST_F(InkGpu, ARegionRunEqualsAWholeRunOfTheChangedPicture) {
+  const glm::vec3 paper(kPaper[0], kPaper[1], kPaper[2]);
+  const int w = 301, h = 203;
+  const Texture2D absorbency = Texture2D::fromImage(absorbencyImage(64, 64, 12), GL_R8);
+  image::Image noise(w, h, 4, 0.0f);
+  std::mt19937 rng(13);
+  std::normal_distribution<float> g(0.0f, 1.0f);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      noise.at(x, y, 0) = g(rng);
+      noise.at(x, y, 1) = 0.03f * g(rng);
+    }
+  const Texture2D grain = Texture2D::fromImage(noise, GL_RG32F);
+  // Three pictures: the second and third repaint a patch (x0, y0 in image rows from the top).
+  const image::Image base = picture(w, h, 14, true);
+  std::vector<image::Image> frames{base};
+  const std::vector<glm::ivec4> patches{{130, 60, 170, 90}, {250, 150, 301, 203}};
+  for (std::size_t k = 0; k < patches.size(); ++k) {
+    image::Image next = frames.back();
+    const image::Image patch = picture(w, h, 15 + static_cast<unsigned>(k), false);
+    const glm::ivec4& p = patches[k];
+    for (int y = p.y; y < p.w; ++y)
+      for (int x = p.x; x < p.z; ++x)
+        for (int c = 0; c < 3; ++c) next.at(x, y, c) = patch.at(x, y, c);
+    frames.push_back(next);
+  }
+  for (const auto& [n, d, absorb] : {std::tuple{5, 3, 0.3}, std::tuple{2, 0, 1000.0}, std::tuple{0, 6, 0.3}}) {
+    for (const bool with_grain : {false, true}) {
+      SCOPED_TRACE(testing::Message() << "n=" << n << " d=" << d << " absorb=" << absorb
+                                      << (with_grain ? " with a grain" : ""));
+      ink::DiffusionOptions o;
+      o.iterations = n;
+      o.ring_steps = d;
+      o.absorb = absorb;
+      const PaperTexture texture{&absorbency, {1.0f, 0.0f}, with_grain ? &grain : nullptr, 0.2f};
+      const int grow = InkDiffusionPass::dependence(o);
+      EXPECT_EQ(grow, d + 3 * n);
+      for (const bool grown : {true, false}) {
+        InkDiffusionPass pass;
+        const Texture2D out(w, h, GL_RGBA8);
+        pass.run(Texture2D::fromImage(frames[0], GL_RGBA8), texture, o, paper, out);
+        std::size_t differ = 0;
+        for (std::size_t k = 0; k < patches.size(); ++k) {
+          // The patch in GL pixels (y from the bottom).
+          const glm::ivec4& p = patches[k];
+          glm::ivec4 region(p.x, h - p.w, p.z, h - p.y);
+          if (grown) region += glm::ivec4(-grow, -grow, grow, grow);
+          pass.run(Texture2D::fromImage(frames[k + 1], GL_RGBA8), texture, o, paper, out, nullptr, &region);
+          const glm::ivec4 window = pass.lastWindow();
+          EXPECT_LT((window.z - window.x) * (window.w - window.y), w * h / 2) << "a part of the picture";
+          InkDiffusionPass whole;
+          const Texture2D expected(w, h, GL_RGBA8);
+          whole.run(Texture2D::fromImage(frames[k + 1], GL_RGBA8), texture, o, paper, expected);
+          const image::Image a = expected.download(4), b = out.download(4);
+          for (std::size_t i = 0; i < a.pixels.size(); ++i) differ += a.pixels[i] != b.pixels[i];
+          if (grown) {
+            ASSERT_EQ(differ, 0u) << "change " << k;
+          }
+        }
+        if (!grown && n > 0) {
+          EXPECT_GT(differ, 0u) << "the ink crossed the patch's edge";
+        }
+      }
+    }
+  }
+}
+
 TEST_F(InkGpu, OneByOneEmptyAndFullPicturesStayFinite) {
   InkDiffusionPass pass;
   const glm::vec3 paper(kPaper[0], kPaper[1], kPaper[2]);

@@ -205,7 +205,7 @@ TEST_F(MotionBlur, TheTrailIsLengthTimesSpeedAndStillObjectsAreUntouched) {
 // Animated frames redraw only the region the moving objects cover now and covered in the
 // last frame; every frame equals the one a fresh renderer draws in full, with every pass
 // that can run (canvas, lines as strokes, shading, mist, a dissolving border, brush strokes,
-// pigment, edges, substrate, motion blur).
+// pigment, edges, ink diffusion, substrate, motion blur).
 TEST_F(MotionBlur, AnimatedFramesRedrawOnlyWhatMovedAndMatchAFullRedraw) {
   json still = {{"mesh", "ground"},
                 {"up", "z"},
@@ -219,6 +219,7 @@ TEST_F(MotionBlur, AnimatedFramesRedrawOnlyWhatMovedAndMatchAFullRedraw) {
                   {"canvas", {{"type", "rice_paper"}}},
                   {"mist", {{"density", 0.6}, {"height", 0.3}}},
                   {"edges", {{"enabled", true}}},
+                  {"diffusion", {{"ring_steps", 3}, {"iterations", 5}, {"absorb", 0.6}}},
                   {"substrate", {{"enabled", true}}},
                   {"motion_blur", {{"enabled", true}, {"interval", 0.1}}}};
   const scene::Scene s = scene::parseScene(j, "test", ".");

@@ -41,11 +41,20 @@ class InkDiffusionPass {
   //! The same, writing into `output` (RGBA8, the size of `colour`; may be `colour` itself).
   void run(const Texture2D& colour, const Texture2D& absorbency, const ink::DiffusionOptions& options,
            const glm::vec3& paper, const Texture2D& output, GpuTimer* timer = nullptr);
-  //! The same with a textured paper (PaperTexture::absorbency must be set).
+  //! The same with a textured paper (PaperTexture::absorbency must be set). With a
+  //! `region` (GL pixels x0, y0, x1, y1), only the pixels in it are computed and written,
+  //! exactly as a whole run would: the caller promises that `colour` changed nowhere else
+  //! since the last run (same size and options) and that `output` outside it holds that
+  //! run's result. The work covers the region grown by dependence(options).
   void run(const Texture2D& colour, const PaperTexture& texture, const ink::DiffusionOptions& options,
-           const glm::vec3& paper, const Texture2D& output, GpuTimer* timer = nullptr);
+           const glm::vec3& paper, const Texture2D& output, GpuTimer* timer = nullptr,
+           const glm::ivec4* region = nullptr);
+  //! How far (pixels, Chebyshev) a change of the picture can move the result: d + 3n.
+  static int dependence(const ink::DiffusionOptions& options);
+  //! The window the last run computed (pixels x0, y0, x1, y1).
+  glm::ivec4 lastWindow() const { return last_window_; }
 
-  //! The ink field after the last run (one channel, row 0 at the top), for tests.
+  //! The ink field after the last whole run (one channel, row 0 at the top), for tests.
   image::Image inkAfter() const;
   //! The share of the picture's work-group areas that the last run's boundary iterations
   //! computed: 1 when ink above the residual could reach every area, 0 without iterations
@@ -58,7 +67,8 @@ class InkDiffusionPass {
   void ensureSize(int width, int height);
   //! Marks in `reached` (one texel per `area` of pixels) the areas within `pixels` of a
   //! block marked in `marks`.
-  void reach(const Texture2D& marks, const Texture2D& reached, glm::ivec2 area, int pixels) const;
+  //! `window` is the range of `reached` texels to compute (x0, y0, x1, y1).
+  void reach(const Texture2D& marks, const Texture2D& reached, glm::ivec2 area, int pixels, glm::ivec4 window) const;
   Program extract_, rows_, columns_, reach_, boundary_, output_;
   Program output_canvas_;  //!< built on first use with a canvas grain
   Texture2D capacity_, main_, next_, nearest_, out_;
@@ -67,6 +77,7 @@ class InkDiffusionPass {
   Texture2D active_tex_;  //!< one texel per work-group area: where anything can change (iterations, output)
   const Texture2D* after_ = nullptr;
   int last_iterations_ = 0;  //!< n of the last run
+  glm::ivec4 last_window_{0};
 };
 
 //! The paper absorbency of the renderer's diffusion pass when the scene has no canvas
