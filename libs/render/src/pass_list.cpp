@@ -62,11 +62,11 @@ std::string joined(const std::vector<std::string>& v) {
 
 glm::dmat4 FrameInputs::modelAt(std::size_t i, double t) const {
   // A spinning object turns about the vertical axis through its centre (the origin of its
-  // uploaded coordinates).
+  // uploaded coordinates); a moving one is carried by its velocity and along its path.
   const scene::Object& o = scene.objects[i];
   const glm::dmat4& model = objects[i].model;
   if (!o.animated()) return model;
-  return glm::translate(glm::dmat4(1.0), o.velocity * t) *
+  return glm::translate(glm::dmat4(1.0), o.velocity * t + o.pathOffset(t)) *
          glm::rotate(model, glm::radians(o.spin_deg_per_s * t), glm::dvec3(0, 0, 1));
 }
 

@@ -40,26 +40,47 @@ glm::dvec2 glPixel(const glm::dmat4& vp, glm::dvec3 p, int w, int h) {
 
 TEST_F(MotionBlur, VelocityIsTheProjectedMotionOfEachPointOverOneInterval) {
   const double interval = 0.05;
-  for (const bool spinning : {true, false}) {
-    SCOPED_TRACE(spinning ? "spinning about z" : "moving along x");
+  enum class Motion { Spin, Velocity, Path };
+  for (const Motion motion : {Motion::Spin, Motion::Velocity, Motion::Path}) {
     json o = plainObject("sphere");
-    if (spinning)
-      o["spin"] = 90.0;
-    else
-      o["velocity"] = {1.5, 0.0, 0.0};
+    // Where the sphere's centre is now, and how far a point moved over the last interval
+    // (translations); a spin turns about the centre.
+    double time = 0.4;
+    glm::dvec3 centre(0.0), moved(0.0);
+    switch (motion) {
+      case Motion::Spin:
+        o["spin"] = 90.0;
+        break;
+      case Motion::Velocity:
+        o["velocity"] = {1.5, 0.0, 0.0};
+        centre = glm::dvec3(1.5 * time, 0, 0);
+        moved = glm::dvec3(1.5 * interval, 0, 0);
+        break;
+      case Motion::Path:
+        // Up y to (0, 0.6) by 0.3 s, then along x to (0.9, 0.6) by 0.6 s. At 0.32 s the
+        // last interval turns the corner: from (0, 0.54) at 0.27 s to (0.06, 0.6).
+        o["path"] = json::array({{{"time", 0.0}, {"offset", {0, 0, 0}}},
+                                 {{"time", 0.3}, {"offset", {0, 0.6, 0}}},
+                                 {{"time", 0.6}, {"offset", {0.9, 0.6, 0}}}});
+        time = 0.32;
+        centre = glm::dvec3(0.06, 0.6, 0);
+        moved = glm::dvec3(0.06, 0.06, 0);
+        break;
+    }
+    SCOPED_TRACE(motion == Motion::Spin       ? "spinning about z"
+                 : motion == Motion::Velocity ? "moving along x"
+                                              : "along a path");
     const json j = {{"objects", json::array({o})}, {"motion_blur", {{"enabled", true}, {"interval", interval}}}};
     const scene::Scene s = scene::parseScene(j, "test", ".");
     InkRenderer r(s, load(s, {test::uvSphere(1.0)}));
     EXPECT_NE(r.variants().at("gbuffer").front().find("VELOCITY"), std::string::npos);
     const OrbitCamera cam = sceneCamera(s, r.worldBounds(), 1.0, {30, 35, 0.8});
     const int size = 128;
-    const double time = 0.4;
     r.render(cam, size, size, nullptr, true, time);
     const image::Image velocity = r.passTarget("gbuffer")->colour(2).download(4);
     const image::Image world = r.worldPositions();
     const glm::dmat4 vp = glm::dmat4(cam.projection(1.0)) * glm::dmat4(cam.view());
-    const glm::dvec3 centre = glm::dvec3(1.5, 0, 0) * (spinning ? 0.0 : time);  // the sphere's centre now
-    double worst = 0.0, largest = 0.0;
+    double worst = 0.0, largest = 0.0, off_centre = 0.0;
     int surface = 0;
     for (int y = 0; y < size; ++y)
       for (int x = 0; x < size; ++x) {
@@ -68,12 +89,11 @@ TEST_F(MotionBlur, VelocityIsTheProjectedMotionOfEachPointOverOneInterval) {
           continue;
         }
         const glm::dvec3 now(world.at(x, y, 0), world.at(x, y, 1), world.at(x, y, 2));
-        glm::dvec3 before;
-        if (spinning) {
+        off_centre = std::max(off_centre, std::abs(glm::length(now - centre) - 1.0));
+        glm::dvec3 before = now - moved;
+        if (motion == Motion::Spin) {
           const glm::dmat4 back = glm::rotate(glm::dmat4(1.0), glm::radians(-90.0 * interval), glm::dvec3(0, 0, 1));
           before = centre + glm::dvec3(back * glm::dvec4(now - centre, 1.0));
-        } else {
-          before = now - glm::dvec3(1.5 * interval, 0, 0);
         }
         const glm::dvec2 expected = glPixel(vp, now, size, size) - glPixel(vp, before, size, size);
         const glm::dvec2 got(velocity.at(x, y, 0), velocity.at(x, y, 1));
@@ -82,6 +102,7 @@ TEST_F(MotionBlur, VelocityIsTheProjectedMotionOfEachPointOverOneInterval) {
         ++surface;
       }
     ASSERT_GT(surface, 2000);
+    EXPECT_LT(off_centre, 0.02) << "the sphere stands where its motion puts it";
     EXPECT_GT(largest, 1.0) << "the motion is measurable";
     EXPECT_LT(worst, 0.05 * largest + 0.02);
   }

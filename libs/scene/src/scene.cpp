@@ -69,6 +69,16 @@ bool Scene::usesSuggestiveContours() const {
   return anyObject(objects, [](const Object& o) { return o.lines.suggestiveContours(); });
 }
 
+glm::dvec3 Object::pathOffset(double t) const {
+  if (path.empty()) return glm::dvec3(0.0);
+  if (t <= path.front().time) return path.front().offset;
+  if (t >= path.back().time) return path.back().offset;
+  const auto next =
+      std::upper_bound(path.begin(), path.end(), t, [](double time, const PathKey& k) { return time < k.time; });
+  const PathKey &a = *(next - 1), &b = *next;
+  return glm::mix(a.offset, b.offset, (t - a.time) / (b.time - a.time));
+}
+
 bool Scene::hasAnimation() const {
   return anyObject(objects, [](const Object& o) { return o.animated(); });
 }

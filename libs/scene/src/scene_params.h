@@ -342,6 +342,20 @@ void describe(V& v, Object& o) {
           "the cached layer of the static ones",
           Effect::Uniform, "world units/s"},
          o.velocity, kAnyCoordinate, Vec::Vector);
+  v.list(
+      {"path",
+       "keys of a translation path (none, or two or more, times increasing): the object moves linearly from key to key "
+       "(and stands at "
+       "the first before it, at the last after it), added to the velocity's motion"},
+      o.path, {0, 100000}, [] { return PathKey{}; }, Table::Inline);
+  v.check("path", [&]() -> std::string {
+    if (o.path.size() == 1) return "a path needs at least two keys (one key is a place: use the transform)";
+    for (std::size_t i = 1; i < o.path.size(); ++i)
+      if (!(o.path[i].time > o.path[i - 1].time))
+        return "key " + std::to_string(i) + "'s time " + std::to_string(o.path[i].time) + " must be later than key " +
+               std::to_string(i - 1) + "'s " + std::to_string(o.path[i - 1].time);
+    return "";
+  });
   v.group("lines", o.lines, Table::Own);
   v.group("shading", o.shading, Table::Own);
   v.group("wrinkle", o.wrinkle, Table::Own);
@@ -356,6 +370,13 @@ void describe(V& v, Light& l) {
   v.vec3({"direction", "towards the directional light, world space, normalised on use; not zero"}, l.direction,
          kAnyCoordinate, Vec::Vector);
   v.check("direction", [&]() -> std::string { return glm::length(l.direction) > 0 ? "" : "must not be zero"; });
+}
+
+template <typename V>
+void describe(V& v, PathKey& k) {
+  v.number({"time", "when the object is at this key", Effect::Uniform, "s"}, k.time, {-kBig, kBig});
+  v.vec3({"offset", "from where the transform puts the object", Effect::Uniform, "world units"}, k.offset,
+         kAnyCoordinate, Vec::Vector);
 }
 
 template <typename V>

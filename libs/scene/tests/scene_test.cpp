@@ -144,6 +144,9 @@ TEST(Scene, EveryKindOfBadValueNamesItsKeyPath) {
       {"objects.0.colour", 1, "unknown key"},
       {"objects", 3, "expected a list"},
       {"camera.path", json::array({{{"zoom", 0}}}), "camera.path.0.zoom"},
+      {"objects.0.path", json::array({{{"time", 1}}, {{"time", 1}}}), "key 1's time 1.000000 must be later"},
+      {"objects.0.path", json::array({{{"offset", {0, "up", 0}}}}), "objects.0.path.0.offset.1"},
+      {"objects.0.path", json::array({{{"time", 1}}}), "at least two keys"},
       {"output.paper", json::array({0.5, 0.5, 1.5}), "output.paper.2"},
       {"seed", -1, "seed"},
       {"canvas.type", "linen", "not one of: none, rice_paper, silk, static"},
@@ -158,6 +161,25 @@ TEST(Scene, EveryKindOfBadValueNamesItsKeyPath) {
     EXPECT_NE(e.find(c.path), std::string::npos) << e;
     EXPECT_NE(e.find(c.expect), std::string::npos) << e;
   }
+}
+
+// The path's offset against the piecewise-linear interpolation worked by hand, held at
+// both ends.
+TEST(Scene, AnObjectsPathIsLinearBetweenKeysAndHeldBeyondThem) {
+  json j = kMinimal;
+  j["objects"][0]["path"] = json::array({{{"time", 1.0}, {"offset", {2, 0, 0}}},
+                                         {{"time", 3.0}, {"offset", {2, 4, 0}}},
+                                         {{"time", 4.0}, {"offset", {0, 4, -1}}}});
+  const Scene s = parseScene(j, "s.json", ".");
+  const Object& o = s.objects[0];
+  EXPECT_TRUE(o.animated());
+  const auto near = [](glm::dvec3 a, glm::dvec3 b) { return glm::length(a - b) < 1e-12; };
+  EXPECT_TRUE(near(o.pathOffset(-5.0), {2, 0, 0}));
+  EXPECT_TRUE(near(o.pathOffset(1.0), {2, 0, 0}));
+  EXPECT_TRUE(near(o.pathOffset(1.5), {2, 1, 0}));
+  EXPECT_TRUE(near(o.pathOffset(3.0), {2, 4, 0}));
+  EXPECT_TRUE(near(o.pathOffset(3.25), {1.5, 4, -0.25}));
+  EXPECT_TRUE(near(o.pathOffset(9.0), {0, 4, -1}));
 }
 
 TEST(Scene, AtMost255Objects) {

@@ -177,6 +177,13 @@ enum class UpAxis { Auto, X, Y, Z };
 //! many times its relief (Mount St Helens' tile is about 7, a 30 m Alps tile about 10).
 inline constexpr double kImageReliefRatio = 8.0;
 
+//! One key of an object's translation path: at `time` (seconds) the object stands
+//! `offset` (world units) from where its transform puts it.
+struct PathKey {
+  double time = 0.0;
+  glm::dvec3 offset{0.0};
+};
+
 struct Object {
   std::string name;
   std::string mesh;      //!< .obj/.ply/.off relative to the scene file (exactly one of mesh, dem)
@@ -196,7 +203,13 @@ struct Object {
   //! World units per second the object moves along a straight path (from its transform's
   //! place at time 0); a moving object is animated like a spinning one.
   glm::dvec3 velocity{0.0};
-  bool animated() const { return spin_deg_per_s != 0.0 || velocity != glm::dvec3(0.0); }
+  //! Keys of a translation path (none, or two or more with times strictly increasing):
+  //! the offset is linear between
+  //! keys and held before the first and after the last; added to the velocity's.
+  std::vector<PathKey> path;
+  bool animated() const { return spin_deg_per_s != 0.0 || velocity != glm::dvec3(0.0) || path.size() > 1; }
+  //! Where the path puts the object at time t (world units, from its transform's place).
+  glm::dvec3 pathOffset(double t) const;
   LineParams lines;
   ShadingParams shading;
   WrinkleParams wrinkle;
