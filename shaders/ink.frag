@@ -2,7 +2,8 @@
 // The image pass of the ink renderer: feature lines (seed 001 Eq. 1), interior shading
 // (Eqs. 2, 3, 5) and the composite on paper, in one pass over the G-buffer so each pixel is
 // read once. Variants: LINES and SHADING (some object uses them), STROKES (some object draws
-// its lines as strokes: the centres come from ink_lines.frag), WRINKLE (some object has a
+// its lines as strokes: the centres come from ink_lines.frag), BAND_LINES (some object draws
+// Eq. 1's bands, silhouettes and outlines here, without strokes), WRINKLE (some object has a
 // wrinkle texture), SINGLE_OBJECT (parameters without indexing), CANVAS (the paper grain,
 // when no diffusion pass comes after), PIGMENT (the presence the atmosphere leaves, in alpha,
 // for the pigment pass), DEBUG_OUTPUTS (line weight and tone as extra targets, for tests).
@@ -86,6 +87,7 @@ void main() {
     col = 1.0 - k * o.curve_factor;
     float threshold = o.line_threshold, soft = o.soft_width;
     // Strokes are drawn after the composite, from their centres.
+#ifdef BAND_LINES
     if ((o.line_flags & kStrokes) == 0u) {
       if ((o.line_flags & kNormalOnly) == 0u) {
         line_weight = soft > 0.0 ? 1.0 - smoothstep(threshold - 0.5 * soft, threshold + 0.5 * soft, col)
@@ -111,6 +113,7 @@ void main() {
         if (viewDepth(farthestNeighbour(p)) - z > jump * z) line_weight = 1.0;
       }
     }
+#endif
     col = clamp(col, 0.0, 1.0);
   }
 #endif

@@ -23,11 +23,6 @@ vec3 normalAt(ivec2 q) {
   return normalize(imageLoad(u_normal_curvature, q).xyz * 2.0 - 1.0);
 }
 
-// |N·V| at q, 1 on the background (whose targets are not cleared).
-float facing(ivec2 q, vec3 v) {
-  return texelFetch(u_depth, q, 0).r >= 1.0 ? 1.0 : abs(dot(normalAt(q), v));
-}
-
 #ifdef SUGGESTIVE
 uniform mat4 u_view_projection;
 const float kSuggestiveReach = 3.0;  // pixels either side along w where the trough's depth is measured
@@ -64,7 +59,15 @@ float suggestiveTrough(ivec2 p, vec3 position, vec3 n, float z) {
 
 void main() {
   ivec2 p = ivec2(gl_FragCoord.xy);
-  float depth = texelFetch(u_depth, p, 0).r;
+  // Every test below reads p's neighbourhood; each texel is read once. The depth of p, its
+  // four neighbours and two diagonal ones come from two gathers (a texel fetch costs a
+  // software rasteriser several image loads, and it runs every test's code whether or not a
+  // pixel takes it), the neighbours' normal and curvature from four image loads.
+  vec2 texel = 1.0 / vec2(textureSize(u_depth, 0));
+  vec2 centre = (vec2(p) + 0.5) * texel;
+  vec4 upper = textureGather(u_depth, centre + 0.5 * texel);  // p+y, p+x+y, p+x, p
+  vec4 lower = textureGather(u_depth, centre - 0.5 * texel);  // p−x, p, p−y, p−x−y
+  float depth = upper.w;
   if (depth >= 1.0) return;
 #ifdef SINGLE_OBJECT
   ObjectParams o = objects[0];
@@ -74,12 +77,18 @@ void main() {
   if ((o.line_flags & kStrokes) == 0u) return;
   vec3 position = worldPosition(p, depth);
   vec4 nc = imageLoad(u_normal_curvature, p);
+  // The neighbours −x, +x, −y, +y: offset, depth, encoded normal and curvature.
+  const ivec2 kSide[4] = ivec2[4](ivec2(-1, 0), ivec2(1, 0), ivec2(0, -1), ivec2(0, 1));
+  vec4 side_depth = vec4(lower.x, upper.z, lower.z, upper.x);
+  vec4 side_nc[4];
+  for (int i = 0; i < 4; ++i) side_nc[i] = imageLoad(u_normal_curvature, p + kSide[i]);
   float ink = 0.0, strength = 0.0;
 
   float jump = o.depth_edges;
   if (jump > 0.0) {
     float z = viewDepth(depth);
-    if (viewDepth(farthestNeighbour(p)) - z > jump * z) {
+    float farthest = max(max(max(upper.x, upper.y), max(upper.z, upper.w)), max(max(lower.x, lower.y), max(lower.z, lower.w)));
+    if (viewDepth(farthest) - z > jump * z) {
       ink = strength = 1.0;
     } else {
       // A fold seen from afar: the surface behind is only a little farther, under the
@@ -88,10 +97,8 @@ void main() {
       // neighbours along x or y by a tenth of the jump (the N·V band of such a fold is
       // thinner than a pixel, so the silhouette test would give only dots).
       float iz = 1.0 / z;
-      float kink_x = 2.0 * iz - 1.0 / viewDepth(texelFetch(u_depth, p - ivec2(1, 0), 0).r) -
-                     1.0 / viewDepth(texelFetch(u_depth, p + ivec2(1, 0), 0).r);
-      float kink_y = 2.0 * iz - 1.0 / viewDepth(texelFetch(u_depth, p - ivec2(0, 1), 0).r) -
-                     1.0 / viewDepth(texelFetch(u_depth, p + ivec2(0, 1), 0).r);
+      float kink_x = 2.0 * iz - 1.0 / viewDepth(side_depth[0]) - 1.0 / viewDepth(side_depth[1]);
+      float kink_y = 2.0 * iz - 1.0 / viewDepth(side_depth[2]) - 1.0 / viewDepth(side_depth[3]);
       // Weak kinks (shallow folds) light and thin, those near a jump dark and wide.
       float kink = max(kink_x, kink_y) / (0.1 * jump * iz);
       if (kink > 1.0) {
@@ -108,20 +115,24 @@ void main() {
     float weight = soft > 0.0 ? 1.0 - smoothstep(threshold - 0.5 * soft, threshold + 0.5 * soft, col)
                               : (col < threshold ? 1.0 : 0.0);
     if (weight > 0.0) {
-      float l = curvatureCode(p - ivec2(1, 0)), r = curvatureCode(p + ivec2(1, 0));
-      float d = curvatureCode(p - ivec2(0, 1)), u = curvatureCode(p + ivec2(0, 1));
+      // The neighbours' curvature codes, 0 on the background (curvatureCode's rule).
+      vec4 code;
+      for (int i = 0; i < 4; ++i) code[i] = side_depth[i] >= 1.0 ? 0.0 : side_nc[i].w;
       // A crest is a maximum across the line; along it the curvature may rise or fall, so
       // the axis is the one where the field bends down most (its gradient vanishes on the
       // crest and cannot tell).
-      bool across_x = l + r <= d + u;
-      if (across_x ? nc.w >= max(l, r) : nc.w >= max(d, u)) {
+      bool across_x = code[0] + code[1] <= code[2] + code[3];
+      if (across_x ? nc.w >= max(code[0], code[1]) : nc.w >= max(code[2], code[3])) {
         // Convex or concave across the line: normals spread apart over a ridge
         // ((n₊ − n₋)·(x₊ − x₋) > 0) and come together in a valley.
+        // (Chosen by selects: an index that differs between pixels costs a software
+        // rasteriser a load per pixel.)
         ivec2 a = across_x ? ivec2(1, 0) : ivec2(0, 1);
-        float d_plus = texelFetch(u_depth, p + a, 0).r, d_minus = texelFetch(u_depth, p - a, 0).r;
+        float d_plus = across_x ? side_depth[1] : side_depth[3], d_minus = across_x ? side_depth[0] : side_depth[2];
+        vec4 nc_plus = across_x ? side_nc[1] : side_nc[3], nc_minus = across_x ? side_nc[0] : side_nc[2];
         float valley = 1.0;
         if (d_plus < 1.0 && d_minus < 1.0) {
-          vec3 dn = normalAt(p + a) - normalAt(p - a);
+          vec3 dn = normalize(nc_plus.xyz * 2.0 - 1.0) - normalize(nc_minus.xyz * 2.0 - 1.0);
           vec3 dx = worldPosition(p + a, d_plus) - worldPosition(p - a, d_minus);
           if (dot(dn, dx) < 0.0) valley = o.valley_ink;
         }
@@ -143,9 +154,11 @@ void main() {
     vec3 v = normalize(u_eye - position);
     float nv = abs(dot(normalize(nc.xyz * 2.0 - 1.0), v));
     if (nv < 0.5 * silhouette) {
-      float l = facing(p - ivec2(1, 0), v), r = facing(p + ivec2(1, 0), v);
-      float d = facing(p - ivec2(0, 1), v), u = facing(p + ivec2(0, 1), v);
-      bool trough = l + r >= d + u ? nv <= min(l, r) : nv <= min(d, u);
+      // |N·V| of the neighbours, 1 on the background (whose targets are not cleared).
+      vec4 f;
+      for (int i = 0; i < 4; ++i)
+        f[i] = side_depth[i] >= 1.0 ? 1.0 : abs(dot(normalize(side_nc[i].xyz * 2.0 - 1.0), v));
+      bool trough = f[0] + f[1] >= f[2] + f[3] ? nv <= min(f[0], f[1]) : nv <= min(f[2], f[3]);
       if (trough) ink = strength = 1.0;
     }
   }

@@ -35,6 +35,12 @@ std::vector<std::string> inkDefines(const scene::Scene& s, bool debug_outputs) {
   std::vector<std::string> d;
   if (s.usesLines()) d.emplace_back("LINES");
   if (s.usesStrokes()) d.emplace_back("STROKES");
+  // Eq. 1's bands, silhouettes and outlines in this pass: only when some object draws its
+  // lines without strokes (a software rasteriser runs a branch's code even when no pixel
+  // takes it).
+  if (std::any_of(s.objects.begin(), s.objects.end(),
+                  [](const scene::Object& o) { return o.lines.enabled && !o.lines.strokes(); }))
+    d.emplace_back("BAND_LINES");
   if (s.usesShading()) d.emplace_back("SHADING");
   if (s.usesWrinkles()) d.emplace_back("WRINKLE");
   if (grainHere(s)) d.emplace_back("CANVAS");
