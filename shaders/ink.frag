@@ -15,8 +15,9 @@
 uniform vec3 u_light_dir;    // unit, towards the light
 uniform vec3 u_paper;
 #ifdef STROKES
-// The strokes' ink × 255, stamped by ink_lines.frag.
+// The strokes' ink × 255, stamped by ink_lines.frag, and the presence it found per surface pixel.
 layout(r32ui, binding = 3) readonly uniform uimage2D u_stroke_ink;
+layout(r16, binding = 4) readonly uniform image2D u_presence;
 #endif
 #ifdef CANVAS
 // The paper: unit-variance grain, and its marks (fibres, spots, mottle) as a brightness change.
@@ -149,7 +150,11 @@ void main() {
   // Composite: ink on paper, lines over the interior, then the atmosphere and the border
   // take it back towards the paper; strokes carry their own.
   vec3 colour = mix(u_paper * o.bg_color * tone, o.line_color, line_weight);
+#ifdef STROKES
+  float here = imageLoad(u_presence, p).r;
+#else
   float here = presence(o, position);
+#endif
   colour = mix(u_paper, colour, here);
 #ifdef STROKES
   float stroke = strokeInk(p);

@@ -18,6 +18,9 @@
 #include "ink_surface.glsl"
 // Ink × 255 per pixel, cleared to 0 each frame.
 layout(r32ui, binding = 3) uniform uimage2D u_stroke_ink;
+// What the atmosphere and the border leave of each surface pixel (presence()), for the ink
+// pass, which would otherwise compute it again (its noise fetches are most of its cost).
+layout(location = 0) out float o_presence;
 
 vec3 normalAt(ivec2 q) {
   return normalize(imageLoad(u_normal_curvature, q).xyz * 2.0 - 1.0);
@@ -74,8 +77,10 @@ void main() {
 #else
   ObjectParams o = objects[int(imageLoad(u_surface_id, p).a * 255.0 + 0.5) - 1];
 #endif
-  if ((o.line_flags & kStrokes) == 0u) return;
   vec3 position = worldPosition(p, depth);
+  float here = presence(o, position);
+  o_presence = here;
+  if ((o.line_flags & kStrokes) == 0u) return;
   vec4 nc = imageLoad(u_normal_curvature, p);
   // The neighbours −x, +x, −y, +y: offset, depth, encoded normal and curvature.
   const ivec2 kSide[4] = ivec2[4](ivec2(-1, 0), ivec2(1, 0), ivec2(0, -1), ivec2(0, 1));
@@ -181,7 +186,7 @@ void main() {
   if (ink <= 0.0) return;
   float far = smoothstep(u_fade_range.x, u_fade_range.y, distance(u_eye, position));
   float half_width = o.stroke_half_width * mix(o.stroke_taper, 1.0, strength) * mix(1.0, o.stroke_far, far);
-  ink *= presence(o, position);
+  ink *= here;
   // The disc, its edge antialiased over one pixel; stamps outside the image are dropped.
   float reach = half_width + 0.5;
   int r = int(ceil(reach));

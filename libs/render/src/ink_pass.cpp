@@ -116,7 +116,7 @@ class InkPass final : public RenderPass {
     if (value_noise_) glBindTextureUnit(3, value_noise_->id());
     if (lines_) {  // built exactly when some object draws strokes
       if (stroke_ink_.width() != target_.width() || stroke_ink_.height() != target_.height()) {
-        strokes_ = Framebuffer(target_.width(), target_.height(), {GL_R8}, false);
+        strokes_ = Framebuffer(target_.width(), target_.height(), {GL_R16}, false);
         stroke_ink_ = Texture2D(target_.width(), target_.height(), GL_R32UI);
       }
       if (in.timer) in.timer->begin("lines");
@@ -133,7 +133,6 @@ class InkPass final : public RenderPass {
         const glm::ivec4& r = *in.region;
         glScissor(r.x - grow, r.y - grow, r.z - r.x + 2 * grow, r.w - r.y + 2 * grow);
       }
-      glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
       lines_->use();
       setSurfaceUniforms(*lines_, in);
       if (scene_.usesSuggestiveContours()) {
@@ -142,7 +141,6 @@ class InkPass final : public RenderPass {
                               glm::dmat4(in.camera.view())));
       }
       glDrawArrays(GL_TRIANGLES, 0, 3);
-      glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
       if (in.region) {
         const glm::ivec4& r = *in.region;
         glScissor(r.x, r.y, r.z - r.x, r.w - r.y);
@@ -151,6 +149,7 @@ class InkPass final : public RenderPass {
       if (in.timer) in.timer->end();
       SHANSHUI_GL_CHECK("ink lines");
       glBindImageTexture(3, stroke_ink_.id(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_R32UI);
+      glBindImageTexture(4, strokes_.colour(0).id(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_R16);
     }
     if (in.timer) in.timer->begin("ink");
     target_.bind();
@@ -275,7 +274,7 @@ class InkPass final : public RenderPass {
   Buffer params_;
   std::size_t capacity_ = 0;
   Framebuffer target_;
-  Framebuffer strokes_;                   //!< the lines pass's target (it writes no colour: it stamps)
+  Framebuffer strokes_;                   //!< the lines pass's target: R16, the atmosphere's presence per surface pixel
   Texture2D stroke_ink_;                  //!< R32UI: the strokes' ink × 255, by atomic max
   std::optional<Texture2D> value_noise_;  //!< the border's and mist's noise
   std::optional<std::uint64_t> noise_seed_;
