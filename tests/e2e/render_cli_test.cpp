@@ -120,6 +120,7 @@ TEST(RenderCli, LinesOnlyAndShadingOnlyBuildOnlyTheirShaderCode) {
                " --set objects.0.shading.enabled=false");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const json a = readJson(dir / "a.json");
+  // Strokes only: the bands' code (BAND_LINES) is left out of the ink pass.
   EXPECT_EQ(a["variants"]["ink"],
             json({"LINES STROKES CANVAS SINGLE_OBJECT BORDER MIST", "lines: SINGLE_OBJECT BORDER MIST"}));
   EXPECT_EQ(a["variants"]["gbuffer"], json({"OBJECT_CURVATURE"})) << "no noise, no wrinkle texture, no UVs";
@@ -129,12 +130,12 @@ TEST(RenderCli, LinesOnlyAndShadingOnlyBuildOnlyTheirShaderCode) {
   const json b = readJson(dir / "b.json");
   EXPECT_EQ(b["variants"]["ink"], json({"SHADING WRINKLE CANVAS SINGLE_OBJECT BORDER MIST"}));
   EXPECT_EQ(b["variants"]["gbuffer"], json({"SURFACE WRINKLE WRINKLE_SLOPE"}));  // no curvature of either kind
-  // Eq. 1's bands instead of strokes: no lines stage, no stroke code.
+  // Eq. 1's bands instead of strokes: no lines stage, no stroke code, the bands' code.
   r = run(base + " -o " + quote(dir / "c.png") + " --stats " + quote(dir / "c.json") +
           " --set objects.0.lines.width=0");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const json c = readJson(dir / "c.json");
-  EXPECT_EQ(c["variants"]["ink"], json({"LINES SHADING WRINKLE CANVAS SINGLE_OBJECT BORDER MIST"}));
+  EXPECT_EQ(c["variants"]["ink"], json({"LINES BAND_LINES SHADING WRINKLE CANVAS SINGLE_OBJECT BORDER MIST"}));
   EXPECT_EQ(passNames(c["frames"][0]).count("lines"), 0u);
 }
 
