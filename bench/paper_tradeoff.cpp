@@ -20,6 +20,7 @@
 #include <nlohmann/json.hpp>
 
 #include "bench_args.h"
+#include "box_on_plane.h"
 #include "shanshui/mesh/shapes.h"
 #include "shanshui/render/gl_context.h"
 #include "shanshui/render/ink_renderer.h"
@@ -109,33 +110,17 @@ int main(int argc, char** argv) {
 
   // Shadow map resolution against the analytic shadow of a box on a plane.
   {
-    const glm::dvec3 light(1.0, 0.5, 1.2), box0(1.5, 1.5, 0.0), box1(2.3, 2.1, 0.7);
-    json j = {{"light", {{"direction", {light.x, light.y, light.z}}}},
-              {"output", {{"fade", 0.0}}},
-              {"shadow", {{"pigment", {{"name", "indigo"}, {"thickness", 1.0}}}, {"softness", 0.0}}},
-              {"objects", json::array()}};
-    for (const char* name : {"plane", "box"})
-      j["objects"].push_back({{"mesh", name},
-                              {"up", "z"},
-                              {"recentre", false},
-                              {"lines", {{"enabled", false}}},
-                              {"shading", {{"enabled", false}}}});
-    j["objects"][1]["transform"] = {{"scale", {box1.x - box0.x, box1.y - box0.y, box1.z - box0.z}},
-                                    {"translate", {box0.x, box0.y, box0.z}}};
+    const test::BoxOnPlane box;
+    const json j = box.scene(0.0);
     scene::Scene s = scene::parseScene(j, "box on a plane", ".");
     json off = j;
     off.erase("shadow");
     const scene::Scene s0 = scene::parseScene(off, "box on a plane", ".");
     const mesh::Mesh plane = mesh::heightGrid(81, 81, 0.05, [](double, double) { return 0.0; });
-    auto loaded = [&](const scene::Scene& sc) {
-      return std::vector<scene::LoadedObject>{
-          {std::make_shared<const scene::ObjectAsset>(scene::prepareAsset(plane, sc.objects[0])), nullptr},
-          {std::make_shared<const scene::ObjectAsset>(scene::prepareAsset(mesh::unitCube(), sc.objects[1])), nullptr}};
-    };
+    auto loaded = [&](const scene::Scene& sc) { return test::BoxOnPlane::load(sc, plane); };
     render::InkRenderer r(s, loaded(s)), r0(s0, loaded(s0));
     const render::OrbitCamera cam = render::sceneCamera(s, r.worldBounds(), 1.0, {0, 89, 1.0});
     const image::Image bare = r0.render(cam, size, size).colour(0).download(3);
-    const glm::dvec3 l = glm::normalize(light);
     md << "\n## Shadow map resolution against the analytic shadow\n\nA box (0.8 × 0.6 × 0.7) on a 4 × 4 plane, " << size
        << "² from above, unfiltered edge. Error: the plane's pixels washed where the box does not hide "
        << "them from the light, or not washed where it does, as a share of the shadow's area; time: the shadow "
@@ -146,7 +131,7 @@ int main(int argc, char** argv) {
       std::vector<double> ms;
       image::Image with, world;
       for (int k = 0; k < repeats; ++k) {
-        s.light.direction = light * (1.0 + 1e-9 * (k + 1));  // a new light: the map is drawn again
+        s.light.direction = box.light * (1.0 + 1e-9 * (k + 1));  // a new light: the map is drawn again
         r.setScene(s);
         render::FrameStats st;
         with = r.render(cam, size, size, &st, true).colour(0).download(3);
@@ -158,14 +143,8 @@ int main(int argc, char** argv) {
         for (int x = 0; x < size; ++x) {
           if (world.at(x, y, 3) < 0.5) continue;
           const glm::dvec3 p(world.at(x, y, 0), world.at(x, y, 1), world.at(x, y, 2));
-          if (std::abs(p.z) > 1e-3 || (p.x > box0.x && p.x < box1.x && p.y > box0.y && p.y < box1.y)) continue;
-          double t0 = 1e-9, t1 = 1e30;
-          for (int i = 0; i < 3; ++i) {
-            const double a = (box0[i] - p[i]) / l[i], b = (box1[i] - p[i]) / l[i];
-            t0 = std::max(t0, std::min(a, b));
-            t1 = std::min(t1, std::max(a, b));
-          }
-          const bool expected = t0 <= t1;
+          if (!box.onPlaneBesideBox(p)) continue;
+          const bool expected = box.hidden(p);
           const bool washed = std::abs(with.at(x, y, 0) - bare.at(x, y, 0)) > 0.05;
           shadowed += expected;
           wrong += washed != expected;

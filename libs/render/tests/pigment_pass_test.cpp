@@ -6,6 +6,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "box_on_plane.h"
 #include "gl_test.h"
 #include "scene_in_memory.h"
 #include "shanshui/image/image_io.h"
@@ -127,26 +128,10 @@ TEST_F(Pigment, ACustomPigmentThatDoesNotDarkenOnBlackIsRefusedByKey) {
 // A box on a plane, lit from one side: the plane is washed exactly where the ray from it
 // towards the light meets the box (the analytic oracle), but at the filtered edge.
 TEST_F(Pigment, ShadowWashFallsWhereTheBoxHidesThePlaneFromTheLight) {
-  const glm::dvec3 light(1.0, 0.5, 1.2);
-  const glm::dvec3 box0(1.5, 1.5, 0.0), box1(2.3, 2.1, 0.7);
-  json j = {{"light", {{"direction", {light.x, light.y, light.z}}}},
-            {"output", {{"fade", 0.0}}},
-            {"shadow", {{"pigment", {{"name", "indigo"}, {"thickness", 1.0}}}, {"softness", 1.0}}},
-            {"objects", json::array()}};
-  for (const char* name : {"plane", "box"})
-    j["objects"].push_back({{"mesh", name},
-                            {"up", "z"},
-                            {"recentre", false},
-                            {"lines", {{"enabled", false}}},
-                            {"shading", {{"enabled", false}}}});
-  j["objects"][1]["transform"] = {{"scale", {box1.x - box0.x, box1.y - box0.y, box1.z - box0.z}},
-                                  {"translate", {box0.x, box0.y, box0.z}}};
+  const test::BoxOnPlane box;
+  const json j = box.scene(1.0);
   const mesh::Mesh plane = mesh::heightGrid(41, 41, 0.1, [](double, double) { return 0.0; });
-  auto loaded = [&](const scene::Scene& s) {
-    return std::vector<scene::LoadedObject>{
-        {std::make_shared<const scene::ObjectAsset>(scene::prepareAsset(plane, s.objects[0])), nullptr},
-        {std::make_shared<const scene::ObjectAsset>(scene::prepareAsset(mesh::unitCube(), s.objects[1])), nullptr}};
-  };
+  auto loaded = [&](const scene::Scene& s) { return test::BoxOnPlane::load(s, plane); };
   const scene::Scene s = scene::parseScene(j, "test", ".");
   json off = j;
   off.erase("shadow");
@@ -159,25 +144,15 @@ TEST_F(Pigment, ShadowWashFallsWhereTheBoxHidesThePlaneFromTheLight) {
   const image::Image with = r.render(cam, size, size).colour(0).download(3);
   const image::Image world = r.worldPositions();
   const image::Image without = r0.render(cam, size, size).colour(0).download(3);
-  const glm::dvec3 l = glm::normalize(light);
-  auto hidden = [&](glm::dvec3 p) {  // slab test of the ray p + t l, t > 0, against the box
-    double t0 = 1e-9, t1 = 1e30;
-    for (int i = 0; i < 3; ++i) {
-      const double a = (box0[i] - p[i]) / l[i], b = (box1[i] - p[i]) / l[i];
-      t0 = std::max(t0, std::min(a, b));
-      t1 = std::min(t1, std::max(a, b));
-    }
-    return t0 <= t1;
-  };
   int shadowed = 0, wrong = 0, plain = 0;
   for (int y = 0; y < size; ++y)
     for (int x = 0; x < size; ++x) {
       if (world.at(x, y, 3) < 0.5) continue;
       const glm::dvec3 p(world.at(x, y, 0), world.at(x, y, 1), world.at(x, y, 2));
-      if (std::abs(p.z) > 1e-3 || (p.x > box0.x && p.x < box1.x && p.y > box0.y && p.y < box1.y)) continue;
+      if (!box.onPlaneBesideBox(p)) continue;
       const bool washed =
           std::abs(with.at(x, y, 0) - without.at(x, y, 0)) + std::abs(with.at(x, y, 2) - without.at(x, y, 2)) > 0.1;
-      const bool expected = hidden(p);
+      const bool expected = box.hidden(p);
       shadowed += expected;
       plain += !expected;
       wrong += washed != expected;
