@@ -56,9 +56,10 @@ class InkDiffusionPass {
 
   //! The ink field after the last whole run (one channel, row 0 at the top), for tests.
   image::Image inkAfter() const;
-  //! The share of the picture's work-group areas that the last run's boundary iterations
-  //! computed: 1 when ink above the residual could reach every area, 0 without iterations
-  //! (reads back a small image; for tests and benches).
+  //! The share of the picture's work-group areas that the last whole run's boundary
+  //! iterations computed: 1 when ink above the residual could reach every area, 0 without
+  //! iterations (reads back a small image; for tests and benches; after a region run it
+  //! mixes that run's window with older runs' areas).
   double lastActiveFraction() const;
   //! The pixels one work group of the boundary iterations covers (the unit left out).
   static glm::ivec2 workGroupArea();
