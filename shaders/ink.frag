@@ -4,7 +4,8 @@
 // read once. Variants: LINES and SHADING (some object uses them), STROKES (some object draws
 // its lines as strokes: the centres come from ink_lines.frag), BAND_LINES (some object draws
 // Eq. 1's bands, silhouettes and outlines here, without strokes), WRINKLE (some object has a
-// wrinkle texture), SINGLE_OBJECT (parameters without indexing), CANVAS (the paper grain,
+// wrinkle texture), WRINKLE_SLOPE (an object's slope wrinkles on planar UVs are computed
+// here, once per pixel, not in the G-buffer pass), SINGLE_OBJECT (parameters without indexing), CANVAS (the paper grain,
 // when no diffusion pass comes after), PIGMENT (the presence the atmosphere leaves, in alpha,
 // for the pigment pass), DEBUG_OUTPUTS (line weight and tone as extra targets, for tests).
 #include "ink_objects.glsl"
@@ -25,10 +26,40 @@ layout(rg32f, binding = 2) readonly uniform image2D u_canvas;
 uniform float u_canvas_contrast;
 #endif
 
+#ifdef WRINKLE_SLOPE
+layout(binding = 4) uniform sampler2D u_wrinkle;  // Eq. 5's luma, mipmapped
+#include "ink_wrinkle.glsl"
+
+// How far the surface point moves for one pixel along `step` on screen: where that pixel's
+// view ray meets the tangent plane at P (normal n), less P. For a surface of planar UVs it
+// stands in for the screen derivatives of position the G-buffer pass takes from the
+// triangle. A ray grazing the plane is held to a long but finite step.
+vec3 tangentStep(ivec2 p, vec2 step, vec3 P, vec3 n) {
+  vec2 ndc = (vec2(p) + 0.5 + step) / vec2(textureSize(u_depth, 0)) * 2.0 - 1.0;
+  vec4 a = u_inverse_view_projection * vec4(ndc, -1.0, 1.0), b = u_inverse_view_projection * vec4(ndc, 1.0, 1.0);
+  vec3 o = a.xyz / a.w, d = b.xyz / b.w - o;
+  float dn = dot(d, n), least = 1e-6 * length(d);
+  return o + dot(P - o, n) / (abs(dn) > least ? dn : least) * d - P;
+}
+
+// The slope wrinkles at P of an object with planar UVs: its model x and y from the box's
+// low corner over the box's larger horizontal side (scene_assets.cpp's planarUvs), through
+// the world-to-model rows the border uses.
+float planarSlopeWrinkle(ObjectParams o, ivec2 p, vec3 P, vec3 n) {
+  vec3 dpx = tangentStep(p, vec2(1.0, 0.0), P, n), dpy = tangentStep(p, vec2(0.0, 1.0), P, n);
+  float per_unit = 0.5 / max(max(o.half_extent.x, o.half_extent.y), 1e-30);
+  vec3 ux = o.world_to_model_x.xyz * per_unit, uy = o.world_to_model_y.xyz * per_unit;
+  vec2 uv = vec2(dot(ux, P) + o.world_to_model_x.w * per_unit, dot(uy, P) + o.world_to_model_y.w * per_unit) +
+            o.half_extent.xy * per_unit;
+  return slopeWrinkle(u_wrinkle, n, uv, dpx, dpy, vec2(dot(ux, dpx), dot(uy, dpx)), vec2(dot(ux, dpy), dot(uy, dpy)),
+                      o.wrinkle_tile_px, o.wrinkle_angle);
+}
+#endif
+
 layout(location = 0) out vec4 o_colour;
 #ifdef DEBUG_OUTPUTS
 layout(location = 1) out vec2 o_line;  // weight, col_i
-layout(location = 2) out float o_tone;
+layout(location = 2) out vec2 o_tone;  // tone, wrinkle luma (1 without wrinkles)
 #endif
 
 // The paper over the finished colour: brightness × (1 + contrast · grain) × (1 + marks).
@@ -50,7 +81,7 @@ void main() {
   ivec2 p = ivec2(gl_FragCoord.xy);
 #ifdef DEBUG_OUTPUTS
   o_line = vec2(0.0, 1.0);
-  o_tone = 1.0;
+  o_tone = vec2(1.0);
 #endif
   // Background where nothing was drawn; the colour targets are not cleared, so they are
   // read only after this test.
@@ -122,7 +153,7 @@ void main() {
   // Interior shading: diffuse term eroded by noise, or by the wrinkle texture where the
   // lines left background (Eq. 3, β a parameter), times col_i, plus noise, then five tones
   // with Gaussian-smoothed steps.
-  float tone = 1.0;
+  float tone = 1.0, wrinkle = 1.0;
 #ifdef SHADING
   uint shade_flags = o.shade_flags;
   if ((shade_flags & kShadingOn) != 0u) {
@@ -130,7 +161,11 @@ void main() {
     float t_d = (shade_flags & kHalfLambert) != 0u ? 0.5 * n_dot_l + 0.5 : max(n_dot_l, 0.0);
     float t_w = 1.0 - o.erosion * (1.0 - surface.r);
 #ifdef WRINKLE
-    if ((shade_flags & kWrinkled) != 0u && line_weight < 0.5) t_w = surface.b * o.inv_inner_tex_factor;
+    wrinkle = surface.b;
+#ifdef WRINKLE_SLOPE
+    if ((shade_flags & kWrinkleHere) != 0u) wrinkle = planarSlopeWrinkle(o, p, position, n);
+#endif
+    if ((shade_flags & kWrinkled) != 0u && line_weight < 0.5) t_w = wrinkle * o.inv_inner_tex_factor;
 #endif
     float t = clamp(t_d + t_w + o.beta, 0.0, 1.0);
     if ((shade_flags & kLineValue) != 0u) t *= col;
@@ -167,6 +202,6 @@ void main() {
 #endif
 #ifdef DEBUG_OUTPUTS
   o_line = vec2(line_weight, col);
-  o_tone = tone;
+  o_tone = vec2(tone, wrinkle);
 #endif
 }

@@ -16,13 +16,15 @@
   F(vec4, world_to_model_y) \
   F(vec3, half_extent)    F(float, border_width) \
   F(float, stroke_half_width) F(float, stroke_taper) F(float, stroke_far) F(float, valley_ink) \
-  F(float, suggestive)    F(float, unused_a)     F(float, unused_b)             F(float, unused_c)
+  F(float, suggestive)    F(float, wrinkle_tile_px) F(float, wrinkle_angle)     F(float, unused_c)
 
 // world_to_model_x/y: rows of the world-to-model affine map (x and y of the model, relative
 // to its bounding-box centre); half_extent: the box's half size; border_width: the
 // dissolving border's falloff in model units (0 = a hard edge). stroke_half_width: half the
 // stroke width in pixels (0 = Eq. 1's bands); stroke_taper, stroke_far, valley_ink,
-// suggestive: see LineParams; unused_*: fill the last 16-byte slot.
+// suggestive: see LineParams; wrinkle_tile_px, wrinkle_angle: the slope wrinkles' tile size
+// on screen (pixels) and turn (radians) where the ink pass computes them (kWrinkleHere);
+// unused_c: fills the last 16-byte slot.
 
 // line_flags bits
 const uint kLinesOn = 1u;
@@ -34,3 +36,4 @@ const uint kShadingOn = 1u;
 const uint kHalfLambert = 2u;
 const uint kLineValue = 4u;
 const uint kWrinkled = 8u;
+const uint kWrinkleHere = 16u;  // slope wrinkles from planar UVs, computed in the ink pass

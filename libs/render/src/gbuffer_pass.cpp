@@ -17,11 +17,13 @@ namespace shanshui::render {
 
 namespace {
 
-std::vector<std::string> objectDefines(const scene::Scene& s, const scene::Object& o) {
+std::vector<std::string> objectDefines(const scene::Scene& s, std::size_t i) {
+  const scene::Object& o = s.objects[i];
   std::vector<std::string> d;
   if (s.usesShading()) d.emplace_back("SURFACE");
-  if (o.wrinkled()) d.emplace_back("WRINKLE");
-  if (o.wrinkled() && o.wrinkle.mapping == scene::WrinkleMapping::Slope) d.emplace_back("WRINKLE_SLOPE");
+  const bool here = o.wrinkled() && !wrinklesInInkPass(s, i);
+  if (here) d.emplace_back("WRINKLE");
+  if (here && o.wrinkle.mapping == scene::WrinkleMapping::Slope) d.emplace_back("WRINKLE_SLOPE");
   if (o.lines.enabled) d.emplace_back(scene::perVertex(o.lines.curvature) ? "OBJECT_CURVATURE" : "SCREEN_CURVATURE");
   if (s.motion_blur.enabled) d.emplace_back("VELOCITY");
   return d;
@@ -33,8 +35,8 @@ class GbufferPass final : public RenderPass {
       : shading_(setup.scene.usesShading()),
         animated_(setup.scene.hasAnimation()),
         velocity_(setup.scene.motion_blur.enabled) {
-    for (const scene::Object& o : setup.scene.objects) {
-      const std::vector<std::string> defines = objectDefines(setup.scene, o);
+    for (std::size_t i = 0; i < setup.scene.objects.size(); ++i) {
+      const std::vector<std::string> defines = objectDefines(setup.scene, i);
       const auto it =
           std::find_if(programs_.begin(), programs_.end(), [&](const Variant& v) { return v.defines == defines; });
       program_of_.push_back(static_cast<int>(it - programs_.begin()));
@@ -159,12 +161,12 @@ class GbufferPass final : public RenderPass {
         const double tile = noise::kErosionCells * o.shading.noise_scale * model_radius;
         p.set("u_noise_frequency", static_cast<float>(1.0 / std::max(tile, 1e-30)));
       }
-      if (g.wrinkle) {
+      if (g.wrinkle && !wrinklesInInkPass(in.scene, i)) {
         glBindTextureUnit(1, g.wrinkle->id());
         p.set("u_wrinkle", 1);
         p.set("u_repeat", static_cast<float>(o.wrinkle.repeat));
         if (o.wrinkle.mapping == scene::WrinkleMapping::Slope) {
-          p.set("u_tile_px", static_cast<float>(o.wrinkle.tile_px * in.height / 1024.0));
+          p.set("u_tile_px", wrinkleTilePixels(o, in.height));
           p.set("u_angle", static_cast<float>(glm::radians(o.wrinkle.angle_deg)));
         }
       }
@@ -187,7 +189,7 @@ class GbufferPass final : public RenderPass {
 
 std::string gbufferStructure(const scene::Scene& s) {
   std::string k = s.hasAnimation() ? "animated" : "static";
-  for (const scene::Object& o : s.objects) k += "|" + joined(objectDefines(s, o));
+  for (std::size_t i = 0; i < s.objects.size(); ++i) k += "|" + joined(objectDefines(s, i));
   return k;
 }
 

@@ -31,6 +31,16 @@ void addSurfaceDefines(const scene::Scene& s, std::vector<std::string>& d) {
   if (s.mist.enabled()) d.emplace_back("MIST");
 }
 
+// The object whose slope wrinkles the ink pass computes, or none.
+std::optional<std::size_t> wrinkledHere(const scene::Scene& s) {
+  for (std::size_t i = 0; i < s.objects.size(); ++i) {
+    const scene::Object& o = s.objects[i];
+    if (o.wrinkled() && o.wrinkle.mapping == scene::WrinkleMapping::Slope && o.wrinkle.uv == scene::UvSource::Planar)
+      return i;
+  }
+  return std::nullopt;
+}
+
 std::vector<std::string> inkDefines(const scene::Scene& s, bool debug_outputs) {
   std::vector<std::string> d;
   if (s.usesLines()) d.emplace_back("LINES");
@@ -43,6 +53,7 @@ std::vector<std::string> inkDefines(const scene::Scene& s, bool debug_outputs) {
     d.emplace_back("BAND_LINES");
   if (s.usesShading()) d.emplace_back("SHADING");
   if (s.usesWrinkles()) d.emplace_back("WRINKLE");
+  if (wrinkledHere(s)) d.emplace_back("WRINKLE_SLOPE");
   if (grainHere(s)) d.emplace_back("CANVAS");
   if (s.usesPigment() || s.usesShadow()) d.emplace_back("PIGMENT");
   addSurfaceDefines(s, d);
@@ -90,7 +101,7 @@ class InkPass final : public RenderPass {
 
   void resize(int width, int height) override {
     std::vector<GLenum> out{GL_RGBA8};
-    if (debug_outputs_) out.insert(out.end(), {GL_RG16F, GL_R16F});
+    if (debug_outputs_) out.insert(out.end(), {GL_RG16F, GL_RG16F});
     target_ = Framebuffer(width, height, out, false);
     strokes_ = Framebuffer();  // both made at the next frame that draws strokes
     stroke_ink_ = Texture2D();
@@ -114,6 +125,7 @@ class InkPass final : public RenderPass {
     glBindImageTexture(1, g.colour(1).id(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA8);
     glBindTextureUnit(2, g.depth().id());
     if (value_noise_) glBindTextureUnit(3, value_noise_->id());
+    if (const std::optional<std::size_t> w = wrinkledHere(in.scene)) glBindTextureUnit(4, in.objects[*w].wrinkle->id());
     if (lines_) {  // built exactly when some object draws strokes
       if (stroke_ink_.width() != target_.width() || stroke_ink_.height() != target_.height()) {
         strokes_ = Framebuffer(target_.width(), target_.height(), {GL_R16}, false);
@@ -239,7 +251,10 @@ class InkPass final : public RenderPass {
       p.noise = static_cast<float>(sh.noise);
       p.inv_inner_tex_factor = static_cast<float>(1.0 / o.wrinkle.inner_tex_factor);
       p.shade_flags = (sh.enabled ? gpu::kShadingOn : 0u) | (sh.half_lambert ? gpu::kHalfLambert : 0u) |
-                      (sh.line_value ? gpu::kLineValue : 0u) | (o.wrinkled() ? gpu::kWrinkled : 0u);
+                      (sh.line_value ? gpu::kLineValue : 0u) | (o.wrinkled() ? gpu::kWrinkled : 0u) |
+                      (wrinklesInInkPass(in.scene, i) ? gpu::kWrinkleHere : 0u);
+      p.wrinkle_tile_px = wrinkleTilePixels(o, in.height);
+      p.wrinkle_angle = static_cast<float>(glm::radians(o.wrinkle.angle_deg));
       // The dissolving border, in the coordinates the object was uploaded in (relative to
       // its bounding-box centre).
       const glm::dmat4 to_model = glm::inverse(in.modelAt(i));
@@ -286,6 +301,10 @@ std::string inkStructure(const scene::Scene& s) {
   // The lines stage's suggestive-contour variant too: turning them on or off rebuilds it
   // (the word means nothing to ink.frag, which the variant test compiles with these).
   return joined(inkDefines(s, false)) + (s.usesSuggestiveContours() ? " SUGGESTIVE" : "");
+}
+
+bool wrinklesInInkPass(const scene::Scene& s, std::size_t i) {
+  return wrinkledHere(s) == i;
 }
 
 std::unique_ptr<RenderPass> makeInkPass(const PassSetup& setup) {

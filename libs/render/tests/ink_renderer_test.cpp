@@ -178,19 +178,21 @@ std::vector<float> wrinkleLuma(InkRenderer& r, const OrbitCamera& cam, int size)
   return out;
 }
 
-// The G-buffer's wrinkle luma on a plane tilted so it falls towards -(cos φ, sin φ), with
-// a texture of 8 stripes per tile that vary along u (strokes along v): the direction
-// (world x, y) across which the luma varies most, from the structure tensor of its
-// gradient, and its wavelength in pixels, 2π √(var / mean |∇|²) for a sinusoid.
-struct StripeMeasure {
-  double across_deg = 0.0;  //!< angle of the luma's gradient from the fall line, [0, 90]
-  double wavelength_px = 0.0;
+// The wrinkle luma the ink pass shades with (second channel of its tone target), on a
+// plane tilted so it falls towards -(cos φ, sin φ), with a texture of 8 stripes per tile
+// that vary along u (strokes along v), and the world positions. `uv`: "planar" (slope
+// wrinkles computed in the ink pass), or "mesh" with the same planar UVs stored on the mesh
+// (computed in the G-buffer pass).
+struct StripePicture {
+  image::Image luma, pos;
 };
 
-StripeMeasure measureStripes(const std::string& mapping, double fall_deg, double zoom) {
+StripePicture stripePicture(const std::string& mapping, double fall_deg, double zoom,
+                            const std::string& uv = "planar") {
   const double phi = glm::radians(fall_deg);
-  const mesh::Mesh plane =
+  mesh::Mesh plane =
       test::heightGrid(81, 81, 0.05, [&](double x, double y) { return 0.5 * (x * std::cos(phi) + y * std::sin(phi)); });
+  if (uv == "mesh") scene::planarUvs(plane);
   auto stripes = std::make_shared<image::Image>(64, 64, 1);
   for (int y = 0; y < 64; ++y) {
     for (int x = 0; x < 64; ++x) {
@@ -200,31 +202,57 @@ StripeMeasure measureStripes(const std::string& mapping, double fall_deg, double
   const json object = {{"up", "z"},
                        {"wrinkle",
                         {{"texture", "stripes.png"},
-                         {"uv", "planar"},
+                         {"uv", uv},
                          {"mapping", mapping},
                          {"repeat", 3},
                          {"tile_px", 512},
                          {"filter", "trilinear"}}}};
   const scene::Scene s = sceneWith(object);
   InkRenderer r(s, prepare(s, plane, stripes));
+  r.setDebugOutputs(true);
+  const bool in_ink = mapping == "slope" && uv == "planar";
+  const auto computes = [&](const char* pass) {
+    const std::vector<std::string> v = r.variants().at(pass);
+    return std::any_of(v.begin(), v.end(),
+                       [](const std::string& d) { return d.find("WRINKLE_SLOPE") != std::string::npos; });
+  };
+  EXPECT_EQ(computes("ink"), in_ink);
+  EXPECT_EQ(computes("gbuffer"), mapping == "slope" && !in_ink);
   const int size = 256;
   r.render(sceneCamera(s, r.worldBounds(), 1.0, {-100, 70, zoom}), size, size);
-  const image::Image surface = r.passTarget("gbuffer")->colour(1).download(4), pos = r.worldPositions();
+  StripePicture out{image::Image(size, size, 1), r.worldPositions()};
+  const image::Image tone = r.passTarget("ink")->colour(2).download(2);
+  for (int y = 0; y < size; ++y)
+    for (int x = 0; x < size; ++x) out.luma.at(x, y, 0) = tone.at(x, y, 1);
   if (const char* dir = std::getenv("SHANSHUI_LOOK_DIR")) {
-    image::Image luma(size, size, 1);
-    for (int y = 0; y < size; ++y)
-      for (int x = 0; x < size; ++x) luma.at(x, y, 0) = surface.at(x, y, 2);
-    image::saveImage(luma, std::filesystem::path(dir) / ("stripes_" + mapping + "_" + std::to_string(int(fall_deg)) +
-                                                         "_" + std::to_string(int(zoom * 10)) + ".png"));
+    image::saveImage(
+        out.luma, std::filesystem::path(dir) / ("stripes_" + mapping + "_" + uv + "_" + std::to_string(int(fall_deg)) +
+                                                "_" + std::to_string(int(zoom * 10)) + ".png"));
   }
+  return out;
+}
+
+// The direction (world x, y) across which the luma of stripePicture varies most, from the
+// structure tensor of its gradient, and its wavelength in pixels, 2π √(var / mean |∇|²) for
+// a sinusoid.
+struct StripeMeasure {
+  double across_deg = 0.0;  //!< angle of the luma's gradient from the fall line, [0, 90]
+  double wavelength_px = 0.0;
+};
+
+StripeMeasure measureStripes(const std::string& mapping, double fall_deg, double zoom) {
+  const double phi = glm::radians(fall_deg);
+  const StripePicture picture = stripePicture(mapping, fall_deg, zoom);
+  const image::Image &surface = picture.luma, &pos = picture.pos;
+  const int size = surface.width;
   glm::dmat2 tensor(0.0);
   double sum = 0, sum2 = 0, grad2 = 0;
   int n = 0;
   for (int y = size / 4; y < 3 * size / 4; ++y) {  // the middle, away from the plane's edges
     for (int x = size / 4; x < 3 * size / 4; ++x) {
       if (pos.at(x, y, 3) < 0.5f || pos.at(x + 1, y, 3) < 0.5f || pos.at(x, y + 1, 3) < 0.5f) continue;
-      const double l = surface.at(x, y, 2);
-      const glm::dvec2 dl(surface.at(x + 1, y, 2) - l, surface.at(x, y + 1, 2) - l);
+      const double l = surface.at(x, y, 0);
+      const glm::dvec2 dl(surface.at(x + 1, y, 0) - l, surface.at(x, y + 1, 0) - l);
       const glm::dvec2 p0(pos.at(x, y, 0), pos.at(x, y, 1));
       const glm::dmat2 a(glm::dvec2(pos.at(x + 1, y, 0), pos.at(x + 1, y, 1)) - p0,
                          glm::dvec2(pos.at(x, y + 1, 0), pos.at(x, y + 1, 1)) - p0);
@@ -273,6 +301,35 @@ TEST_F(Ink, SlopeWrinklesRunDownTheFallLineAtASizeFixedOnScreen) {
   EXPECT_LT(*std::max_element(slope_px.begin(), slope_px.end()) / *std::min_element(slope_px.begin(), slope_px.end()),
             1.6);
   EXPECT_GT(uv_px[2] / uv_px[0], 2.2) << "the UV mapping's stripes grow with the zoom";
+}
+
+// Slope wrinkles of planar UVs come from the ink pass, from the tangent plane at the
+// position it rebuilds; for any other UVs, from the G-buffer pass and the triangle's screen
+// derivatives. With the same UVs on a plane both ways, they agree pixel by pixel (the
+// G-buffer's path is the oracle: the test above measures it against the fall line).
+TEST_F(Ink, SlopeWrinklesFromTheInkPassMatchThoseFromTheGbuffer) {
+  for (const double fall : {0.0, 60.0, 135.0}) {
+    for (const double zoom : {1.0, 2.9}) {
+      SCOPED_TRACE(testing::Message() << "fall " << fall << ", zoom " << zoom);
+      const StripePicture here = stripePicture("slope", fall, zoom, "planar");
+      const StripePicture gbuffer = stripePicture("slope", fall, zoom, "mesh");
+      double sum = 0.0, worst = 0.0;
+      int n = 0;
+      for (int y = 0; y < here.luma.height; ++y) {
+        for (int x = 0; x < here.luma.width; ++x) {
+          if (here.pos.at(x, y, 3) < 0.5f || gbuffer.pos.at(x, y, 3) < 0.5f) continue;
+          const double d = std::abs(here.luma.at(x, y, 0) - gbuffer.luma.at(x, y, 0));
+          sum += d;
+          worst = std::max(worst, d);
+          ++n;
+        }
+      }
+      ASSERT_GT(n, 10000);
+      std::printf("fall %.0f, zoom %.1f: |ink pass - G-buffer| mean %.4f, largest %.3f\n", fall, zoom, sum / n, worst);
+      EXPECT_LT(sum / n, 0.004);
+      EXPECT_LT(worst, 0.03);
+    }
+  }
 }
 
 TEST_F(Ink, WrinkleFilterAppliesLiveAndOnlyWhereTheTextureIsMinified) {

@@ -117,6 +117,16 @@ std::unique_ptr<RenderPass> makeCanvasPass(const PassSetup&);
 std::string canvasStructure(const scene::Scene&);
 std::unique_ptr<RenderPass> makeInkPass(const PassSetup&);
 std::string inkStructure(const scene::Scene&);
+//! Whether object i's slope wrinkles are computed in the ink pass (planar UVs are a function
+//! of the position it rebuilds: once per pixel, where the G-buffer shades every fragment a
+//! triangle covers) rather than in the G-buffer pass: true for the first object with slope
+//! wrinkles on planar UVs (the ink pass binds one wrinkle texture, with its filter).
+bool wrinklesInInkPass(const scene::Scene& s, std::size_t i);
+//! A slope wrinkle tile's size on screen in pixels at a picture `height` pixels high
+//! (`tile_px` is given for 1024).
+inline float wrinkleTilePixels(const scene::Object& o, int height) {
+  return static_cast<float>(o.wrinkle.tile_px * height / 1024.0);
+}
 std::unique_ptr<RenderPass> makeDiffusionPass(const PassSetup&);
 std::unique_ptr<RenderPass> makeStrokesPass(const PassSetup&);
 std::string strokesStructure(const scene::Scene&);
