@@ -305,6 +305,16 @@ TEST(Cli, ParamChartsAClosedMeshAndSaysWhy) {
   EXPECT_EQ(report["method"], "charts");
   EXPECT_EQ(report["atlas"]["per_chart"].size(), report["atlas"]["charts"].get<std::size_t>());
   EXPECT_LE(report["distortion"]["l2_stretch"].get<double>(), 1.5);
+  // The budget left went to ARAP rounds from the best one-piece map; they fold this one,
+  // so the atlas stays. --no-refine leaves them out.
+  ASSERT_EQ(report["refinements"].size(), 1u) << report.dump(1);
+  EXPECT_EQ(report["refinements"][0]["kept"], false);
+  EXPECT_NE(r.output.find("refine (ARAP rounds from"), std::string::npos) << r.output;
+  const auto plain = run(bin("shanshui-param") + " " + quote(cow) + " -o " + quote(dir / "plain.obj") + " --report " +
+                         quote(dir / "plain.json") + " --no-refine");
+  ASSERT_EQ(plain.exit_code, 0) << plain.output;
+  EXPECT_FALSE(nlohmann::json::parse(readBytes(dir / "plain.json")).contains("refinements"));
+  EXPECT_EQ(plain.output.find("refine ("), std::string::npos) << plain.output;
   // One seam cut open: L2 in the hundreds, refused (after the repair's line), nothing written.
   const auto refused =
       run(bin("shanshui-param") + " " + quote(cow) + " -o " + quote(dir / "bad.obj") + " --method tutte");

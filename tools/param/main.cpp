@@ -59,6 +59,9 @@ int main(int argc, char** argv) {
       ->default_val(options.max_stretch)
       ->check(CLI::Range(1.0, 1e300));
   app.add_flag("--accept-stretch", options.accept_over_stretch, "keep the best map even above --max-stretch");
+  bool noRefine = false;
+  app.add_flag("--no-refine", noRefine,
+               "auto: keep the methods' maps as they are (no ARAP rounds from the best one with the budget left)");
   app.add_option("--padding", options.charts.padding_texels, "charts: texels between charts in the atlas")
       ->default_val(options.charts.padding_texels)
       ->check(CLI::Range(0.0, 64.0));
@@ -86,6 +89,7 @@ int main(int argc, char** argv) {
   app.add_option("--checker", checkerPath, "render a checkerboard-textured view of the result (PNG)");
   return tools::runBatchableTool(app, argc, argv, [&] {
     options.method = param::parseMethod(methodName);
+    options.refine = !noRefine;
     options.border = param::parseBorder(borderName);
     OutputSet outputs({input});
     if (!output.ends_with(".obj")) throw makeError(output, ": UVs are only written to .obj files");
@@ -158,6 +162,15 @@ int main(int argc, char** argv) {
         if (t.ran) tj["distortion"] = distortionJson(t.distortion);
         if (!t.note.empty()) tj["note"] = t.note;
         j["trials"].push_back(tj);
+      }
+      for (const param::Refinement& f : report.refinements) {
+        j["refinements"].push_back({{"from", param::methodName(f.from)},
+                                    {"seconds", f.seconds},
+                                    {"rounds", f.rounds},
+                                    {"converged", f.converged},
+                                    {"good_enough", f.enough},
+                                    {"kept", f.kept},
+                                    {"distortion", distortionJson(f.distortion)}});
       }
       if (report.method == param::Method::Charts) {
         const param::AtlasReport& a = report.atlas;

@@ -1,5 +1,6 @@
 // Parameterization (SPEC.md section 5): distortion metrics against analytic answers, every
 // method on a synthetic mountain, auto on the real DEMs, and the refusals.
+#include <chrono>
 #include <cmath>
 #include <limits>
 
@@ -153,15 +154,19 @@ TEST(Parameterize, AuthalicLeavesTheWorkingDirectoryAndStdoutAlone) {
 }
 
 // z = f(x) only: developable, so an isometric map exists (L2 stretch 1). The projection is
-// stretched by the slopes; LSCM finds the isometry, and auto stops there instead of also
-// running ARAP (seconds on such a mesh).
+// stretched by the slopes. Without refinement LSCM finds the isometry, and auto stops there
+// instead of also running ARAP (seconds on such a mesh); with it (the default), ARAP rounds
+// from the projection find it first, and no solver runs at all.
 TEST(Parameterize, AutoStopsAtTheFirstNearIsometricMethod) {
   const mesh::Mesh ridge = test::heightGrid(40, 40, 10.0, [](double x, double) { return 250.0 * std::sin(x / 150.0); });
+  ParamOptions plain;
+  plain.refine = false;
   ParamReport r;
-  const mesh::Mesh out = parameterize(ridge, {}, &r);
+  const mesh::Mesh out = parameterize(ridge, plain, &r);
   EXPECT_EQ(r.method, Method::Lscm);
   EXPECT_NEAR(r.distortion.l2_stretch, 1.0, 1e-6);
   EXPECT_TRUE(measureDistortion(out).valid());
+  EXPECT_TRUE(r.refinements.empty());
   ASSERT_GE(r.trials.size(), 4u);
   EXPECT_GT(r.trials[0].distortion.l2_stretch, 1.02) << "the projection is not accepted";
   for (const MethodTrial& t : r.trials) {
@@ -170,6 +175,60 @@ TEST(Parameterize, AutoStopsAtTheFirstNearIsometricMethod) {
     EXPECT_NE(t.note.find("already found"), std::string::npos) << t.note;
   }
   EXPECT_EQ(r.atlas.charts.size(), 0u);
+
+  // The rounds stop as soon as the map is good enough, as the plan does; asked for less
+  // stretch, they go on to the isometry.
+  for (const double accept : {ParamOptions{}.auto_accept_stretch, 1.0005}) {
+    SCOPED_TRACE(accept);
+    ParamOptions o;
+    o.auto_accept_stretch = accept;
+    ParamReport refined;
+    const mesh::Mesh map = parameterize(ridge, o, &refined);
+    EXPECT_EQ(refined.method, Method::Xy);
+    ASSERT_EQ(refined.refinements.size(), 1u);
+    EXPECT_TRUE(refined.refinements[0].kept);
+    EXPECT_TRUE(refined.refinements[0].enough);
+    EXPECT_LE(refined.distortion.l2_stretch, accept);
+    EXPECT_NEAR(measureDistortion(map).l2_stretch, refined.distortion.l2_stretch, 1e-9);
+    EXPECT_EQ(measureDistortion(map).flipped, 0);
+    EXPECT_NE(refined.decision.find("refined"), std::string::npos) << refined.decision;
+    for (std::size_t i = 1; i < refined.trials.size(); ++i) {
+      EXPECT_FALSE(refined.trials[i].ran) << methodName(refined.trials[i].method);
+      EXPECT_NE(refined.trials[i].note.find("already found"), std::string::npos) << refined.trials[i].note;
+    }
+  }
+}
+
+// The refinement is anytime: it stops at the budget whatever the size, lowering the
+// stretch of the map it starts from, and the time it takes grows with the mesh up to the
+// budget. (A steep mountain: the projection's L2 stretch is about 1.03, and the early stop
+// is put out of reach.)
+TEST(Parameterize, AutoRefinesWithinItsBudgetAndTheTimeGrowsWithSize) {
+  auto mountain = [](int n) {
+    return test::heightGrid(n, n, 14000.0 / (n - 1), [](double x, double y) {
+      const double dx = x - 7000, dy = y - 7500;
+      return 3200.0 * std::exp(-(dx * dx + dy * dy) / (2 * 2600.0 * 2600.0)) +
+             650.0 * std::sin(x / 700.0) * std::cos(y / 900.0);
+    });
+  };
+  ParamOptions o;
+  o.budget_seconds = 0.4;
+  o.auto_accept_stretch = 1.0001;  // out of reach here: the rounds go on to convergence or the budget
+  std::vector<double> seconds;
+  for (const int n : {30, 60, 120}) {
+    SCOPED_TRACE(n);
+    ParamReport r;
+    parameterize(mountain(n), o, &r);
+    ASSERT_FALSE(r.refinements.empty()) << trialTable(r);
+    const Refinement& f = r.refinements.front();
+    EXPECT_EQ(f.from, Method::Xy);
+    EXPECT_TRUE(f.kept) << trialTable(r);
+    EXPECT_LT(f.distortion.l2_stretch, r.trials.front().distortion.l2_stretch);
+    EXPECT_EQ(f.distortion.flipped, 0);
+    EXPECT_LE(r.seconds, o.budget_seconds + 0.2) << trialTable(r);
+    seconds.push_back(r.seconds);
+  }
+  EXPECT_LT(seconds[0], seconds[2]) << "900 vertices converge long before 14400 run out of budget";
 }
 
 TEST(Parameterize, AutoOnEveryRealDemIsNearIsometricWithoutFlips) {
@@ -262,6 +321,8 @@ TEST(Parameterize, AutoKeepsTheLeastStretchOfWhatItTried) {
       (t.method == Method::Charts ? atlas : piece) =
           std::min(t.method == Method::Charts ? atlas : piece, t.distortion.l2_stretch);
     }
+    for (const Refinement& f : r.refinements)
+      if (f.kept) piece = std::min(piece, f.distortion.l2_stretch);
     const bool atlasWins = piece > ParamOptions{}.one_piece_preference * atlas;
     EXPECT_EQ(r.method == Method::Charts, atlasWins) << trialTable(r);
     EXPECT_DOUBLE_EQ(r.distortion.l2_stretch, atlasWins ? atlas : piece);
@@ -382,4 +443,5 @@ TEST(Parameterize, EveryCgalTestMeshGetsAValidMap) {
 }
 
 }  // namespace
+
 }  // namespace shanshui::param

@@ -48,6 +48,11 @@ struct ParamOptions {
   //! every method's result) unless accept_over_stretch. [1, inf)
   double max_stretch = 2.0;
   bool accept_over_stretch = false;
+  //! Auto: while the best one-piece map is above auto_accept_stretch, spend the budget on
+  //! as-rigid-as-possible rounds from it (each result kept only if valid and less
+  //! stretched): half of it after the projection, the rest after the other methods. The
+  //! budget is used, not idled, so the time grows with size up to it.
+  bool refine = true;
   int authalic_iterations = 15;  //!< [1, 1000]
   ChartOptions charts;
 };
@@ -62,14 +67,26 @@ struct MethodTrial {
   Distortion distortion;
 };
 
+//! One refinement of auto's best one-piece map (ParamOptions::refine).
+struct Refinement {
+  Method from = Method::Xy;  //!< the map it started from
+  double seconds = 0.0;
+  int rounds = 0;
+  bool converged = false;  //!< stopped because a round gained too little
+  bool enough = false;     //!< stopped at L2 stretch <= auto_accept_stretch; neither: the budget ran out
+  Distortion distortion;   //!< of the refined map
+  bool kept = false;       //!< valid and less stretched than the map it started from
+};
+
 struct ParamReport {
   Method method = Method::Xy;  //!< the method whose UVs were kept
   double seconds = 0.0;        //!< parameterization only (not I/O or repair)
   Distortion distortion;
   std::vector<MethodTrial> trials;
-  int seam_vertices = 0;  //!< closed input: vertices on the seam it was cut along (0: no cut)
-  AtlasReport atlas;      //!< when the kept map is an atlas (method charts)
-  std::string decision;   //!< auto: why the kept map was kept
+  std::vector<Refinement> refinements;  //!< auto's, in order
+  int seam_vertices = 0;                //!< closed input: vertices on the seam it was cut along (0: no cut)
+  AtlasReport atlas;                    //!< when the kept map is an atlas (method charts)
+  std::string decision;                 //!< auto: why the kept map was kept
 };
 
 //! Returns `mesh` with one UV per vertex (raw method output; see uv_adjust.h for scaling).
