@@ -5,9 +5,10 @@
 // its lines as strokes: the centres come from ink_lines.frag), BAND_LINES (some object draws
 // Eq. 1's bands, silhouettes and outlines here, without strokes), WRINKLE (some object has a
 // wrinkle texture), WRINKLE_SLOPE (an object's slope wrinkles on planar UVs are computed
-// here, once per pixel, not in the G-buffer pass), SINGLE_OBJECT (parameters without indexing), CANVAS (the paper grain,
-// when no diffusion pass comes after), PIGMENT (the presence the atmosphere leaves, in alpha,
-// for the pigment pass), DEBUG_OUTPUTS (line weight and tone as extra targets, for tests).
+// here, once per pixel, not in the G-buffer pass), SINGLE_OBJECT (parameters without
+// indexing), CANVAS (the paper grain, when no diffusion pass comes after), PIGMENT (the
+// presence the atmosphere leaves, in alpha, for the pigment pass), DEBUG_OUTPUTS (line
+// weight, tone and wrinkle luma as extra targets, for tests).
 #include "ink_objects.glsl"
 #ifdef SHADING
 #include "ink_gaussian_cdf.glsl"

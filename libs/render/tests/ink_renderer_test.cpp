@@ -240,16 +240,15 @@ struct StripeMeasure {
   double wavelength_px = 0.0;
 };
 
-StripeMeasure measureStripes(const std::string& mapping, double fall_deg, double zoom) {
-  const double phi = glm::radians(fall_deg);
-  const StripePicture picture = stripePicture(mapping, fall_deg, zoom);
-  const image::Image &surface = picture.luma, &pos = picture.pos;
-  const int size = surface.width;
+// The measure over pixels x0 <= x < x1, y0 <= y < y1 of a luma image and its positions,
+// for a fall line at `phi` radians.
+StripeMeasure measureStripesIn(const image::Image& surface, const image::Image& pos, double phi, int x0, int x1, int y0,
+                               int y1) {
   glm::dmat2 tensor(0.0);
   double sum = 0, sum2 = 0, grad2 = 0;
   int n = 0;
-  for (int y = size / 4; y < 3 * size / 4; ++y) {  // the middle, away from the plane's edges
-    for (int x = size / 4; x < 3 * size / 4; ++x) {
+  for (int y = y0; y < y1; ++y) {
+    for (int x = x0; x < x1; ++x) {
       if (pos.at(x, y, 3) < 0.5f || pos.at(x + 1, y, 3) < 0.5f || pos.at(x, y + 1, 3) < 0.5f) continue;
       const double l = surface.at(x, y, 0);
       const glm::dvec2 dl(surface.at(x + 1, y, 0) - l, surface.at(x, y + 1, 0) - l);
@@ -272,6 +271,13 @@ StripeMeasure measureStripes(const std::string& mapping, double fall_deg, double
   const double mean = sum / n, var = sum2 / n - mean * mean;
   m.wavelength_px = 2 * std::numbers::pi * std::sqrt(var / (grad2 / n));
   return m;
+}
+
+StripeMeasure measureStripes(const std::string& mapping, double fall_deg, double zoom) {
+  const StripePicture picture = stripePicture(mapping, fall_deg, zoom);
+  const int size = picture.luma.width;  // the middle, away from the plane's edges
+  return measureStripesIn(picture.luma, picture.pos, glm::radians(fall_deg), size / 4, 3 * size / 4, size / 4,
+                          3 * size / 4);
 }
 
 // Cun strokes follow the slope: with `slope` the luma varies across the fall line (its
@@ -301,6 +307,59 @@ TEST_F(Ink, SlopeWrinklesRunDownTheFallLineAtASizeFixedOnScreen) {
   EXPECT_LT(*std::max_element(slope_px.begin(), slope_px.end()) / *std::min_element(slope_px.begin(), slope_px.end()),
             1.6);
   EXPECT_GT(uv_px[2] / uv_px[0], 2.2) << "the UV mapping's stripes grow with the zoom";
+}
+
+// The ink pass computes the slope wrinkles of one object (the first with planar UVs); a
+// second such object keeps them in the G-buffer. Two planes side by side, falling the same
+// way: each one's strokes run down the fall line at the same size on screen.
+TEST_F(Ink, SlopeWrinklesOfTwoObjectsAreComputedInTwoPlacesAlike) {
+  const double phi = glm::radians(60.0);
+  const mesh::Mesh plane =
+      test::heightGrid(41, 41, 0.05, [&](double x, double y) { return 0.5 * (x * std::cos(phi) + y * std::sin(phi)); });
+  auto stripes = std::make_shared<image::Image>(64, 64, 1);
+  for (int y = 0; y < 64; ++y)
+    for (int x = 0; x < 64; ++x)
+      stripes->at(x, y, 0) = static_cast<float>(0.5 + 0.5 * std::sin(2 * std::numbers::pi * 8 * (x + 0.5) / 64));
+  const json wrinkle = {{"texture", "stripes.png"}, {"uv", "planar"}, {"mapping", "slope"}, {"tile_px", 512}};
+  const json j = {
+      {"objects",
+       json::array(
+           {{{"mesh", "left"}, {"up", "z"}, {"wrinkle", wrinkle}},
+            {{"mesh", "right"}, {"up", "z"}, {"wrinkle", wrinkle}, {"transform", {{"translate", {2.2, 0, 0}}}}}})}};
+  const scene::Scene s = scene::parseScene(j, "test", ".");
+  std::vector<scene::LoadedObject> loaded;
+  for (const scene::Object& o : s.objects)
+    loaded.push_back({std::make_shared<const scene::ObjectAsset>(scene::prepareAsset(plane, o)), stripes});
+  InkRenderer r(s, loaded);
+  r.setDebugOutputs(true);
+  const std::vector<std::string> ink = r.variants().at("ink"), gbuffer = r.variants().at("gbuffer");
+  ASSERT_NE(ink.at(0).find("WRINKLE_SLOPE"), std::string::npos) << ink.at(0);
+  ASSERT_EQ(gbuffer.size(), 2u);
+  EXPECT_EQ(gbuffer[0].find("WRINKLE"), std::string::npos) << gbuffer[0];
+  EXPECT_NE(gbuffer[1].find("WRINKLE_SLOPE"), std::string::npos) << gbuffer[1];
+  const int w = 384, h = 192;
+  r.render(sceneCamera(s, r.worldBounds(), 1.0, {-90, 70, 1.0}), w, h);
+  const image::Image tone = r.passTarget("ink")->colour(2).download(2), pos = r.worldPositions();
+  image::Image luma(w, h, 1);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) luma.at(x, y, 0) = tone.at(x, y, 1);
+  // The left plane is object 0 (x < 1), the right one object 1; their middles.
+  int left_end = 0, right_start = w;
+  for (int x = 0; x < w; ++x) {
+    const float px = pos.at(x, h / 2, 0);
+    if (pos.at(x, h / 2, 3) > 0.5f && px < 1.0f) left_end = x;
+    if (pos.at(x, h / 2, 3) > 0.5f && px > 1.2f) right_start = std::min(right_start, x);
+  }
+  ASSERT_GT(left_end, w / 4);
+  ASSERT_LT(right_start, 3 * w / 4);
+  const StripeMeasure a = measureStripesIn(luma, pos, phi, left_end / 4, left_end * 3 / 4, h / 4, 3 * h / 4);
+  const StripeMeasure b = measureStripesIn(luma, pos, phi, right_start + (w - right_start) / 4,
+                                           w - (w - right_start) / 4, h / 4, 3 * h / 4);
+  std::printf("ink pass: %.1f° from the fall line, %.1f px; G-buffer: %.1f°, %.1f px\n", a.across_deg, a.wavelength_px,
+              b.across_deg, b.wavelength_px);
+  EXPECT_GT(a.across_deg, 80.0);
+  EXPECT_GT(b.across_deg, 80.0);
+  EXPECT_LT(std::max(a.wavelength_px, b.wavelength_px) / std::min(a.wavelength_px, b.wavelength_px), 1.25);
 }
 
 // Slope wrinkles of planar UVs come from the ink pass, from the tangent plane at the
