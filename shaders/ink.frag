@@ -78,28 +78,30 @@ float strokeInk(ivec2 p) {
 }
 #endif
 
+// Depth-tested against the G-buffer's depth before shading: the pass draws the surfaces
+// (this program) and the background (PAPER) apart.
+layout(early_fragment_tests) in;
+
 void main() {
   ivec2 p = ivec2(gl_FragCoord.xy);
 #ifdef DEBUG_OUTPUTS
   o_line = vec2(0.0, 1.0);
   o_tone = vec2(1.0);
 #endif
-  // Background where nothing was drawn; the colour targets are not cleared, so they are
-  // read only after this test.
-  float depth = texelFetch(u_depth, p, 0).r;
-  if (depth >= 1.0) {
+#ifdef PAPER
+  // Where nothing was drawn: the paper, and the outlines' ink that overran the silhouette.
 #ifdef STROKES
-    // Outlines overrun the silhouette onto the paper.
-    float ink = strokeInk(p);
+  float ink = strokeInk(p);
 #ifdef DEBUG_OUTPUTS
-    o_line.x = ink;
+  o_line.x = ink;
 #endif
-    o_colour = onPaper(p, mix(u_paper, objects[0].line_color, ink));
+  o_colour = onPaper(p, mix(u_paper, objects[0].line_color, ink));
 #else
-    o_colour = onPaper(p, u_paper);
+  o_colour = onPaper(p, u_paper);
 #endif
-    return;
-  }
+}
+#else
+  float depth = texelFetch(u_depth, p, 0).r;
   vec4 surface = imageLoad(u_surface_id, p);
   int id = int(surface.a * 255.0 + 0.5);
 #ifdef SINGLE_OBJECT
@@ -206,3 +208,4 @@ void main() {
   o_tone = vec2(tone, wrinkle);
 #endif
 }
+#endif

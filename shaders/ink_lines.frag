@@ -60,6 +60,10 @@ float suggestiveTrough(ivec2 p, vec3 position, vec3 n, float z) {
 }
 #endif
 
+// Depth-tested against the G-buffer's depth before shading (the image atomics would
+// otherwise put the test after): only surface pixels run, the background is skipped.
+layout(early_fragment_tests) in;
+
 void main() {
   ivec2 p = ivec2(gl_FragCoord.xy);
   // Every test below reads p's neighbourhood; each texel is read once. The depth of p, its

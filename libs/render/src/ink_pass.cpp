@@ -79,13 +79,18 @@ class InkPass final : public RenderPass {
       if (scene_.usesSuggestiveContours()) line_defines.emplace_back("SUGGESTIVE");
       lines.emplace(Program({"fullscreen.vert", "ink_lines.frag"}, line_defines));
     }
+    std::vector<std::string> paper_defines = defines;
+    paper_defines.emplace_back("PAPER");
+    Program paper({"fullscreen.vert", "ink.frag"}, paper_defines);
     program_ = Program({"fullscreen.vert", "ink.frag"}, defines);  // a throw keeps the old programs
+    paper_ = std::move(paper);
     lines_ = std::move(lines);
     defines_ = std::move(defines);
     line_defines_ = std::move(line_defines);
   }
 
   std::vector<std::string> variants() const override {
+    // The background's half of the same variant (PAPER) is not listed apart.
     std::vector<std::string> v{joined(defines_)};
     if (lines_) v.push_back("lines: " + joined(line_defines_));
     return v;
@@ -103,6 +108,8 @@ class InkPass final : public RenderPass {
     std::vector<GLenum> out{GL_RGBA8};
     if (debug_outputs_) out.insert(out.end(), {GL_RG16F, GL_RG16F});
     target_ = Framebuffer(width, height, out, false);
+    surface_depth_ = Texture2D(width, height, GL_DEPTH_COMPONENT32F);
+    glNamedFramebufferTexture(target_.id(), GL_DEPTH_ATTACHMENT, surface_depth_.id(), 0);
     strokes_ = Framebuffer();  // both made at the next frame that draws strokes
     stroke_ink_ = Texture2D();
   }
@@ -126,9 +133,19 @@ class InkPass final : public RenderPass {
     glBindTextureUnit(2, g.depth().id());
     if (value_noise_) glBindTextureUnit(3, value_noise_->id());
     if (const std::optional<std::size_t> w = wrinkledHere(in.scene)) glBindTextureUnit(4, in.objects[*w].wrinkle->id());
-    if (lines_) {  // built exactly when some object draws strokes
+    // The G-buffer's depth, copied to a depth attachment of this pass's targets (sampling a
+    // texture that is attached is a feedback loop): the depth test then keeps each draw to
+    // the surfaces or to the background, and llvmpipe skips the other pixels' shading
+    // (with fill framing about half the picture is background).
+    glCopyImageSubData(g.depth().id(), GL_TEXTURE_2D, 0, 0, 0, 0, surface_depth_.id(), GL_TEXTURE_2D, 0, 0, 0, 0,
+                       target_.width(), target_.height(), 1);
+    glEnable(GL_DEPTH_TEST);
+    glDepthMask(GL_FALSE);
+    glDepthFunc(GL_GREATER);  // the triangle lies at depth 1: surfaces only
+    if (lines_) {             // built exactly when some object draws strokes
       if (stroke_ink_.width() != target_.width() || stroke_ink_.height() != target_.height()) {
         strokes_ = Framebuffer(target_.width(), target_.height(), {GL_R16}, false);
+        glNamedFramebufferTexture(strokes_.id(), GL_DEPTH_ATTACHMENT, surface_depth_.id(), 0);
         stroke_ink_ = Texture2D(target_.width(), target_.height(), GL_R32UI);
       }
       if (in.timer) in.timer->begin("lines");
@@ -165,16 +182,18 @@ class InkPass final : public RenderPass {
     }
     if (in.timer) in.timer->begin("ink");
     target_.bind();
-    const Program& ink = program_;
-    ink.use();
-    setSurfaceUniforms(ink, in);
-    ink.set("u_light_dir", glm::vec3(glm::normalize(in.scene.light.direction)));
-    ink.set("u_paper", glm::vec3(in.scene.output.paper));
-    if (grainHere(in.scene)) {
-      glBindImageTexture(2, images.canvas->id(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_RG32F);
-      ink.set("u_canvas_contrast", static_cast<float>(in.scene.canvas.contrast));
+    if (grainHere(in.scene)) glBindImageTexture(2, images.canvas->id(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_RG32F);
+    for (const Program* ink : {&program_, &*paper_}) {
+      ink->use();
+      setSurfaceUniforms(*ink, in);
+      ink->set("u_light_dir", glm::vec3(glm::normalize(in.scene.light.direction)));
+      ink->set("u_paper", glm::vec3(in.scene.output.paper));
+      if (grainHere(in.scene)) ink->set("u_canvas_contrast", static_cast<float>(in.scene.canvas.contrast));
+      glDepthFunc(ink == &program_ ? GL_GREATER : GL_EQUAL);  // surfaces, then the background
+      glDrawArrays(GL_TRIANGLES, 0, 3);
     }
-    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glDisable(GL_DEPTH_TEST);
+    glDepthMask(GL_TRUE);
     if (in.timer) in.timer->end();
     SHANSHUI_GL_CHECK("ink pass");
     images.picture = &target_.colour(0);
@@ -283,12 +302,14 @@ class InkPass final : public RenderPass {
   bool debug_outputs_ = false;
   std::vector<std::string> defines_;
   Program program_;
+  std::optional<Program> paper_;  //!< the background's pixels (PAPER)
   std::optional<Program> lines_;  //!< the stroke centres, when some object draws strokes
   std::vector<std::string> line_defines_;
   VertexArray vao_;
   Buffer params_;
   std::size_t capacity_ = 0;
   Framebuffer target_;
+  Texture2D surface_depth_;               //!< a copy of the G-buffer's depth, attached to target_ and strokes_
   Framebuffer strokes_;                   //!< the lines pass's target: R16, the atmosphere's presence per surface pixel
   Texture2D stroke_ink_;                  //!< R32UI: the strokes' ink × 255, by atomic max
   std::optional<Texture2D> value_noise_;  //!< the border's and mist's noise
