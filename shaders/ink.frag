@@ -80,28 +80,30 @@ float strokeInk(ivec2 p) {
 #endif
 
 // Depth-tested against the G-buffer's depth before shading: the pass draws the surfaces
-// (this program) and the background (PAPER) apart.
+// and the background (PAPER) apart, each with its own main.
 layout(early_fragment_tests) in;
 
+#ifdef PAPER
+// Where nothing was drawn: the paper, and the outlines' ink that overran the silhouette.
+void main() {
+  ivec2 p = ivec2(gl_FragCoord.xy);
+  float ink = 0.0;
+#ifdef STROKES
+  ink = strokeInk(p);
+#endif
+  o_colour = onPaper(p, mix(u_paper, objects[0].line_color, ink));
+#ifdef DEBUG_OUTPUTS
+  o_line = vec2(ink, 1.0);
+  o_tone = vec2(1.0);
+#endif
+}
+#else
 void main() {
   ivec2 p = ivec2(gl_FragCoord.xy);
 #ifdef DEBUG_OUTPUTS
   o_line = vec2(0.0, 1.0);
   o_tone = vec2(1.0);
 #endif
-#ifdef PAPER
-  // Where nothing was drawn: the paper, and the outlines' ink that overran the silhouette.
-#ifdef STROKES
-  float ink = strokeInk(p);
-#ifdef DEBUG_OUTPUTS
-  o_line.x = ink;
-#endif
-  o_colour = onPaper(p, mix(u_paper, objects[0].line_color, ink));
-#else
-  o_colour = onPaper(p, u_paper);
-#endif
-}
-#else
   float depth = texelFetch(u_depth, p, 0).r;
   vec4 surface = imageLoad(u_surface_id, p);
   int id = int(surface.a * 255.0 + 0.5);
