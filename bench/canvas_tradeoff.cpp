@@ -13,9 +13,11 @@
 //  3. The tiles canvas (the default) beside the splatted reference for each `patch`:
 //     spectrum distance on a plane, warping error on the paths of 1, cost against the
 //     G-buffer at 1024x768.
+//  4. Rice paper's mottle for each `mottle_cell`: its difference from computing it at
+//     every pixel, and the canvas's cost.
 // Writes canvas_tradeoff.md, .csv, _points.csv (for shanshui-bench's plots) and
 // canvas_dolly.png. --quick: small frames, short paths, N′ ∈ {8, 32}.
-//   bench_canvas_tradeoff [--out DIR] [--only coherence|impulses|tiles] [--quick]
+//   bench_canvas_tradeoff [--out DIR] [--only coherence|impulses|tiles|mottle] [--quick]
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -325,11 +327,92 @@ void tilesSection(std::ostream& md, std::ostream& csv, bench::TradeoffPoints& po
   md << "\n";
 }
 
+// Rice paper's mottle computed once per `mottle_cell` pixels and read bilinearly, against
+// every pixel computing its own (cell 1): mean and largest difference over the mottle's
+// standard deviation on a plane filling a 512² frame, and the canvas's cost on the sample
+// scene at 1024x768 over the G-buffer's in the same frames.
+void mottleSection(std::ostream& md, std::ostream& csv, bench::TradeoffPoints& points, const scene::Scene& sc,
+                   const std::vector<scene::LoadedObject>& objects, bool quick) {
+  const int n = quick ? 128 : 512;
+  const int cost_w = quick ? 256 : 1024, cost_h = quick ? 192 : 768, cost_frames = quick ? 3 : 9;
+  md << "## Rice paper's mottle: error against run time for `mottle_cell`\n\n"
+     << "Error: the marks channel of the default rice paper without fibres and spots on a plane filling a " << n
+     << "² frame, each cell's image read bilinearly against computing the mottle at every pixel (cell 1): mean and "
+        "largest absolute difference, over the mottle's standard deviation. Cost: the sample scene as shipped at "
+     << cost_w << "×" << cost_h << ", canvas over G-buffer GPU time in the same frame, median of " << cost_frames - 1
+     << " frames of an orbit.\n\n"
+     << "| mottle_cell | mean error ÷ σ | largest error ÷ σ | canvas ms | G-buffer ms | canvas ÷ G-buffer |\n"
+        "|---|---|---|---|---|---|\n";
+  csv << "section,mottle_cell,mean_error,largest_error,canvas_ms,gbuffer_ms,ratio\n";
+  const mesh::Mesh plane = mesh::heightGrid(33, 33, 1.0 / 32, [](double, double) { return 0.0; });
+  auto marks = [&](double cell) {
+    scene::Scene ps = scene::parseScene(
+        nlohmann::json{{"objects", nlohmann::json::array({{{"mesh", "memory.obj"},
+                                                           {"lines", {{"enabled", false}}},
+                                                           {"shading", {{"enabled", false}}}}})},
+                       {"canvas", {{"type", "rice_paper"}, {"fibres", 0}, {"spots", 0}, {"mottle_cell", cell}}},
+                       {"output", {{"width", n}, {"height", n}, {"fade", 0.0}}}},
+        "plane", ".");
+    const std::vector<scene::LoadedObject> plane_objects{
+        {std::make_shared<const scene::ObjectAsset>(scene::prepareAsset(plane, ps.objects[0])), nullptr}};
+    render::InkRenderer pr(ps, plane_objects);
+    pr.render(render::sceneCamera(ps, pr.worldBounds(), 1.0, {0, 89, 1.6}), n, n);
+    return channel(pr.passTarget("canvas")->colour(0).download(2), 1);
+  };
+  const image::Image exact = marks(1);
+  double mean = 0, var = 0;
+  for (float v : exact.pixels) mean += v / static_cast<double>(exact.pixels.size());
+  for (float v : exact.pixels) var += (v - mean) * (v - mean) / static_cast<double>(exact.pixels.size());
+  const double sd = std::sqrt(var);
+  for (double cell : quick ? std::vector<double>{1, 8} : std::vector<double>{1, 2, 4, 8, 16, 32}) {
+    const image::Image m = marks(cell);
+    double mean_error = 0, largest = 0;
+    for (std::size_t i = 0; i < m.pixels.size(); ++i) {
+      const double e = std::abs(m.pixels[i] - exact.pixels[i]);
+      mean_error += e / static_cast<double>(m.pixels.size());
+      largest = std::max(largest, e);
+    }
+    scene::Scene cs = sc;
+    cs.canvas.mottle_cell = cell;
+    render::InkRenderer cr(cs, objects);
+    const render::OrbitCamera cam0 = render::sceneCamera(cs, cr.worldBounds(), static_cast<double>(cost_w) / cost_h,
+                                                         render::frameKey(cs, 0, 1, 0.0));
+    std::vector<double> canvas_ms, gbuffer_ms, ratios;
+    for (int f = 0; f < cost_frames; ++f) {
+      render::OrbitCamera c = cam0;
+      c.azimuth_deg += 2.0 * f;
+      render::FrameStats st;
+      cr.render(c, cost_w, cost_h, &st);
+      if (f == 0) continue;
+      double cm = 0, gm = 0;
+      for (const auto& p : st.passes) {
+        if (p.name == "canvas") cm = p.gpu_ms;
+        if (p.name == "gbuffer") gm = p.gpu_ms;
+      }
+      canvas_ms.push_back(cm);
+      gbuffer_ms.push_back(gm);
+      ratios.push_back(cm / gm);
+    }
+    char line[256];
+    std::snprintf(line, sizeof line, "| %g | %.4f | %.3f | %.1f | %.1f | %.3f |\n", cell, mean_error / sd, largest / sd,
+                  median(canvas_ms), median(gbuffer_ms), median(ratios));
+    md << line;
+    std::fputs(line, stderr);
+    csv << "mottle," << cell << "," << mean_error / sd << "," << largest / sd << "," << median(canvas_ms) << ","
+        << median(gbuffer_ms) << "," << median(ratios) << "\n";
+    if (cell > 1) {
+      points.add("canvas: mottle against its cell", "mean difference from every pixel's own, over its σ",
+                 "mottle_cell 2 .. 32 (sample scene)", true, median(canvas_ms), mean_error / sd);
+    }
+  }
+  md << "\n";
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   const bench::BenchArgs args = bench::parseBenchArgs(
-      argc, argv, "bench_canvas_tradeoff [--out DIR] [--only coherence|impulses|tiles] [--quick]", {"--only"});
+      argc, argv, "bench_canvas_tradeoff [--out DIR] [--only coherence|impulses|tiles|mottle] [--quick]", {"--only"});
   const std::filesystem::path out = args.out;
   const bool quick = args.quick;
   const std::string only = args.text("--only", "");  // one section (a quick look; the files then hold only it)
@@ -602,5 +685,7 @@ int main(int argc, char** argv) {
 
   // 3. The tiles canvas against the splatted one, and its patch knob.
   if (only.empty() || only == "tiles") tilesSection(md, csv, points, sc, objects, quick);
+  // 4. Rice paper's mottle and its cell.
+  if (only.empty() || only == "mottle") mottleSection(md, csv, points, sc, objects, quick);
   return 0;
 }

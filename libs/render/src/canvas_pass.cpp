@@ -35,6 +35,14 @@ int maxQuadsPerInvocation() {
 
 }  // namespace
 
+bool drawsFibresOrSpots(const scene::Canvas& c) {
+  return c.pattern() == scene::CanvasPattern::RicePaper && (c.fibres > 0 || c.spots > 0);
+}
+
+bool drawsMottle(const scene::Canvas& c) {
+  return c.pattern() == scene::CanvasPattern::RicePaper && c.mottle > 0;
+}
+
 std::uint32_t canvasSeed(std::uint64_t scene_seed) {
   return noise::noiseSeed32(scene_seed ^ 0xCA57A5ull);
 }
@@ -109,11 +117,17 @@ std::vector<std::string> CanvasPass::definesFor(int invocations) const {
   return d;
 }
 
-std::vector<std::string> CanvasPass::tilesDefines() const {
+std::vector<std::string> CanvasPass::tilesDefines(bool background) const {
   // The block of clip ↔ model matrices holds the background and every object.
   std::vector<std::string> d{"SPACES=" + std::to_string(objects_ + 1)};
-  if (objects_ == 1) d.emplace_back("SINGLE_OBJECT");
-  if (canvas_.hasMarks()) d.emplace_back("PAPER_MARKS");
+  if (background) {
+    d.emplace_back("BACKGROUND");
+  } else if (objects_ == 1) {
+    d.emplace_back("SINGLE_OBJECT");
+  }
+  if (drawsFibresOrSpots(canvas_)) d.emplace_back("PAPER_MARKS");
+  if (drawsMottle(canvas_)) d.emplace_back("MOTTLE");
+  if (canvas_.grainOnSurface()) d.emplace_back("GRAIN_ON_SURFACE");
   return d;
 }
 
@@ -122,7 +136,8 @@ std::vector<std::string> CanvasPass::variants() const {
     case Method::Splat:
       return {joined(definesFor(1)), joined(definesFor(kInvocations))};
     case Method::Tiles:
-      return {joined(definesFor(1)), joined(tilesDefines())};  // the tile's program, the pass's
+      return {joined(definesFor(1)), joined(tilesDefines(false)),
+              joined(tilesDefines(true))};  // the tile's, the pass's
     case Method::Static:
       break;
   }
@@ -137,9 +152,13 @@ void CanvasPass::reloadShaders() {
       return;
     case Method::Tiles: {
       Program synthesis({"fullscreen.vert", "canvas_static.frag"}, definesFor(1));
-      Program tiles({"fullscreen.vert", "canvas_tiles.frag"}, tilesDefines());  // both built before either is replaced
+      // All built before any is replaced.
+      Program surfaces({"fullscreen.vert", "canvas_tiles.frag"}, tilesDefines(false));
+      Program background({"fullscreen.vert", "canvas_tiles.frag"}, tilesDefines(true));
       tile_synthesis_ = std::move(synthesis);
-      tiles_ = std::move(tiles);
+      tiles_ = std::move(surfaces);
+      tiles_background_ = std::move(background);
+      if (drawsMottle(canvas_)) mottle_ = Program({"fullscreen.vert", "canvas_mottle.frag"}, {"SPACES=1", "MOTTLE"});
       tile_key_.clear();
       return;
     }
@@ -215,7 +234,7 @@ void CanvasPass::setKernel(const Program& p, const noise::CanvasNoiseOptions& o)
 const Texture2D& CanvasPass::run(const std::vector<Item>& items, const Framebuffer& gbuffer, const OrbitCamera& camera,
                                  int width, int height, GpuTimer* timer) {
   if (target_.width() != width || target_.height() != height) {
-    target_ = Framebuffer(width, height, {GL_RG32F}, false);
+    target_ = Framebuffer(width, height, {GL_RG32F}, method_ == Method::Tiles);  // tiles: a copy of the depth
     static_key_.clear();
   }
   const noise::CanvasNoiseOptions o = noiseOptions(height);
@@ -249,12 +268,14 @@ const Texture2D& CanvasPass::run(const std::vector<Item>& items, const Framebuff
 
 void CanvasPass::updateTile(const noise::CanvasNoiseOptions& pixels) {
   // The tile holds kTileCells² cells of one kernel radius r_t texels: a power of two (the
-  // shader wraps by a mask), 16 texels per cycle across a radius (silk threads, Perlin
+  // shader wraps by a mask), 8 to 16 texels per cycle across a radius (silk threads, Perlin
   // octaves) so that reading the nearest texel moves the pattern by a small fraction of a
-  // cycle. It is read at r_t / r texels per screen pixel.
+  // cycle. It is read at r_t / r texels per screen pixel. Twice that many texels per cycle
+  // cost the sample scene's canvas 7 % more (a larger tile, read at random places) for no
+  // change to its spectrum or warping error that the bench can tell.
   const double cycles = pixels.silk ? pixels.F0 * pixels.radius : pixels.perlin_frequency;
   const int radius =
-      16 * static_cast<int>(std::bit_ceil(static_cast<unsigned>(std::ceil(std::clamp(cycles, 1.0, 4.0)))));
+      8 * static_cast<int>(std::bit_ceil(static_cast<unsigned>(std::ceil(std::clamp(cycles, 1.0, 4.0)))));
   noise::CanvasNoiseOptions texels = pixels;
   texels.radius = radius;
   texels.F0 = pixels.F0 * pixels.radius / radius;
@@ -327,40 +348,75 @@ void CanvasPass::runTiles(const std::vector<Item>& items, const Framebuffer& gbu
     spaces.push_back({glm::mat4(glm::inverse(m)), glm::mat4(m)});
   }
   glNamedBufferSubData(spaces_.id(), 0, static_cast<GLsizeiptr>(spaces.size() * sizeof(Space)), spaces.data());
-  target_.bind();
-  glDisable(GL_DEPTH_TEST);
+  glBindBufferBase(GL_UNIFORM_BUFFER, 0, spaces_.id());
   glDisable(GL_BLEND);
-  tiles_.use();
+  glDisable(GL_DEPTH_TEST);
+  glBindVertexArray(empty_vao_.id());
+  const float mottle_cell = drawsMottle(canvas_) ? drawMottle(camera, width, height) : 1.0f;
+  target_.bind();
+  // The G-buffer's depth, copied to this target's depth attachment (sampling a texture that
+  // is attached is a feedback loop): the depth test then keeps each program to the surfaces
+  // or to the background, and llvmpipe skips the other's pixels before shading them.
+  glCopyImageSubData(gbuffer.depth().id(), GL_TEXTURE_2D, 0, 0, 0, 0, target_.depth().id(), GL_TEXTURE_2D, 0, 0, 0, 0,
+                     width, height, 1);
+  glEnable(GL_DEPTH_TEST);
+  glDepthMask(GL_FALSE);
   glBindTextureUnit(0, gbuffer.depth().id());
   glBindTextureUnit(1, gbuffer.colour(1).id());
   glBindImageTexture(0, tile_.id(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_R8_SNORM);
-  glBindBufferBase(GL_UNIFORM_BUFFER, 0, spaces_.id());
-  tiles_.set("u_viewport", glm::vec2(width, height));
-  tiles_.set("u_texels_per_pixel", texels_per_pixel_);
-  tiles_.set("u_patch_pixels", static_cast<float>(canvas_.patch * o.radius));
-  tiles_.set("u_pin", canvas_.grainOnSurface() ? 1.0f : 0.0f);
-  tiles_.set("u_dome", glm::vec4(glm::vec3(dome_centre_), static_cast<float>(dome_radius_)));
-  tiles_.set("u_eye", glm::vec3(camera.eye()));
-  tiles_.set("u_seed", seed_);
-  tiles_.set("u_tile_scale", static_cast<float>(kTileRange));
-  tiles_.set("u_tile_mask", tile_.width() - 1);
-  if (canvas_.hasMarks()) setMarks(height, canvas_.patch * o.radius);
-  glBindVertexArray(empty_vao_.id());
-  glDrawArrays(GL_TRIANGLES, 0, 3);
+  for (const Program* p : {&tiles_, &tiles_background_}) {
+    p->use();
+    p->set("u_viewport", glm::vec2(width, height));
+    p->set("u_texels_per_pixel", texels_per_pixel_);
+    p->set("u_patch_pixels", static_cast<float>(canvas_.patch * o.radius));
+    p->set("u_dome", glm::vec4(glm::vec3(dome_centre_), static_cast<float>(dome_radius_)));
+    p->set("u_eye", glm::vec3(camera.eye()));
+    p->set("u_seed", seed_);
+    p->set("u_tile_scale", static_cast<float>(kTileRange));
+    p->set("u_tile_mask", tile_.width() - 1);
+    setMarks(*p, height, canvas_.patch * o.radius);
+    p->set("u_mottle_cell", mottle_cell);
+    glDepthFunc(p == &tiles_ ? GL_GREATER : GL_EQUAL);  // the triangle lies at depth 1: surfaces, then the background
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+  }
+  glDisable(GL_DEPTH_TEST);
+  glDepthMask(GL_TRUE);
+  glDepthFunc(GL_LESS);
 }
 
-void CanvasPass::setMarks(int height, double lattice_pixels) const {
-  // Lengths are pixels at 1024 high. Fibres and spots hang on the grain's lattice points
-  // (`lattice_pixels` apart on screen): a point's chance of one is the density per 100²
-  // pixels times the screen area per point that shows its marks. A surface meets about
-  // 2.5 points per spacing² of screen (two layers of points, two levels), measured on a
-  // plane facing the camera (CanvasGl.RicePaperIsQuietPaperWithFibresAndSpots).
+float CanvasPass::drawMottle(const OrbitCamera& camera, int width, int height) {
+  // One texel per cell of `mottle_cell` pixels at 1024 high (at least one pixel), holding
+  // the value at the cell's centre.
+  const float cell = std::max(1.0f, static_cast<float>(canvas_.mottle_cell * height / 1024.0));
+  const int columns = static_cast<int>(std::ceil(width / cell)), rows = static_cast<int>(std::ceil(height / cell));
+  if (mottle_target_.width() != columns || mottle_target_.height() != rows) {
+    mottle_target_ = Framebuffer(columns, rows, {GL_R32F}, false);
+  }
+  mottle_target_.bind();
+  mottle_.use();
+  mottle_.set("u_viewport", glm::vec2(width, height));
+  mottle_.set("u_cell", cell);
+  mottle_.set("u_dome", glm::vec4(glm::vec3(dome_centre_), static_cast<float>(dome_radius_)));
+  mottle_.set("u_eye", glm::vec3(camera.eye()));
+  mottle_.set("u_seed", seed_);
+  mottle_.set("u_mottle", glm::vec2(canvas_.mottle, kMottlePixels * height / 1024.0));
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+  glBindImageTexture(1, mottle_target_.colour(0).id(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_R32F);
+  return cell;
+}
+
+void CanvasPass::setMarks(const Program& p, int height, double lattice_pixels) const {
+  // Lengths are pixels at 1024 high. Fibres and spots hang on lattice points, and a point's
+  // chance of one is the density per 100² pixels times the screen area its marks cover: the
+  // shader scales it by that area in lattice spacings² (`lattice_pixels` apart on screen);
+  // kMarkRegion is the area for one spacing², measured on a plane facing the camera
+  // (CanvasGl.RicePaperIsQuietPaperWithFibresAndSpots).
   const double scale = height / 1024.0;
-  const double per_point = (lattice_pixels / (100 * scale)) * (lattice_pixels / (100 * scale)) / 2.5;
-  tiles_.set("u_fibre", glm::vec4(std::min(1.0, canvas_.fibres * per_point), 0.5 * canvas_.fibre_length * scale,
-                                  canvas_.fibre_contrast, 0.9 * std::max(scale, 0.5)));
-  tiles_.set("u_spot", glm::vec3(std::min(1.0, canvas_.spots * per_point), 0.35, 2.0 * std::max(scale, 0.5)));
-  tiles_.set("u_mottle", glm::vec2(canvas_.mottle, kMottlePixels * scale));
+  const double per_point = (lattice_pixels / (100 * scale)) * (lattice_pixels / (100 * scale)) * kMarkRegion;
+  p.set("u_fibre", glm::vec4(canvas_.fibres * per_point, 0.5 * canvas_.fibre_length * scale, canvas_.fibre_contrast,
+                             0.9 * std::max(scale, 0.5)));
+  p.set("u_spot", glm::vec3(canvas_.spots * per_point, 0.35, 2.0 * std::max(scale, 0.5)));
+  p.set("u_mottle", glm::vec2(canvas_.mottle, kMottlePixels * scale));
 }
 
 void CanvasPass::runSplat(const std::vector<Item>& items, const Texture2D& depth, const OrbitCamera& camera, int width,
@@ -449,7 +505,8 @@ class CanvasStage final : public RenderPass {
 
 std::string canvasStructure(const scene::Scene& s) {
   return std::to_string(static_cast<int>(s.canvas.type)) + std::to_string(static_cast<int>(s.canvas.pattern())) +
-         std::to_string(static_cast<int>(s.canvas.method)) + (s.canvas.hasMarks() ? "m" : "");
+         std::to_string(static_cast<int>(s.canvas.method)) + (drawsFibresOrSpots(s.canvas) ? "f" : "") +
+         (drawsMottle(s.canvas) ? "m" : "") + (s.canvas.grainOnSurface() ? "z" : "");
 }
 
 std::unique_ptr<RenderPass> makeCanvasPass(const PassSetup& setup) {

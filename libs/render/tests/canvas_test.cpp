@@ -548,8 +548,11 @@ TEST_F(CanvasGl, RicePaperIsQuietPaperWithFibresAndSpots) {
   const double contrast = spectrumPeak(paper.picture).contrast / mean;
   EXPECT_GT(contrast, 0.005);
   EXPECT_LT(contrast, 0.04);
-  // Fibres: thin dark threads, about as many as asked for (0.8 per 100² pixels).
-  const std::vector<Region> fibres = darkRegions(paper.marks, -0.06f, 6);
+  // Fibres alone: thin dark threads (three in four darken), about as many as asked for (0.8
+  // per 100² pixels), found where they darken by over a quarter of their contrast.
+  const Paper fibred = paperOf({{"type", "rice_paper"}, {"spots", 0}, {"mottle", 0}}, kPaper);
+  const auto fibre_contrast = static_cast<float>(scene::Canvas{}.fibre_contrast);
+  const std::vector<Region> fibres = darkRegions(fibred.marks, -0.25f * fibre_contrast, 6);
   EXPECT_GT(fibres.size() / per_100, 0.8 * 0.5);
   EXPECT_LT(fibres.size() / per_100, 0.8 * 2.0);
   EXPECT_GT(medianElongation(fibres), 3.0);
@@ -562,6 +565,38 @@ TEST_F(CanvasGl, RicePaperIsQuietPaperWithFibresAndSpots) {
   for (const Region& r : spots) EXPECT_LE(r.area, 20);
   // Without marks the canvas has none.
   for (float v : sand.marks.pixels) ASSERT_EQ(v, 0.0f);
+}
+
+TEST_F(CanvasGl, TheMottleImageIsWhatEachPixelWouldCompute) {
+  // The mottle is computed once per `mottle_cell` pixels and read bilinearly between those
+  // values; at 1 every pixel computes its own (the oracle). It changes over about a hundred
+  // pixels, so the default's 8 stays within 2 % of its own standard deviation on average
+  // (a twentieth of an 8-bit step) and softens its creases by under a third of it; a cell
+  // as large as its patches does neither.
+  constexpr int kPaper = 512;
+  auto mottle = [](double cell) {
+    return paperOf({{"type", "rice_paper"}, {"fibres", 0}, {"spots", 0}, {"mottle_cell", cell}}, kPaper).marks;
+  };
+  struct Difference {
+    double mean = 0, largest = 0;
+  };
+  auto difference = [](const image::Image& a, const image::Image& b) {
+    Difference d;
+    for (std::size_t i = 0; i < a.pixels.size(); ++i) {
+      const double e = std::abs(a.pixels[i] - b.pixels[i]);
+      d.mean += e / static_cast<double>(a.pixels.size());
+      d.largest = std::max(d.largest, e);
+    }
+    return d;
+  };
+  const image::Image exact = mottle(1);
+  const double sd = std::sqrt(variance(exact));
+  EXPECT_GT(sd, 0.01);  // the default contrast, 0.02, of unit-variance noise
+  const Difference fine = difference(exact, mottle(8)), coarse = difference(exact, mottle(64));
+  EXPECT_LT(fine.mean, 0.02 * sd);
+  EXPECT_LT(fine.largest, 0.3 * sd);
+  EXPECT_GT(coarse.mean, 0.1 * sd);
+  EXPECT_GT(coarse.largest, 0.9 * sd);
 }
 
 TEST_F(CanvasGl, SilkWeavePeaksAtWarpAndWeft) {

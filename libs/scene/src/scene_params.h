@@ -463,8 +463,9 @@ void describe(V& v, Canvas& c) {
             Effect::Uniform, "per 100² pixels"},
            c.fibres, {0, 4});
   v.number({"fibre_length",
-            "mean length of a fibre (they range over 0.6-1.4 times it); fibres hang on the grain's lattice, so "
-            "past about 2 × `patch` × `grain` they are cut short",
+            "mean length of a fibre (they range over 0.6-1.4 times it); a fibre shows over the cube of the "
+            "lattice it hangs on, 2.8-5.7 × `patch` × `grain` across on screen, so past about 3 × `patch` × "
+            "`grain` some are cut short",
             Effect::Uniform, "pixels at 1024 high"},
            c.fibre_length, {4, 256});
   v.number({"fibre_contrast", "brightness change along a fibre's middle: most fibres darken, some lighten"},
@@ -478,6 +479,11 @@ void describe(V& v, Canvas& c) {
             "rice paper: contrast of the paper's cloudy tone, patches about a fibre length across (the `tiles` "
             "method; 0: none)"},
            c.mottle, kUnit);
+  v.number({"mottle_cell",
+            "rice paper: the mottle is computed once per square of this many pixels and read bilinearly between "
+            "them (at 8 within 2 % of its own contrast on average of computing it at every pixel, 1)",
+            Effect::Uniform, "pixels at 1024 high"},
+           c.mottle_cell, {1, 64});
 }
 
 template <typename V>

@@ -70,6 +70,7 @@ class CanvasPass {
   //! Kernel cells across the tile: kTileCells, fewer for large N′.
   int tileCells() const { return tile_cells_; }
   bool usesTiles() const { return method_ == Method::Tiles; }
+
   //! Kernels one geometry-shader invocation can emit, and the per-triangle cap (splat).
   int quadsPerInvocation() const { return quads_; }
   int cap() const { return quads_ * kInvocations; }
@@ -83,6 +84,9 @@ class CanvasPass {
   static constexpr double kTileWork = 2.0 * 1024 * 1024 * 32;
   //! Spacing of the rice paper mottle's lattice, pixels at 1024 high: patches about this big.
   static constexpr double kMottlePixels = 96.0;
+  //! Screen area, in lattice spacings², over which a point's fibre or spot shows where its
+  //! level's spacing is one (the shader scales it by the spacing²).
+  static constexpr double kMarkRegion = 0.8;
   //! The tile stores v / kTileRange, clamped to [-1, 1] (σ = 1).
   static constexpr double kTileRange = 4.0;
 
@@ -93,13 +97,17 @@ class CanvasPass {
   void updateTile(const noise::CanvasNoiseOptions& o);
   void runTiles(const std::vector<Item>& items, const Framebuffer& gbuffer, const OrbitCamera& camera, int width,
                 int height, const noise::CanvasNoiseOptions& o);
-  //! The rice paper marks' uniforms, for an output `height` tall whose grain lattice is
-  //! `lattice_pixels` apart on screen.
-  void setMarks(int height, double lattice_pixels) const;
+  //! The rice paper marks' uniforms of `p`, for an output `height` tall whose grain lattice
+  //! is `lattice_pixels` apart on screen.
+  void setMarks(const Program& p, int height, double lattice_pixels) const;
+  //! Draws rice paper's mottle into its small image, binds it to image unit 1 and returns
+  //! the pixels of the view per texel.
+  float drawMottle(const OrbitCamera& camera, int width, int height);
   void runSplat(const std::vector<Item>& items, const Texture2D& depth, const OrbitCamera& camera, int width,
                 int height, const noise::CanvasNoiseOptions& o);
   std::vector<std::string> definesFor(int invocations) const;
-  std::vector<std::string> tilesDefines() const;
+  //! The tiles canvas's programs: the surfaces', or with `background` the background's.
+  std::vector<std::string> tilesDefines(bool background) const;
   //! Writes the dome triangles the camera can see into the element buffer; index count.
   GLsizei uploadVisibleDome(const glm::dmat4& model_view_projection);
 
@@ -109,8 +117,10 @@ class CanvasPass {
   std::uint32_t seed_ = 0;
   Method method_ = Method::Tiles;
   int quads_ = 0;
-  Program single_, multi_, static_;  //!< geometry shader with 1 or kInvocations invocations; static
-  Program tiles_, tile_synthesis_;   //!< the tiles canvas, and its tile
+  Program single_, multi_, static_;                    //!< geometry shader with 1 or kInvocations invocations; static
+  Program tiles_, tiles_background_, tile_synthesis_;  //!< the tiles canvas (surfaces, background), and its tile
+  Program mottle_;                                     //!< rice paper's mottle (tiles)
+  Framebuffer mottle_target_;
   Texture2D tile_;
   std::string tile_key_;  //!< the options the tile was drawn for
   noise::CanvasNoiseOptions tile_options_;
@@ -131,6 +141,10 @@ class CanvasPass {
   CanvasPass(const CanvasPass&) = delete;
   CanvasPass& operator=(const CanvasPass&) = delete;
 };
+
+//! Whether the canvas draws rice paper's fibres or spots, and its mottle (tiles only).
+bool drawsFibresOrSpots(const scene::Canvas& c);
+bool drawsMottle(const scene::Canvas& c);
 
 //! The CanvasPass of the renderer's canvas pass; null for any other pass.
 const CanvasPass* canvasOf(const RenderPass& pass);

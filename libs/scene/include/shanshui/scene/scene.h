@@ -295,9 +295,10 @@ struct Canvas {
   // Marks of the paper over the grain (the tiles method): fibres, impurity spots, mottle.
   double fibres = 0.8;          //!< fibres per 100 × 100 pixels (rice paper)
   double fibre_length = 24.0;   //!< mean fibre length, pixels at 1024 high
-  double fibre_contrast = 0.3;  //!< brightness change along a fibre's middle
+  double fibre_contrast = 0.2;  //!< brightness change along a fibre's middle
   double spots = 0.08;          //!< impurity spots per 100 × 100 pixels (rice paper)
   double mottle = 0.02;         //!< contrast of the paper's cloudy low-frequency tone (rice paper)
+  double mottle_cell = 8.0;     //!< pixels at 1024 high per computed value of the mottle
 
   //! Whether the canvas draws rice paper's marks (the tiles method only).
   bool hasMarks() const;
