@@ -268,14 +268,13 @@ const Texture2D& CanvasPass::run(const std::vector<Item>& items, const Framebuff
 
 void CanvasPass::updateTile(const noise::CanvasNoiseOptions& pixels) {
   // The tile holds kTileCells² cells of one kernel radius r_t texels: a power of two (the
-  // shader wraps by a mask), 8 to 16 texels per cycle across a radius (silk threads, Perlin
+  // shader wraps by a mask), 16 texels per cycle across a radius (silk threads, Perlin
   // octaves) so that reading the nearest texel moves the pattern by a small fraction of a
-  // cycle. It is read at r_t / r texels per screen pixel. Twice that many texels per cycle
-  // cost the sample scene's canvas 7 % more (a larger tile, read at random places) for no
-  // change to its spectrum or warping error that the bench can tell.
+  // cycle (at 8 the warping error of an orbit or a pan doubled). It is read at r_t / r
+  // texels per screen pixel.
   const double cycles = pixels.silk ? pixels.F0 * pixels.radius : pixels.perlin_frequency;
   const int radius =
-      8 * static_cast<int>(std::bit_ceil(static_cast<unsigned>(std::ceil(std::clamp(cycles, 1.0, 4.0)))));
+      16 * static_cast<int>(std::bit_ceil(static_cast<unsigned>(std::ceil(std::clamp(cycles, 1.0, 4.0)))));
   noise::CanvasNoiseOptions texels = pixels;
   texels.radius = radius;
   texels.F0 = pixels.F0 * pixels.radius / radius;
@@ -286,10 +285,12 @@ void CanvasPass::updateTile(const noise::CanvasNoiseOptions& pixels) {
       << texels.perlin_frequency << "," << texels.impulses << "," << radius << "," << seed_;
   if (key.str() == tile_key_) return;
   tile_options_ = texels;
-  // The tile costs texels × N′ kernel evaluations to draw: past twice the default's, fewer
-  // cells (down to 8 across; copies are read at random offsets, so a small tile does not
-  // show as a repeat).
-  tile_cells_ = kTileCells;
+  // The copies' spectrum is the tile's, lines 1 / size apart: silk's narrow ring gets twice
+  // the cells (at 16 its peak wandered by 6 % through a dolly, CanvasGl.ContrastAndGrain-
+  // HoldThroughADolly; rice paper's broad spectrum does not notice). The tile costs texels ×
+  // N′ kernel evaluations to draw: past twice the default's, fewer cells (down to 8 across;
+  // copies are read at random offsets, so a small tile does not show as a repeat).
+  tile_cells_ = pixels.silk ? 2 * kTileCells : kTileCells;
   while (tile_cells_ > 8 &&
          static_cast<double>(tile_cells_ * radius) * (tile_cells_ * radius) * texels.impulses > kTileWork) {
     tile_cells_ /= 2;
