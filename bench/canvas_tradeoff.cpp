@@ -449,7 +449,6 @@ int main(int argc, char** argv) {
     std::vector<std::vector<Frame>> dolly_frames(std::size(kKinds));
     const char* paths[] = {"orbit", "dolly", "pan"};
     for (Kind kind : kKinds) {
-      if (std::getenv("TILES_ONLY") && kind != Kind::TilesSilk && kind != Kind::TilesRicePaper) continue;
       scene::Scene s = withKind(sc, kind);
       s.canvas.grain = 24;
       s.canvas.frequency = 0.06;

@@ -109,9 +109,10 @@ TEST(BenchCli, QuickStagesWriteTablesPointsAndPlots) {
     ++plots;
   }
   // quilt 2, param 2 (the developable ridge, the charts of a cube), curvature 4 (object space, per pixel, the CDF, the
-  // wrinkle filter), diffusion 2, canvas 4 (N′: spectrum and Gaussianity; tiles: spectrum and warping against patch),
-  // strokes 2 (spline sampling, linking), paper 2 (edge taps, shadow map), pipeline 1; and the pictures.
-  EXPECT_EQ(plots, 19) << index;
+  // wrinkle filter), diffusion 2, canvas 5 (N′: spectrum and Gaussianity; tiles: spectrum and warping against patch;
+  // the mottle against its cell), strokes 2 (spline sampling, linking), paper 2 (edge taps, shadow map), pipeline 1;
+  // and the pictures.
+  EXPECT_EQ(plots, 20) << index;
   EXPECT_GE(colours(image::loadImage(dir / "canvas_dolly.png")), 3u);
   EXPECT_TRUE(fs::exists(dir / "pipeline_presets.png"));
 

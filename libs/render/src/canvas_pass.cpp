@@ -33,6 +33,9 @@ int maxQuadsPerInvocation() {
   return std::max(1, std::min(vertices / 4, components / (4 * kComponentsPerVertex)));
 }
 
+// The mottle's program: the background's matrices only.
+const std::vector<std::string> kMottleDefines{"SPACES=1", "MOTTLE"};
+
 }  // namespace
 
 bool drawsFibresOrSpots(const scene::Canvas& c) {
@@ -135,9 +138,12 @@ std::vector<std::string> CanvasPass::variants() const {
   switch (method_) {
     case Method::Splat:
       return {joined(definesFor(1)), joined(definesFor(kInvocations))};
-    case Method::Tiles:
-      return {joined(definesFor(1)), joined(tilesDefines(false)),
-              joined(tilesDefines(true))};  // the tile's, the pass's
+    case Method::Tiles: {
+      // The tile's, the surfaces', the background's, and the mottle's when it is drawn.
+      std::vector<std::string> v{joined(definesFor(1)), joined(tilesDefines(false)), joined(tilesDefines(true))};
+      if (drawsMottle(canvas_)) v.push_back(joined(kMottleDefines));
+      return v;
+    }
     case Method::Static:
       break;
   }
@@ -158,7 +164,7 @@ void CanvasPass::reloadShaders() {
       tile_synthesis_ = std::move(synthesis);
       tiles_ = std::move(surfaces);
       tiles_background_ = std::move(background);
-      if (drawsMottle(canvas_)) mottle_ = Program({"fullscreen.vert", "canvas_mottle.frag"}, {"SPACES=1", "MOTTLE"});
+      if (drawsMottle(canvas_)) mottle_ = Program({"fullscreen.vert", "canvas_mottle.frag"}, kMottleDefines);
       tile_key_.clear();
       return;
     }
