@@ -38,14 +38,6 @@ const std::vector<std::string> kMottleDefines{"SPACES=1", "MOTTLE"};
 
 }  // namespace
 
-bool drawsFibresOrSpots(const scene::Canvas& c) {
-  return c.pattern() == scene::CanvasPattern::RicePaper && (c.fibres > 0 || c.spots > 0);
-}
-
-bool drawsMottle(const scene::Canvas& c) {
-  return c.pattern() == scene::CanvasPattern::RicePaper && c.mottle > 0;
-}
-
 std::uint32_t canvasSeed(std::uint64_t scene_seed) {
   return noise::noiseSeed32(scene_seed ^ 0xCA57A5ull);
 }
@@ -128,8 +120,8 @@ std::vector<std::string> CanvasPass::tilesDefines(bool background) const {
   } else if (objects_ == 1) {
     d.emplace_back("SINGLE_OBJECT");
   }
-  if (drawsFibresOrSpots(canvas_)) d.emplace_back("PAPER_MARKS");
-  if (drawsMottle(canvas_)) d.emplace_back("MOTTLE");
+  if (canvas_.hasFibresOrSpots()) d.emplace_back("PAPER_MARKS");
+  if (canvas_.hasMottle()) d.emplace_back("MOTTLE");
   if (canvas_.grainOnSurface()) d.emplace_back("GRAIN_ON_SURFACE");
   return d;
 }
@@ -141,7 +133,7 @@ std::vector<std::string> CanvasPass::variants() const {
     case Method::Tiles: {
       // The tile's, the surfaces', the background's, and the mottle's when it is drawn.
       std::vector<std::string> v{joined(definesFor(1)), joined(tilesDefines(false)), joined(tilesDefines(true))};
-      if (drawsMottle(canvas_)) v.push_back(joined(kMottleDefines));
+      if (canvas_.hasMottle()) v.push_back(joined(kMottleDefines));
       return v;
     }
     case Method::Static:
@@ -164,7 +156,7 @@ void CanvasPass::reloadShaders() {
       tile_synthesis_ = std::move(synthesis);
       tiles_ = std::move(surfaces);
       tiles_background_ = std::move(background);
-      if (drawsMottle(canvas_)) mottle_ = Program({"fullscreen.vert", "canvas_mottle.frag"}, kMottleDefines);
+      if (canvas_.hasMottle()) mottle_ = Program({"fullscreen.vert", "canvas_mottle.frag"}, kMottleDefines);
       tile_key_.clear();
       return;
     }
@@ -359,7 +351,7 @@ void CanvasPass::runTiles(const std::vector<Item>& items, const Framebuffer& gbu
   glDisable(GL_BLEND);
   glDisable(GL_DEPTH_TEST);
   glBindVertexArray(empty_vao_.id());
-  const float mottle_cell = drawsMottle(canvas_) ? drawMottle(camera, width, height) : 1.0f;
+  const float mottle_cell = canvas_.hasMottle() ? drawMottle(camera, width, height) : 1.0f;
   target_.bind();
   // The G-buffer's depth, copied to this target's depth attachment (sampling a texture that
   // is attached is a feedback loop): the depth test then keeps each program to the surfaces
@@ -423,7 +415,6 @@ void CanvasPass::setMarks(const Program& p, int height, double lattice_pixels) c
   p.set("u_fibre", glm::vec4(canvas_.fibres * per_point, 0.5 * canvas_.fibre_length * scale, canvas_.fibre_contrast,
                              0.9 * std::max(scale, 0.5)));
   p.set("u_spot", glm::vec3(canvas_.spots * per_point, 0.35, 2.0 * std::max(scale, 0.5)));
-  p.set("u_mottle", glm::vec2(canvas_.mottle, kMottlePixels * scale));
 }
 
 void CanvasPass::runSplat(const std::vector<Item>& items, const Texture2D& depth, const OrbitCamera& camera, int width,
@@ -512,8 +503,8 @@ class CanvasStage final : public RenderPass {
 
 std::string canvasStructure(const scene::Scene& s) {
   return std::to_string(static_cast<int>(s.canvas.type)) + std::to_string(static_cast<int>(s.canvas.pattern())) +
-         std::to_string(static_cast<int>(s.canvas.method)) + (drawsFibresOrSpots(s.canvas) ? "f" : "") +
-         (drawsMottle(s.canvas) ? "m" : "") + (s.canvas.grainOnSurface() ? "z" : "");
+         std::to_string(static_cast<int>(s.canvas.method)) + (s.canvas.hasFibresOrSpots() ? "f" : "") +
+         (s.canvas.hasMottle() ? "m" : "") + (s.canvas.grainOnSurface() ? "z" : "");
 }
 
 std::unique_ptr<RenderPass> makeCanvasPass(const PassSetup& setup) {

@@ -40,9 +40,20 @@ int Output::pixelWidth() const {
   return std::max(1, static_cast<int>(std::lround(kScrollAspect * height)));
 }
 
-bool Canvas::hasMarks() const {
-  if (type == CanvasType::None || type == CanvasType::Static || method != CanvasMethod::Tiles) return false;
-  return pattern() == CanvasPattern::RicePaper && (fibres > 0 || spots > 0 || mottle > 0);
+namespace {
+// Rice paper drawn by the tiles method, the one that draws marks.
+bool tiledRicePaper(const Canvas& c) {
+  return c.type != CanvasType::None && c.type != CanvasType::Static && c.method == CanvasMethod::Tiles &&
+         c.pattern() == CanvasPattern::RicePaper;
+}
+}  // namespace
+
+bool Canvas::hasFibresOrSpots() const {
+  return tiledRicePaper(*this) && (fibres > 0 || spots > 0);
+}
+
+bool Canvas::hasMottle() const {
+  return tiledRicePaper(*this) && mottle > 0;
 }
 
 bool Scene::usesWrinkles() const {

@@ -144,10 +144,6 @@ class CanvasPass {
   CanvasPass& operator=(const CanvasPass&) = delete;
 };
 
-//! Whether the canvas draws rice paper's fibres or spots, and its mottle (tiles only).
-bool drawsFibresOrSpots(const scene::Canvas& c);
-bool drawsMottle(const scene::Canvas& c);
-
 //! The CanvasPass of the renderer's canvas pass; null for any other pass.
 const CanvasPass* canvasOf(const RenderPass& pass);
 

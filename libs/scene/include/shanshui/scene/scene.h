@@ -300,8 +300,10 @@ struct Canvas {
   double mottle = 0.02;         //!< contrast of the paper's cloudy low-frequency tone (rice paper)
   double mottle_cell = 8.0;     //!< pixels at 1024 high per computed value of the mottle
 
-  //! Whether the canvas draws rice paper's marks (the tiles method only).
-  bool hasMarks() const;
+  //! Whether the canvas draws rice paper's fibres or spots, and its mottle (the tiles
+  //! method only).
+  bool hasFibresOrSpots() const;
+  bool hasMottle() const;
   //! Whether the tiles' grain is pinned to the surface under zoom (`zoom` resolved).
   bool grainOnSurface() const {
     return zoom == CanvasZoom::Surface || (zoom == CanvasZoom::Auto && pattern() == CanvasPattern::RicePaper);
