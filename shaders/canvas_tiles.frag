@@ -43,8 +43,8 @@ layout(location = 0) out vec2 o_canvas;  // grain (unit variance), marks (bright
 #ifdef PAPER_MARKS
 // Rice paper's fibres and impurity spots hang on lattice points: a point carries a fibre (a
 // thin curved thread of fixed screen size near the point's projection, in a random
-// direction) or a spot with a small chance, and shows it over its cube of the lattice (the
-// points nearest to it). The marks' lattice is a coarser level than the grain's, 2.8 to
+// direction) or a spot with a small chance, and shows it over its cube of the lattice (where
+// P is nearer to it than to any other point). The marks' lattice is a coarser level than the grain's, 2.8 to
 // 5.7 grain spacings on screen, so that a fibre fits its cube; it steps up by one level
 // halfway through the grain's octave, where the marks fade out and in over a twentieth of
 // an octave (a pixel shows one point's marks: the grain's eight corners' cost a third of
