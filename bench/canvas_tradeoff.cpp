@@ -215,6 +215,37 @@ double spectrumDistance(const std::vector<double>& a, const std::vector<double>&
   return std::sqrt(d2 / r2);
 }
 
+// The canvas pass's and the G-buffer's GPU time on scene `s` at w × h, and their ratio
+// taken per frame: medians over `frames` − 1 frames of an orbit 2° a frame (the first,
+// which draws the tile, left out).
+struct CanvasCost {
+  double canvas_ms = 0, gbuffer_ms = 0, ratio = 0;
+};
+
+CanvasCost canvasCost(const scene::Scene& s, const std::vector<scene::LoadedObject>& objects, int w, int h,
+                      int frames) {
+  render::InkRenderer r(s, objects);
+  const render::OrbitCamera cam0 =
+      render::sceneCamera(s, r.worldBounds(), static_cast<double>(w) / h, render::frameKey(s, 0, 1, 0.0));
+  std::vector<double> canvas_ms, gbuffer_ms, ratios;
+  for (int f = 0; f < frames; ++f) {
+    render::OrbitCamera c = cam0;
+    c.azimuth_deg += 2.0 * f;
+    render::FrameStats st;
+    r.render(c, w, h, &st);
+    if (f == 0) continue;
+    double cm = 0, gm = 0;
+    for (const auto& p : st.passes) {
+      if (p.name == "canvas") cm = p.gpu_ms;
+      if (p.name == "gbuffer") gm = p.gpu_ms;
+    }
+    canvas_ms.push_back(cm);
+    gbuffer_ms.push_back(gm);
+    ratios.push_back(cm / gm);
+  }
+  return {median(canvas_ms), median(gbuffer_ms), median(ratios)};
+}
+
 // The tiles canvas beside the splatted reference for each `patch`: spectrum distance to the
 // reference on a plane (silk and rice paper), warping error on the sample scene's paths,
 // and cost as a ratio to the G-buffer at 1024x768 (the sample scene's own size).
@@ -289,40 +320,22 @@ void tilesSection(std::ostream& md, std::ostream& csv, bench::TradeoffPoints& po
     cs.canvas.method = row.method == "splat" ? scene::CanvasMethod::Splat : scene::CanvasMethod::Tiles;
     cs.canvas.patch = row.patch;
     cs.canvas.zoom = row.zoom == "surface" ? scene::CanvasZoom::Surface : scene::CanvasZoom::Screen;
-    render::InkRenderer cr(cs, objects);
-    const render::OrbitCamera cam0 = render::sceneCamera(cs, cr.worldBounds(), static_cast<double>(cost_w) / cost_h,
-                                                         render::frameKey(cs, 0, 1, 0.0));
-    std::vector<double> canvas_ms, gbuffer_ms, ratios;
-    for (int f = 0; f < cost_frames; ++f) {
-      render::OrbitCamera c = cam0;
-      c.azimuth_deg += 2.0 * f;
-      render::FrameStats st;
-      cr.render(c, cost_w, cost_h, &st);
-      if (f == 0) continue;
-      double cm = 0, gm = 0;
-      for (const auto& p : st.passes) {
-        if (p.name == "canvas") cm = p.gpu_ms;
-        if (p.name == "gbuffer") gm = p.gpu_ms;
-      }
-      canvas_ms.push_back(cm);
-      gbuffer_ms.push_back(gm);
-      ratios.push_back(cm / gm);
-    }
+    const CanvasCost cost = canvasCost(cs, objects, cost_w, cost_h, cost_frames);
     char line[512];
     std::snprintf(line, sizeof line, "| %s | %.3f | %.3f | %.4f | %.4f | %.4f | %.1f | %.1f | %.2f |\n",
-                  row.name.c_str(), silk_d, rice_d, warp["orbit"], warp["dolly"], warp["pan"], median(canvas_ms),
-                  median(gbuffer_ms), median(ratios));
+                  row.name.c_str(), silk_d, rice_d, warp["orbit"], warp["dolly"], warp["pan"], cost.canvas_ms,
+                  cost.gbuffer_ms, cost.ratio);
     md << line;
     std::fputs(line, stderr);
     csv << "tiles," << row.method << "," << row.patch << "," << silk_d << "," << rice_d << "," << warp["orbit"] << ","
-        << warp["dolly"] << "," << warp["pan"] << "," << median(canvas_ms) << "," << median(gbuffer_ms) << ","
-        << median(ratios) << "\n";
+        << warp["dolly"] << "," << warp["pan"] << "," << cost.canvas_ms << "," << cost.gbuffer_ms << "," << cost.ratio
+        << "\n";
     if (row.method == "tiles") {
       const std::string series = "tiles canvas, patch 1 .. 4 (sample scene)";
       points.add("canvas: tiles spectrum against patch", "relative L2 distance to the splatted spectrum (silk)", series,
-                 true, median(canvas_ms), silk_d);
-      points.add("canvas: tiles warping against patch", "warping error through the dolly", series, true,
-                 median(canvas_ms), warp["dolly"]);
+                 true, cost.canvas_ms, silk_d);
+      points.add("canvas: tiles warping against patch", "warping error through the dolly", series, true, cost.canvas_ms,
+                 warp["dolly"]);
     }
   }
   md << "\n";
@@ -375,35 +388,17 @@ void mottleSection(std::ostream& md, std::ostream& csv, bench::TradeoffPoints& p
     }
     scene::Scene cs = sc;
     cs.canvas.mottle_cell = cell;
-    render::InkRenderer cr(cs, objects);
-    const render::OrbitCamera cam0 = render::sceneCamera(cs, cr.worldBounds(), static_cast<double>(cost_w) / cost_h,
-                                                         render::frameKey(cs, 0, 1, 0.0));
-    std::vector<double> canvas_ms, gbuffer_ms, ratios;
-    for (int f = 0; f < cost_frames; ++f) {
-      render::OrbitCamera c = cam0;
-      c.azimuth_deg += 2.0 * f;
-      render::FrameStats st;
-      cr.render(c, cost_w, cost_h, &st);
-      if (f == 0) continue;
-      double cm = 0, gm = 0;
-      for (const auto& p : st.passes) {
-        if (p.name == "canvas") cm = p.gpu_ms;
-        if (p.name == "gbuffer") gm = p.gpu_ms;
-      }
-      canvas_ms.push_back(cm);
-      gbuffer_ms.push_back(gm);
-      ratios.push_back(cm / gm);
-    }
+    const CanvasCost cost = canvasCost(cs, objects, cost_w, cost_h, cost_frames);
     char line[256];
     std::snprintf(line, sizeof line, "| %g | %.4f | %.3f | %.1f | %.1f | %.3f |\n", cell, mean_error / sd, largest / sd,
-                  median(canvas_ms), median(gbuffer_ms), median(ratios));
+                  cost.canvas_ms, cost.gbuffer_ms, cost.ratio);
     md << line;
     std::fputs(line, stderr);
-    csv << "mottle," << cell << "," << mean_error / sd << "," << largest / sd << "," << median(canvas_ms) << ","
-        << median(gbuffer_ms) << "," << median(ratios) << "\n";
+    csv << "mottle," << cell << "," << mean_error / sd << "," << largest / sd << "," << cost.canvas_ms << ","
+        << cost.gbuffer_ms << "," << cost.ratio << "\n";
     if (cell > 1) {
       points.add("canvas: mottle against its cell", "mean difference from every pixel's own, over its σ",
-                 "mottle_cell 2 .. 32 (sample scene)", true, median(canvas_ms), mean_error / sd);
+                 "mottle_cell 2 .. 32 (sample scene)", true, cost.canvas_ms, mean_error / sd);
     }
   }
   md << "\n";
