@@ -99,7 +99,13 @@ class InkPass final : public RenderPass {
   void setScene(const scene::Scene& s) override {
     scene_ = s;
     if ((s.dissolvesBorders() || s.mist.enabled()) && noise_seed_ != s.seed) {
-      value_noise_ = Texture2D::tiledFromImage(noise::erosionNoise(256, s.seed ^ 0x5A17ull), GL_RG8);
+      // The erosion noise's coarse channel, read by nearest image loads (ink_surface.glsl's
+      // valueNoise): kValueNoiseTexels a side.
+      const image::Image noise = noise::erosionNoise(1024, s.seed ^ 0x5A17ull);
+      std::vector<float> coarse(noise.pixels.size() / 2);
+      for (std::size_t i = 0; i < coarse.size(); ++i) coarse[i] = noise.pixels[2 * i];
+      value_noise_ = Texture2D(noise.width, noise.height, GL_R8);
+      glTextureSubImage2D(value_noise_->id(), 0, 0, 0, noise.width, noise.height, GL_RED, GL_FLOAT, coarse.data());
       noise_seed_ = s.seed;
     }
   }
@@ -131,7 +137,7 @@ class InkPass final : public RenderPass {
     glBindImageTexture(0, g.colour(0).id(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA16);
     glBindImageTexture(1, g.colour(1).id(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA8);
     glBindTextureUnit(2, g.depth().id());
-    if (value_noise_) glBindTextureUnit(3, value_noise_->id());
+    if (value_noise_) glBindImageTexture(5, value_noise_->id(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_R8);
     if (const std::optional<std::size_t> w = wrinkledHere(in.scene)) glBindTextureUnit(4, in.objects[*w].wrinkle->id());
     // The G-buffer's depth, copied to a depth attachment of this pass's targets (sampling a
     // texture that is attached is a feedback loop): the depth test then keeps each draw to
