@@ -22,8 +22,14 @@ layout(r32ui, binding = 3) uniform uimage2D u_stroke_ink;
 // pass, which would otherwise compute it again (its noise fetches are most of its cost).
 layout(location = 0) out float o_presence;
 
+// The G-buffer's encoded normal: a unit vector to 16 bits a component, so its length is 1
+// to ~1e-4 and the tests below need no normalize (seven a pixel cost ~0.5 ms at 1024²).
+vec3 decodeNormal(vec4 nc) {
+  return nc.xyz * 2.0 - 1.0;
+}
+
 vec3 normalAt(ivec2 q) {
-  return normalize(imageLoad(u_normal_curvature, q).xyz * 2.0 - 1.0);
+  return decodeNormal(imageLoad(u_normal_curvature, q));
 }
 
 #ifdef SUGGESTIVE
@@ -141,7 +147,7 @@ void main() {
         vec4 nc_plus = across_x ? side_nc[1] : side_nc[3], nc_minus = across_x ? side_nc[0] : side_nc[2];
         float valley = 1.0;
         if (d_plus < 1.0 && d_minus < 1.0) {
-          vec3 dn = normalize(nc_plus.xyz * 2.0 - 1.0) - normalize(nc_minus.xyz * 2.0 - 1.0);
+          vec3 dn = decodeNormal(nc_plus) - decodeNormal(nc_minus);
           vec3 dx = worldPosition(p + a, d_plus) - worldPosition(p - a, d_minus);
           if (dot(dn, dx) < 0.0) valley = o.valley_ink;
         }
@@ -161,12 +167,12 @@ void main() {
   float silhouette = o.silhouette;
   if (ink < 1.0 && silhouette > 0.0) {
     vec3 v = normalize(u_eye - position);
-    float nv = abs(dot(normalize(nc.xyz * 2.0 - 1.0), v));
+    float nv = abs(dot(decodeNormal(nc), v));
     if (nv < 0.5 * silhouette) {
       // |N·V| of the neighbours, 1 on the background (whose targets are not cleared).
       vec4 f;
       for (int i = 0; i < 4; ++i)
-        f[i] = side_depth[i] >= 1.0 ? 1.0 : abs(dot(normalize(side_nc[i].xyz * 2.0 - 1.0), v));
+        f[i] = side_depth[i] >= 1.0 ? 1.0 : abs(dot(decodeNormal(side_nc[i]), v));
       bool trough = f[0] + f[1] >= f[2] + f[3] ? nv <= min(f[0], f[1]) : nv <= min(f[2], f[3]);
       if (trough) ink = strength = 1.0;
     }
@@ -174,7 +180,7 @@ void main() {
 
 #ifdef SUGGESTIVE
   if (ink < o.valley_ink && o.suggestive > 0.0) {
-    float trough = suggestiveTrough(p, position, normalize(nc.xyz * 2.0 - 1.0), viewDepth(depth));
+    float trough = suggestiveTrough(p, position, decodeNormal(nc), viewDepth(depth));
     if (trough >= o.suggestive) {
       // Strength 0 at the threshold, 1 at three times it: light and thin, as valleys.
       float s = smoothstep(1.0, 3.0, trough / o.suggestive);
@@ -192,10 +198,13 @@ void main() {
   float half_width = o.stroke_half_width * mix(o.stroke_taper, 1.0, strength) * mix(1.0, o.stroke_far, far);
   ink *= here;
   // The disc, its edge antialiased over one pixel; stamps outside the image are dropped.
+  // Only the pixels nearer than `reach` are visited, row by row (a software rasteriser
+  // pays for every iteration of the square around it: 49 instead of 21 at 3.5 px wide).
   float reach = half_width + 0.5;
-  int r = int(ceil(reach));
+  int r = int(reach);
   for (int dy = -r; dy <= r; ++dy) {
-    for (int dx = -r; dx <= r; ++dx) {
+    int w = int(sqrt(reach * reach - float(dy * dy)));
+    for (int dx = -w; dx <= w; ++dx) {
       float cover = clamp(reach - length(vec2(dx, dy)), 0.0, 1.0);
       uint v = uint(ink * cover * 255.0 + 0.5);
       if (v > 0u) imageAtomicMax(u_stroke_ink, p + ivec2(dx, dy), v);
