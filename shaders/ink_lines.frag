@@ -87,7 +87,13 @@ void main() {
 #else
   ObjectParams o = objects[int(imageLoad(u_surface_id, p).a * 255.0 + 0.5) - 1];
 #endif
-  vec3 position = worldPosition(p, depth);
+  // p's world position, unprojected so that its neighbours' cost two multiply-adds each:
+  // M·(ndc, 2d − 1, 1) is `column` + d·`per_depth`, and a neighbour along x or y adds ±
+  // one pixel's step of M's first or second column.
+  mat4 m = u_inverse_view_projection;
+  vec4 column = m * vec4(centre * 2.0 - 1.0, -1.0, 1.0), per_depth = 2.0 * m[2];
+  vec4 h = column + depth * per_depth;
+  vec3 position = h.xyz / h.w;
   float here = presence(o, position);
   o_presence = here;
   if ((o.line_flags & kStrokes) == 0u) return;
@@ -101,9 +107,10 @@ void main() {
 
   float jump = o.depth_edges;
   if (jump > 0.0) {
-    float z = viewDepth(depth);
+    // In inverse depth (no divisions): the farthest neighbour is more than `jump` × z behind.
+    float iz = inverseViewDepth(depth);
     float farthest = max(max(max(upper.x, upper.y), max(upper.z, upper.w)), max(max(lower.x, lower.y), max(lower.z, lower.w)));
-    if (viewDepth(farthest) - z > jump * z) {
+    if (inverseViewDepth(farthest) * (1.0 + jump) < iz) {
       ink = strength = 1.0;
     } else {
       // A fold seen from afar: the surface behind is only a little farther, under the
@@ -111,9 +118,8 @@ void main() {
       // on any plane. p is on the near side when its 1/z stands above the mean of its two
       // neighbours along x or y by a tenth of the jump (the N·V band of such a fold is
       // thinner than a pixel, so the silhouette test would give only dots).
-      float iz = 1.0 / z;
-      float kink_x = 2.0 * iz - 1.0 / viewDepth(side_depth[0]) - 1.0 / viewDepth(side_depth[1]);
-      float kink_y = 2.0 * iz - 1.0 / viewDepth(side_depth[2]) - 1.0 / viewDepth(side_depth[3]);
+      float kink_x = 2.0 * iz - inverseViewDepth(side_depth[0]) - inverseViewDepth(side_depth[1]);
+      float kink_y = 2.0 * iz - inverseViewDepth(side_depth[2]) - inverseViewDepth(side_depth[3]);
       // Weak kinks (shallow folds) light and thin, those near a jump dark and wide.
       float kink = max(kink_x, kink_y) / (0.1 * jump * iz);
       if (kink > 1.0) {
@@ -142,13 +148,14 @@ void main() {
         // ((n₊ − n₋)·(x₊ − x₋) > 0) and come together in a valley.
         // (Chosen by selects: an index that differs between pixels costs a software
         // rasteriser a load per pixel.)
-        ivec2 a = across_x ? ivec2(1, 0) : ivec2(0, 1);
         float d_plus = across_x ? side_depth[1] : side_depth[3], d_minus = across_x ? side_depth[0] : side_depth[2];
         vec4 nc_plus = across_x ? side_nc[1] : side_nc[3], nc_minus = across_x ? side_nc[0] : side_nc[2];
         float valley = 1.0;
         if (d_plus < 1.0 && d_minus < 1.0) {
           vec3 dn = decodeNormal(nc_plus) - decodeNormal(nc_minus);
-          vec3 dx = worldPosition(p + a, d_plus) - worldPosition(p - a, d_minus);
+          vec4 step = across_x ? m[0] * (2.0 * texel.x) : m[1] * (2.0 * texel.y);
+          vec4 h_plus = column + d_plus * per_depth + step, h_minus = column + d_minus * per_depth - step;
+          vec3 dx = h_plus.xyz / h_plus.w - h_minus.xyz / h_minus.w;
           if (dot(dn, dx) < 0.0) valley = o.valley_ink;
         }
         // Strength: 0 at the threshold's curvature, 1 at twice it. Weak crests (fine

@@ -46,6 +46,13 @@ float viewDepth(float d) {
   return n * f / (f - d * (f - n));
 }
 
+// 1 / viewDepth(d) without a division: inverse depth is affine in the depth-buffer value.
+float inverseViewDepth(float d) {
+  if (d >= 1.0) return 0.0;
+  float n = u_near_far.x, f = u_near_far.y;
+  return (1.0 - d) / n + d / f;
+}
+
 // The largest depth-buffer value in the 3×3 block around p but its two off corners, from
 // two gathers (four texel fetches would cost twice as much on a software rasteriser).
 float farthestNeighbour(ivec2 p) {
