@@ -18,9 +18,10 @@
 uniform vec3 u_light_dir;    // unit, towards the light
 uniform vec3 u_paper;
 #ifdef STROKES
-// The strokes' ink × 255, stamped by ink_lines.frag, and the presence it found per surface pixel.
+// The strokes' ink × 255, stamped by ink_lines.frag, and the presence and shading noise it
+// found per surface pixel.
 layout(r32ui, binding = 3) readonly uniform uimage2D u_stroke_ink;
-layout(r16, binding = 4) readonly uniform image2D u_presence;
+layout(rgba16, binding = 4) readonly uniform image2D u_presence_noise;
 #endif
 #ifdef CANVAS
 // The paper: unit-variance grain, and its marks (fibres, spots, mottle) as a brightness change.
@@ -113,6 +114,17 @@ void main() {
   ObjectParams o = objects[id - 1];
 #endif
   vec3 position = worldPosition(p, depth);
+#ifdef STROKES
+  vec4 presence_noise = imageLoad(u_presence_noise, p);
+  float here = presence_noise.r;
+  vec2 noise = presence_noise.gb;
+#else
+  float here = presence(o, position);
+  vec2 noise = vec2(1.0, 0.5);
+#ifdef SHADING
+  noise = surfaceNoise(o, position);
+#endif
+#endif
   vec4 nc = imageLoad(u_normal_curvature, p);
   vec3 n = normalize(nc.xyz * 2.0 - 1.0);
   float k = decodeCurvature(nc.w);
@@ -165,7 +177,7 @@ void main() {
   if ((shade_flags & kShadingOn) != 0u) {
     float n_dot_l = dot(n, u_light_dir);
     float t_d = (shade_flags & kHalfLambert) != 0u ? 0.5 * n_dot_l + 0.5 : max(n_dot_l, 0.0);
-    float t_w = 1.0 - o.erosion * (1.0 - surface.r);
+    float t_w = 1.0 - o.erosion * (1.0 - noise.r);
 #ifdef WRINKLE
     wrinkle = surface.b;
 #ifdef WRINKLE_SLOPE
@@ -175,7 +187,7 @@ void main() {
 #endif
     float t = clamp(t_d + t_w + o.beta, 0.0, 1.0);
     if ((shade_flags & kLineValue) != 0u) t *= col;
-    t += o.noise * (2.0 * surface.g - 1.0);
+    t += o.noise * (2.0 * noise.g - 1.0);
     float sigma = o.sigma;
     float c[5] = float[5](o.tones.x, o.tones.y, o.tones.z, o.tones.w, o.tone5);
     tone = c[0];
@@ -191,11 +203,6 @@ void main() {
   // Composite: ink on paper, lines over the interior, then the atmosphere and the border
   // take it back towards the paper; strokes carry their own.
   vec3 colour = mix(u_paper * o.bg_color * tone, o.line_color, line_weight);
-#ifdef STROKES
-  float here = imageLoad(u_presence, p).r;
-#else
-  float here = presence(o, position);
-#endif
   colour = mix(u_paper, colour, here);
 #ifdef STROKES
   float stroke = strokeInk(p);

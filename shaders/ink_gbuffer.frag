@@ -32,7 +32,7 @@ uniform sampler2D u_noise;     // r: erosion noise, g: noise added before quanti
 uniform float u_object_id;     // (index + 1) / 255
 
 layout(location = 0) out vec4 o_normal_curvature;  // RGBA16: n / 2 + 1/2, k / (1 + k)
-layout(location = 1) out vec4 o_surface_id;  // erosion noise, added noise, wrinkle luma, id
+layout(location = 1) out vec4 o_surface_id;  // erosion noise (SURFACE), added noise, wrinkle luma, id
 #ifdef VELOCITY
 // Seed 004's velocity buffer: how far this point moved on screen since the previous frame,
 // in pixels; alpha 1 marks a surface (the target is cleared to 0).

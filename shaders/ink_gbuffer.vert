@@ -1,8 +1,8 @@
 #version 450 core
 // G-buffer pass. Only what the variant needs is interpolated (llvmpipe pays per varying):
-// normal always; erosion-noise coordinates (SURFACE), UVs (WRINKLE), per-vertex curvature
-// (OBJECT_CURVATURE), world position for screen-space derivatives (SCREEN_CURVATURE,
-// WRINKLE_SLOPE); clip positions now and a frame ago (VELOCITY).
+// normal always; erosion-noise coordinates (SURFACE: for the pigment wash), UVs (WRINKLE),
+// per-vertex curvature (OBJECT_CURVATURE), world position for screen-space derivatives
+// (SCREEN_CURVATURE, WRINKLE_SLOPE); clip positions now and a frame ago (VELOCITY).
 layout(location = 0) in vec3 a_position;
 layout(location = 1) in vec3 a_normal;
 #ifdef WRINKLE

@@ -18,9 +18,10 @@
 #include "ink_surface.glsl"
 // Ink × 255 per pixel, cleared to 0 each frame.
 layout(r32ui, binding = 3) uniform uimage2D u_stroke_ink;
-// What the atmosphere and the border leave of each surface pixel (presence()), for the ink
-// pass, which would otherwise compute it again (its noise fetches are most of its cost).
-layout(location = 0) out float o_presence;
+// What the ink pass would otherwise compute again at each surface pixel: what the atmosphere
+// and the border leave (presence(), r) and the shading's noise (surfaceNoise(): erosion g,
+// added noise b).
+layout(location = 0) out vec4 o_presence_noise;
 
 // The G-buffer's encoded normal: a unit vector to 16 bits a component, so its length is 1
 // to ~1e-4 and the tests below need no normalize (seven a pixel cost ~0.5 ms at 1024²).
@@ -95,7 +96,11 @@ void main() {
   vec4 h = column + depth * per_depth;
   vec3 position = h.xyz / h.w;
   float here = presence(o, position);
-  o_presence = here;
+  vec2 noise = vec2(1.0, 0.5);  // no erosion, nothing added
+#ifdef SHADING
+  noise = surfaceNoise(o, position);
+#endif
+  o_presence_noise = vec4(here, noise, 0.0);
   if ((o.line_flags & kStrokes) == 0u) return;
   vec4 nc = imageLoad(u_normal_curvature, p);
   // The neighbours −x, +x, −y, +y: offset, depth, encoded normal and curvature.

@@ -16,7 +16,7 @@
   F(vec4, world_to_model_y) \
   F(vec3, half_extent)    F(float, border_width) \
   F(float, stroke_half_width) F(float, stroke_taper) F(float, stroke_far) F(float, valley_ink) \
-  F(float, suggestive)    F(float, wrinkle_tile_px) F(float, wrinkle_angle)     F(float, unused_c)
+  F(float, suggestive)    F(float, wrinkle_tile_px) F(float, wrinkle_angle)     F(float, noise_frequency)
 
 // world_to_model_x/y: rows of the world-to-model affine map (x and y of the model, relative
 // to its bounding-box centre); half_extent: the box's half size; border_width: the
@@ -24,7 +24,7 @@
 // stroke width in pixels (0 = Eq. 1's bands); stroke_taper, stroke_far, valley_ink,
 // suggestive: see LineParams; wrinkle_tile_px, wrinkle_angle: the slope wrinkles' tile size
 // on screen (pixels) and turn (radians) where the ink pass computes them (kWrinkleHere);
-// unused_c: fills the last 16-byte slot.
+// noise_frequency: erosion-noise tiles per model unit (x and y as world_to_model_x/y give them).
 
 // line_flags bits
 const uint kLinesOn = 1u;

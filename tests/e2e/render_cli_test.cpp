@@ -47,16 +47,18 @@ TEST(RenderCli, StatsListThePassesBuiltAndTheirGpuTimePerFrame) {
   }
   const json s = readJson(dir / "s.json");
   EXPECT_EQ(s["passes_built"], json({"gbuffer", "canvas", "ink"}));
-  // The sample draws its lines as strokes: the ink pass has a lines stage before it.
-  // Its slope wrinkles on planar UVs are computed in the ink pass, not the G-buffer's.
+  // The sample draws its lines as strokes: the ink pass has a lines stage before it, which
+  // also samples the shading's noise (SHADING). Its slope wrinkles on planar UVs are
+  // computed in the ink pass, not the G-buffer's.
   EXPECT_EQ(s["variants"]["ink"], json({"LINES STROKES SHADING WRINKLE WRINKLE_SLOPE CANVAS SINGLE_OBJECT BORDER MIST",
-                                        "lines: SINGLE_OBJECT BORDER MIST"}));
+                                        "lines: SINGLE_OBJECT BORDER MIST SHADING"}));
   // The tiles canvas: its tile, the surfaces' and the background's programs (rice paper's
   // fibres, spots and mottle; the grain pinned to the surface under zoom), the mottle's.
   EXPECT_EQ(s["variants"]["canvas"],
             json({"CANVAS_TILE", "SPACES=2 SINGLE_OBJECT PAPER_MARKS MOTTLE GRAIN_ON_SURFACE",
                   "SPACES=2 BACKGROUND PAPER_MARKS MOTTLE GRAIN_ON_SURFACE", "SPACES=1 MOTTLE"}));
-  EXPECT_EQ(s["variants"]["gbuffer"], json({"SURFACE OBJECT_CURVATURE"}));
+  // No wash: the G-buffer leaves the erosion noise (SURFACE) to the ink pass.
+  EXPECT_EQ(s["variants"]["gbuffer"], json({"OBJECT_CURVATURE"}));
   ASSERT_EQ(s["frames"].size(), 3u);
   for (const json& f : s["frames"]) {
     EXPECT_FALSE(f["cached"].get<bool>());
@@ -134,7 +136,8 @@ TEST(RenderCli, LinesOnlyAndShadingOnlyBuildOnlyTheirShaderCode) {
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const json b = readJson(dir / "b.json");
   EXPECT_EQ(b["variants"]["ink"], json({"SHADING WRINKLE WRINKLE_SLOPE CANVAS SINGLE_OBJECT BORDER MIST"}));
-  EXPECT_EQ(b["variants"]["gbuffer"], json({"SURFACE"}));  // no curvature of either kind, no UV varying
+  // No curvature of either kind, no UV varying, no noise (the ink pass samples it).
+  EXPECT_EQ(b["variants"]["gbuffer"], json({""}));
   // Eq. 1's bands instead of strokes: no lines stage, no stroke code, the bands' code.
   r = run(base + " -o " + quote(dir / "c.png") + " --stats " + quote(dir / "c.json") +
           " --set objects.0.lines.width=0");

@@ -1,6 +1,9 @@
 // The G-buffer pass: every object's normal and curvature, surface detail (erosion noise,
-// added noise, wrinkle luma) and object id, and depth. Each object gets the program
-// variant its parameters need (SURFACE, WRINKLE, OBJECT_CURVATURE / SCREEN_CURVATURE).
+// for the pigment wash only; wrinkle luma) and object id, and depth. Each object gets the
+// program variant its parameters need (SURFACE, WRINKLE, OBJECT_CURVATURE /
+// SCREEN_CURVATURE). The ink pass samples the erosion noise itself, once per pixel: here
+// it cost a varying and a fetch for every fragment (~6 ms of ~43 at 1024², measured side
+// by side), where the lines stage pays ~2 ms for it.
 // With spinning objects the static ones are drawn into a cached layer (again only when
 // the camera, size or parameters change) and copied under the animated ones each frame.
 #include <algorithm>
@@ -20,7 +23,7 @@ namespace {
 std::vector<std::string> objectDefines(const scene::Scene& s, std::size_t i) {
   const scene::Object& o = s.objects[i];
   std::vector<std::string> d;
-  if (s.usesShading()) d.emplace_back("SURFACE");
+  if (s.usesPigment()) d.emplace_back("SURFACE");  // the wash's texture layer
   const bool here = o.wrinkled() && !wrinklesInInkPass(s, i);
   if (here) d.emplace_back("WRINKLE");
   if (here && o.wrinkle.mapping == scene::WrinkleMapping::Slope) d.emplace_back("WRINKLE_SLOPE");
@@ -32,7 +35,7 @@ std::vector<std::string> objectDefines(const scene::Scene& s, std::size_t i) {
 class GbufferPass final : public RenderPass {
  public:
   explicit GbufferPass(const PassSetup& setup)
-      : shading_(setup.scene.usesShading()),
+      : surface_noise_(setup.scene.usesPigment()),
         animated_(setup.scene.hasAnimation()),
         velocity_(setup.scene.motion_blur.enabled) {
     for (std::size_t i = 0; i < setup.scene.objects.size(); ++i) {
@@ -61,10 +64,8 @@ class GbufferPass final : public RenderPass {
   }
 
   void setScene(const scene::Scene& s) override {
-    // Value noise is smooth at texel scale: one texel of the right mip level is enough
-    // when minified (a quarter of the bilinear fetches); magnified it is still filtered.
-    if (shading_ && seed_ != s.seed) {
-      noise_ = Texture2D::tiledFromImage(noise::erosionNoise(256, s.seed), GL_RG8, GL_NEAREST_MIPMAP_NEAREST);
+    if (surface_noise_ && seed_ != s.seed) {
+      noise_ = erosionNoiseTexture(s.seed);
       seed_ = s.seed;
     }
   }
@@ -154,12 +155,10 @@ class GbufferPass final : public RenderPass {
       if (o.lines.enabled && o.lines.curvature == scene::CurvatureSource::Screen) {
         p.set("u_feature_size", static_cast<float>(g.feature_size));
       }
-      if (shading_) {
+      if (surface_noise_) {
         glBindTextureUnit(0, noise_->id());
         p.set("u_noise", 0);
-        const double model_radius = 0.5 * glm::length(g.model_bounds.size());
-        const double tile = noise::kErosionCells * o.shading.noise_scale * model_radius;
-        p.set("u_noise_frequency", static_cast<float>(1.0 / std::max(tile, 1e-30)));
+        p.set("u_noise_frequency", erosionNoiseFrequency(o, g));
       }
       if (g.wrinkle && !wrinklesInInkPass(in.scene, i)) {
         glBindTextureUnit(1, g.wrinkle->id());
@@ -176,7 +175,7 @@ class GbufferPass final : public RenderPass {
     }
   }
 
-  bool shading_, animated_, velocity_;
+  bool surface_noise_, animated_, velocity_;
   std::vector<Variant> programs_;
   std::vector<int> program_of_;  //!< per object, index into programs_
   std::optional<Texture2D> noise_;
@@ -186,6 +185,16 @@ class GbufferPass final : public RenderPass {
 };
 
 }  // namespace
+
+Texture2D erosionNoiseTexture(std::uint64_t seed) {
+  return Texture2D::tiledFromImage(noise::erosionNoise(256, seed), GL_RG8, GL_NEAREST_MIPMAP_NEAREST);
+}
+
+float erosionNoiseFrequency(const scene::Object& o, const SceneObjectGpu& g) {
+  const double model_radius = 0.5 * glm::length(g.model_bounds.size());
+  const double tile = noise::kErosionCells * o.shading.noise_scale * model_radius;
+  return static_cast<float>(1.0 / std::max(tile, 1e-30));
+}
 
 std::string gbufferStructure(const scene::Scene& s) {
   std::string k = s.hasAnimation() ? "animated" : "static";

@@ -76,6 +76,7 @@ class InkPass final : public RenderPass {
     std::vector<std::string> line_defines;
     if (scene_.usesStrokes()) {
       addSurfaceDefines(scene_, line_defines);
+      if (scene_.usesShading()) line_defines.emplace_back("SHADING");  // it samples the shading's noise
       if (scene_.usesSuggestiveContours()) line_defines.emplace_back("SUGGESTIVE");
       lines.emplace(Program({"fullscreen.vert", "ink_lines.frag"}, line_defines));
     }
@@ -98,6 +99,10 @@ class InkPass final : public RenderPass {
 
   void setScene(const scene::Scene& s) override {
     scene_ = s;
+    if (s.usesShading() && surface_noise_seed_ != s.seed) {
+      surface_noise_ = erosionNoiseTexture(s.seed);
+      surface_noise_seed_ = s.seed;
+    }
     if ((s.dissolvesBorders() || s.mist.enabled()) && noise_seed_ != s.seed) {
       // The erosion noise's coarse channel, read by nearest image loads (ink_surface.glsl's
       // valueNoise): kValueNoiseTexels a side.
@@ -138,6 +143,7 @@ class InkPass final : public RenderPass {
     glBindImageTexture(1, g.colour(1).id(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA8);
     glBindTextureUnit(2, g.depth().id());
     if (value_noise_) glBindImageTexture(5, value_noise_->id(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_R8);
+    if (surface_noise_) glBindTextureUnit(3, surface_noise_->id());
     if (const std::optional<std::size_t> w = wrinkledHere(in.scene)) glBindTextureUnit(4, in.objects[*w].wrinkle->id());
     // The G-buffer's depth, copied to a depth attachment of this pass's targets (sampling a
     // texture that is attached is a feedback loop): the depth test then keeps each draw to
@@ -150,7 +156,7 @@ class InkPass final : public RenderPass {
     glDepthFunc(GL_GREATER);  // the triangle lies at depth 1: surfaces only
     if (lines_) {             // built exactly when some object draws strokes
       if (stroke_ink_.width() != target_.width() || stroke_ink_.height() != target_.height()) {
-        strokes_ = Framebuffer(target_.width(), target_.height(), {GL_R16}, false);
+        strokes_ = Framebuffer(target_.width(), target_.height(), {GL_RGBA16}, false);
         glNamedFramebufferTexture(strokes_.id(), GL_DEPTH_ATTACHMENT, surface_depth_.id(), 0);
         stroke_ink_ = Texture2D(target_.width(), target_.height(), GL_R32UI);
       }
@@ -184,7 +190,7 @@ class InkPass final : public RenderPass {
       if (in.timer) in.timer->end();
       SHANSHUI_GL_CHECK("ink lines");
       glBindImageTexture(3, stroke_ink_.id(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_R32UI);
-      glBindImageTexture(4, strokes_.colour(0).id(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_R16);
+      glBindImageTexture(4, strokes_.colour(0).id(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA16);
     }
     if (in.timer) in.timer->begin("ink");
     target_.bind();
@@ -280,6 +286,7 @@ class InkPass final : public RenderPass {
                       (wrinklesInInkPass(in.scene, i) ? gpu::kWrinkleHere : 0u);
       p.wrinkle_tile_px = wrinkleTilePixels(o, in.height);
       p.wrinkle_angle = static_cast<float>(glm::radians(o.wrinkle.angle_deg));
+      p.noise_frequency = erosionNoiseFrequency(o, g);
       // The dissolving border, in the coordinates the object was uploaded in (relative to
       // its bounding-box centre).
       const glm::dmat4 to_model = glm::inverse(in.modelAt(i));
@@ -315,11 +322,13 @@ class InkPass final : public RenderPass {
   Buffer params_;
   std::size_t capacity_ = 0;
   Framebuffer target_;
-  Texture2D surface_depth_;               //!< a copy of the G-buffer's depth, attached to target_ and strokes_
-  Framebuffer strokes_;                   //!< the lines pass's target: R16, the atmosphere's presence per surface pixel
-  Texture2D stroke_ink_;                  //!< R32UI: the strokes' ink × 255, by atomic max
+  Texture2D surface_depth_;  //!< a copy of the G-buffer's depth, attached to target_ and strokes_
+  Framebuffer strokes_;      //!< the lines stage's target: RGBA16, presence and shading noise per surface pixel
+  Texture2D stroke_ink_;     //!< R32UI: the strokes' ink × 255, by atomic max
   std::optional<Texture2D> value_noise_;  //!< the border's and mist's noise
   std::optional<std::uint64_t> noise_seed_;
+  std::optional<Texture2D> surface_noise_;  //!< the shading's erosion and added noise
+  std::optional<std::uint64_t> surface_noise_seed_;
 };
 
 }  // namespace

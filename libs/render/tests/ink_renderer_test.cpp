@@ -797,6 +797,7 @@ TEST_F(Variants, EveryCombinationTheSceneKeysCanProduceCompiles) {
   ASSERT_NO_THROW(Program({"fullscreen.vert", "ink_lines.frag"}, {"BORDER", "MIST"}));
   ASSERT_NO_THROW(Program({"fullscreen.vert", "ink_lines.frag"}, {"SINGLE_OBJECT"}));
   ASSERT_NO_THROW(Program({"fullscreen.vert", "ink_lines.frag"}, {"SUGGESTIVE", "BORDER", "MIST"}));
+  ASSERT_NO_THROW(Program({"fullscreen.vert", "ink_lines.frag"}, {"SHADING", "BORDER", "MIST"}));  // the noise, indexed
   // G-buffer: SURFACE × WRINKLE × curvature kinds; ink: LINES × SHADING × WRINKLE ×
   // SINGLE_OBJECT × CANVAS; canvas: two patterns × tiles (one or more objects) or splat,
   // and static's two; diffusion: one.

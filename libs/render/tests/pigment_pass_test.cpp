@@ -38,6 +38,10 @@ TEST_F(Pigment, PassAndVariantAreBuiltOnlyForAScenesPigments) {
   EXPECT_EQ(a.variants().at("ink").front().find("PIGMENT"), std::string::npos);
   EXPECT_TRUE(contains(b.passesBuilt(), "pigment"));
   EXPECT_NE(b.variants().at("ink").front().find("PIGMENT"), std::string::npos);
+  // The wash's texture layer is the G-buffer's erosion noise (SURFACE), sampled there only
+  // for a wash: the ink pass samples its own.
+  EXPECT_EQ(a.variants().at("gbuffer").front().find("SURFACE"), std::string::npos);
+  EXPECT_NE(b.variants().at("gbuffer").front().find("SURFACE"), std::string::npos);
   FrameStats st;
   b.render(sceneCamera(washed, b.worldBounds(), 1.0, {20, 30, 1.0}), 64, 64, &st);
   EXPECT_TRUE(std::any_of(st.passes.begin(), st.passes.end(), [](const PassTime& p) { return p.name == "pigment"; }));

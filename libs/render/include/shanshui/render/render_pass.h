@@ -127,6 +127,15 @@ bool wrinklesInInkPass(const scene::Scene& s, std::size_t i);
 inline float wrinkleTilePixels(const scene::Object& o, int height) {
   return static_cast<float>(o.wrinkle.tile_px * height / 1024.0);
 }
+//! The shading's noise for a scene's seed (libs/noise's erosion noise), tiled and
+//! mipmapped, one texel of the nearest level read when minified (the noise is smooth at
+//! texel scale); magnified it is filtered. Erosion in r; the added noise in g is the same
+//! coarse channel (the upload expands the two-channel image as grey + alpha, so the finer
+//! channel sits unused in alpha), which is the look the samples were tuned with.
+Texture2D erosionNoiseTexture(std::uint64_t seed);
+//! Erosion-noise tiles per model unit of an object: its coarsest cell is `noise_scale`
+//! times the model's radius.
+float erosionNoiseFrequency(const scene::Object& o, const SceneObjectGpu& g);
 std::unique_ptr<RenderPass> makeDiffusionPass(const PassSetup&);
 std::unique_ptr<RenderPass> makeStrokesPass(const PassSetup&);
 std::string strokesStructure(const scene::Scene&);
