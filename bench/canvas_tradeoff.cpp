@@ -73,6 +73,10 @@ scene::Scene withKind(scene::Scene s, Kind kind) {
   s.canvas.method =
       kind == Kind::TilesSilk || kind == Kind::TilesRicePaper ? scene::CanvasMethod::Tiles : scene::CanvasMethod::Splat;
   s.canvas.static_pattern = scene::CanvasPattern::Silk;
+  // The G-buffer samples the erosion noise only for a pigment wash's texture layer (the ink
+  // pass samples its own): a wash makes it write the noise that this kind shows.
+  if (kind == Kind::ObjectSpace)
+    for (scene::Object& o : s.objects) o.pigment.name = scene::PigmentName::Ochre;
   return s;
 }
 
