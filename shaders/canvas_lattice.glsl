@@ -57,10 +57,10 @@ vec3 domePoint(vec2 ndc, out float w) {
 }
 
 // Model units per pixel across the view at a point of clip w in `space`: one pixel further
-// along x at the same w.
+// along x at the same w, a clip offset of (2w / width, 0, 0, 0), which to_model takes to
+// that multiple of its first column.
 float modelPerPixel(int space, float w) {
-  vec4 m1 = u_spaces[space].to_model * vec4(vec2(2.0 / u_viewport.x, 0.0) * w, 0.0, 0.0);
-  return max(length(m1.xyz), 1e-30);
+  return max(length(u_spaces[space].to_model[0].xyz) * (2.0 / u_viewport.x) * w, 1e-30);
 }
 
 #ifdef MOTTLE

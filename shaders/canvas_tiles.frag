@@ -98,9 +98,7 @@ void addCorner(vec2 d, uvec3 products, float level_weight, float bary, uint leve
   // within a few lattice spacings, so d × texels_per_pixel + 4096 is positive and its
   // truncation is the floor of d × texels_per_pixel, plus 4096.
   ivec2 texel = ivec2(d * texels_per_pixel + 4096.0) + ivec2(h & 0xFFFFu, h >> 16);
-  float w = level_weight * bary;
-  s.grain += w * imageLoad(u_tile, texel & u_tile_mask).r;
-  s.w2 += w * w;
+  s.grain += level_weight * bary * imageLoad(u_tile, texel & u_tile_mask).r;
 }
 
 // The seed of lattice level `level`'s points in `space`. The corners' hashes mix it with a
@@ -124,6 +122,7 @@ void addLevel(vec3 P, int level, float weight, int space, mat3x2 J, float texels
   addCorner(d - K * t.i1, stepProducts(products, t.i1), weight, t.w.y, level_seed, texels_per_pixel, s);
   addCorner(d - K * t.i2, stepProducts(products, t.i2), weight, t.w.z, level_seed, texels_per_pixel, s);
   addCorner(d - (K[0] + K[1] + K[2]), products + kCornerMultipliers, weight, t.w.w, level_seed, texels_per_pixel, s);
+  s.w2 += weight * weight * dot(t.w, t.w);
 }
 
 // cos(π/2 · t) for t in [0, 1]: sin(π/2 · (1 − t)) by its Taylor series to x⁷, within 2e-4
