@@ -22,6 +22,7 @@
 #include "shanshui/image/image_io.h"
 #include "shanshui/ink/diffusion.h"
 #include "shanshui/noise/perlin.h"
+#include "shanshui/noise/value_noise.h"
 #include "shanshui/render/gl_context.h"
 #include "shanshui/render/ink_object_params.h"
 #include "shanshui/render/look_metrics.h"
@@ -127,6 +128,71 @@ TEST_F(Ink, TonesFollowEquationsTwoAndThreeFromTheNormals) {
     }
     EXPECT_GT(checked, 8000);
     EXPECT_LT(worst, sigma > 0 ? 3e-3 : 1e-3);  // R16F output; near a step a half-float normal moves Φ
+  }
+}
+
+// The erosion noise reaches the tone where the point lies: t = t_d + (1 − e·(1 − n)) − 1,
+// n being the erosion noise at the point's model x and y, which the test samples itself
+// from libs/noise's tile (bilinear, as the texture is read where it is magnified). It is
+// sampled in the ink pass, and with strokes in their lines stage: both paths are checked.
+TEST_F(Ink, ErosionNoiseErodesTheToneAtEachPointOfTheSurface) {
+  const mesh::Mesh plane = test::heightGrid(41, 41, 0.05, [](double, double) { return 0.0; });
+  const double erosion = 0.8, sigma = 0.15, noise_scale = 1.0;
+  for (const bool strokes : {false, true}) {
+    SCOPED_TRACE(strokes ? "strokes" : "no lines");
+    const json lines = strokes ? json{{"width", 3.0}, {"silhouette", 0.0}} : json{{"enabled", false}};
+    const scene::Scene s = sceneWith({{"up", "z"},
+                                      {"lines", lines},
+                                      {"shading",
+                                       {{"erosion", erosion},
+                                        {"noise", 0.0},
+                                        {"sigma", sigma},
+                                        {"noise_scale", noise_scale},
+                                        {"line_value", false}}}},
+                                     {{"light", {{"direction", {0.0, 0.0, 1.0}}}}, {"output", {{"fade", 0.0}}}});
+    InkRenderer r(s, prepare(s, plane));
+    r.setDebugOutputs(true);
+    EXPECT_EQ(r.passesBuilt(), (std::vector<std::string>{"gbuffer", "ink"}));
+    r.render(sceneCamera(s, r.worldBounds(), 1.0, {0, 90, 1.6}), 200, 200);
+    const image::Image pos = r.worldPositions();
+    const image::Image tone = r.passTarget("ink")->colour(2).download(1);
+    // The tile as uploaded (texel (i, j) is the image's (i, j)) and its place on the model:
+    // the mesh is drawn relative to its bounding box's centre, one tile per 4 coarse cells.
+    const image::Image tile = noise::erosionNoise(256, s.seed);
+    const glm::dvec3 centre = r.worldBounds().centre();
+    const double radius = 0.5 * glm::length(r.worldBounds().size());
+    const double per_unit = 1.0 / (noise::kErosionCells * noise_scale * radius);
+    const auto noiseAt = [&](double u, double v) {
+      const double x = u * 256 - 0.5, y = v * 256 - 0.5;
+      const double fx = std::floor(x), fy = std::floor(y), tx = x - fx, ty = y - fy;
+      const auto at = [&](double i, double j) {
+        const int ii = ((static_cast<int>(i) % 256) + 256) % 256, jj = ((static_cast<int>(j) % 256) + 256) % 256;
+        return std::round(tile.at(ii, jj, 0) * 255.0) / 255.0;  // stored in 8 bits
+      };
+      return (at(fx, fy) * (1 - tx) + at(fx + 1, fy) * tx) * (1 - ty) +
+             (at(fx, fy + 1) * (1 - tx) + at(fx + 1, fy + 1) * tx) * ty;
+    };
+    const scene::ShadingParams& p = s.objects[0].shading;
+    std::vector<double> error;
+    double lo = 1.0, hi = 0.0;
+    for (int y = 2; y < tone.height - 2; ++y) {
+      for (int x = 2; x < tone.width - 2; ++x) {
+        if (pos.at(x, y, 3) < 0.5f) continue;
+        const double n = noiseAt((pos.at(x, y, 0) - centre.x) * per_unit, (pos.at(x, y, 1) - centre.y) * per_unit);
+        const double t = std::clamp(1.0 - erosion * (1.0 - n), 0.0, 1.0);  // t_d = 1 under a light overhead
+        double expected = p.tones[0];
+        for (int k = 0; k < 4; ++k)
+          expected +=
+              (p.tones[k + 1] - p.tones[k]) * 0.5 * std::erfc(-(t - p.thresholds[k]) / (sigma * std::sqrt(2.0)));
+        error.push_back(std::abs(tone.at(x, y, 0) - expected));
+        lo = std::min(lo, static_cast<double>(tone.at(x, y, 0)));
+        hi = std::max(hi, static_cast<double>(tone.at(x, y, 0)));
+      }
+    }
+    ASSERT_GT(error.size(), 30000u) << "the plane fills the view";
+    EXPECT_GT(hi - lo, 0.2) << "the noise spreads the tones";
+    EXPECT_LT(median(error), 0.01);
+    EXPECT_LT(quantile(error, 0.99), 0.03);
   }
 }
 
