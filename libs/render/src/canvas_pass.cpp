@@ -229,10 +229,11 @@ void CanvasPass::setKernel(const Program& p, const noise::CanvasNoiseOptions& o)
   p.set("u_seed", seed_);
 }
 
-const Texture2D& CanvasPass::run(const std::vector<Item>& items, const Framebuffer& gbuffer, const OrbitCamera& camera,
-                                 int width, int height, GpuTimer* timer) {
+const Texture2D& CanvasPass::run(const std::vector<Item>& items, const Framebuffer& gbuffer,
+                                 const Texture2D& attachable_depth, const OrbitCamera& camera, int width, int height,
+                                 GpuTimer* timer) {
   if (target_.width() != width || target_.height() != height) {
-    target_ = Framebuffer(width, height, {GL_RG32F}, method_ == Method::Tiles);  // tiles: a copy of the depth
+    target_ = Framebuffer(width, height, {GL_RG32F}, false);
     static_key_.clear();
   }
   const noise::CanvasNoiseOptions o = noiseOptions(height);
@@ -255,7 +256,7 @@ const Texture2D& CanvasPass::run(const std::vector<Item>& items, const Framebuff
   if (method_ == Method::Tiles) updateTile(o);  // before the timer: once per parameter set
   if (timer) timer->begin(passName());
   if (method_ == Method::Tiles) {
-    runTiles(items, gbuffer, camera, width, height, o);
+    runTiles(items, gbuffer, attachable_depth, camera, width, height, o);
   } else {
     runSplat(items, gbuffer.depth(), camera, width, height, o);
   }
@@ -330,8 +331,8 @@ void CanvasPass::updateTile(const noise::CanvasNoiseOptions& pixels) {
   tile_key_ = key.str();
 }
 
-void CanvasPass::runTiles(const std::vector<Item>& items, const Framebuffer& gbuffer, const OrbitCamera& camera,
-                          int width, int height, const noise::CanvasNoiseOptions& o) {
+void CanvasPass::runTiles(const std::vector<Item>& items, const Framebuffer& gbuffer, const Texture2D& attachable_depth,
+                          const OrbitCamera& camera, int width, int height, const noise::CanvasNoiseOptions& o) {
   // Clip ↔ model matrices of the background (world) and of each object, indexed by the
   // G-buffer's object id (the block sized in the constructor).
   struct Space {
@@ -352,12 +353,10 @@ void CanvasPass::runTiles(const std::vector<Item>& items, const Framebuffer& gbu
   glDisable(GL_DEPTH_TEST);
   glBindVertexArray(empty_vao_.id());
   const float mottle_cell = canvas_.hasMottle() ? drawMottle(camera, width, height) : 1.0f;
+  // The frame's attachable depth: the depth test keeps each program to the surfaces or to
+  // the background, and llvmpipe skips the other's pixels before shading them.
+  glNamedFramebufferTexture(target_.id(), GL_DEPTH_ATTACHMENT, attachable_depth.id(), 0);
   target_.bind();
-  // The G-buffer's depth, copied to this target's depth attachment (sampling a texture that
-  // is attached is a feedback loop): the depth test then keeps each program to the surfaces
-  // or to the background, and llvmpipe skips the other's pixels before shading them.
-  glCopyImageSubData(gbuffer.depth().id(), GL_TEXTURE_2D, 0, 0, 0, 0, target_.depth().id(), GL_TEXTURE_2D, 0, 0, 0, 0,
-                     width, height, 1);
   glEnable(GL_DEPTH_TEST);
   glDepthMask(GL_FALSE);
   glBindTextureUnit(0, gbuffer.depth().id());
@@ -490,7 +489,8 @@ class CanvasStage final : public RenderPass {
       const SceneObjectGpu& g = in.objects[i];
       items.push_back({&g.mesh, in.modelAt(i), g.max_triangle_area, 0.5 * glm::length(g.model_bounds.size())});
     }
-    images.canvas = &canvas_.run(items, *images.gbuffer, in.camera, in.width, in.height, in.timer);
+    images.canvas =
+        &canvas_.run(items, *images.gbuffer, *images.attachable_depth, in.camera, in.width, in.height, in.timer);
   }
   const Framebuffer* target() const override { return &canvas_.target(); }
   const CanvasPass& canvas() const { return canvas_; }

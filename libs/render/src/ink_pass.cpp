@@ -119,8 +119,6 @@ class InkPass final : public RenderPass {
     std::vector<GLenum> out{GL_RGBA8};
     if (debug_outputs_) out.insert(out.end(), {GL_RG16F, GL_RG16F});
     target_ = Framebuffer(width, height, out, false);
-    surface_depth_ = Texture2D(width, height, GL_DEPTH_COMPONENT32F);
-    glNamedFramebufferTexture(target_.id(), GL_DEPTH_ATTACHMENT, surface_depth_.id(), 0);
     strokes_ = Framebuffer();  // both made at the next frame that draws strokes
     stroke_ink_ = Texture2D();
   }
@@ -145,21 +143,19 @@ class InkPass final : public RenderPass {
     if (value_noise_) glBindImageTexture(5, value_noise_->id(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_R8);
     if (surface_noise_) glBindTextureUnit(3, surface_noise_->id());
     if (const std::optional<std::size_t> w = wrinkledHere(in.scene)) glBindTextureUnit(4, in.objects[*w].wrinkle->id());
-    // The G-buffer's depth, copied to a depth attachment of this pass's targets (sampling a
-    // texture that is attached is a feedback loop): the depth test then keeps each draw to
-    // the surfaces or to the background, and llvmpipe skips the other pixels' shading
-    // (with fill framing about half the picture is background).
-    glCopyImageSubData(g.depth().id(), GL_TEXTURE_2D, 0, 0, 0, 0, surface_depth_.id(), GL_TEXTURE_2D, 0, 0, 0, 0,
-                       target_.width(), target_.height(), 1);
+    // The frame's attachable depth on this pass's targets: the depth test keeps each draw to
+    // the surfaces or to the background, and llvmpipe skips the other pixels' shading (with
+    // fill framing about half the picture is background).
+    glNamedFramebufferTexture(target_.id(), GL_DEPTH_ATTACHMENT, images.attachable_depth->id(), 0);
     glEnable(GL_DEPTH_TEST);
     glDepthMask(GL_FALSE);
     glDepthFunc(GL_GREATER);  // the triangle lies at depth 1: surfaces only
     if (lines_) {             // built exactly when some object draws strokes
       if (stroke_ink_.width() != target_.width() || stroke_ink_.height() != target_.height()) {
         strokes_ = Framebuffer(target_.width(), target_.height(), {GL_RGBA16}, false);
-        glNamedFramebufferTexture(strokes_.id(), GL_DEPTH_ATTACHMENT, surface_depth_.id(), 0);
         stroke_ink_ = Texture2D(target_.width(), target_.height(), GL_R32UI);
       }
+      glNamedFramebufferTexture(strokes_.id(), GL_DEPTH_ATTACHMENT, images.attachable_depth->id(), 0);
       if (in.timer) in.timer->begin("lines");
       const GLuint zero = 0;
       glClearTexImage(stroke_ink_.id(), 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
@@ -322,9 +318,8 @@ class InkPass final : public RenderPass {
   Buffer params_;
   std::size_t capacity_ = 0;
   Framebuffer target_;
-  Texture2D surface_depth_;  //!< a copy of the G-buffer's depth, attached to target_ and strokes_
-  Framebuffer strokes_;      //!< the lines stage's target: RGBA16, presence and shading noise per surface pixel
-  Texture2D stroke_ink_;     //!< R32UI: the strokes' ink × 255, by atomic max
+  Framebuffer strokes_;   //!< the lines stage's target: RGBA16, presence and shading noise per surface pixel
+  Texture2D stroke_ink_;  //!< R32UI: the strokes' ink × 255, by atomic max
   std::optional<Texture2D> value_noise_;  //!< the border's and mist's noise
   std::optional<std::uint64_t> noise_seed_;
   std::optional<Texture2D> surface_noise_;  //!< the shading's erosion and added noise

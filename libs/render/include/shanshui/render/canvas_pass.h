@@ -50,10 +50,12 @@ class CanvasPass {
 
   //! Draws the canvas of the view into the target (width × height, RG32F: the grain's unit-
   //! variance noise, and the paper's marks as a brightness change) and returns it.
-  //! `gbuffer` is the G-buffer of the frame (depth, and the object ids in colour 1). The
-  //! static canvas is drawn only when the size or the parameters change.
-  const Texture2D& run(const std::vector<Item>& items, const Framebuffer& gbuffer, const OrbitCamera& camera, int width,
-                       int height, GpuTimer* timer);
+  //! `gbuffer` is the G-buffer of the frame (depth, and the object ids in colour 1), and
+  //! `attachable_depth` the copy of its depth that the tiles canvas attaches for its depth
+  //! test (FrameImages::attachable_depth). The static canvas is drawn only when the size or
+  //! the parameters change.
+  const Texture2D& run(const std::vector<Item>& items, const Framebuffer& gbuffer, const Texture2D& attachable_depth,
+                       const OrbitCamera& camera, int width, int height, GpuTimer* timer);
 
   //! The last canvas drawn.
   const Framebuffer& target() const { return target_; }
@@ -97,8 +99,8 @@ class CanvasPass {
   void setKernel(const Program& p, const noise::CanvasNoiseOptions& o) const;
   //! Draws the tile for options `o` (pixels) unless it is already drawn for them.
   void updateTile(const noise::CanvasNoiseOptions& o);
-  void runTiles(const std::vector<Item>& items, const Framebuffer& gbuffer, const OrbitCamera& camera, int width,
-                int height, const noise::CanvasNoiseOptions& o);
+  void runTiles(const std::vector<Item>& items, const Framebuffer& gbuffer, const Texture2D& attachable_depth,
+                const OrbitCamera& camera, int width, int height, const noise::CanvasNoiseOptions& o);
   //! The rice paper marks' uniforms of `p`, for an output `height` tall whose grain lattice
   //! is `lattice_pixels` apart on screen.
   void setMarks(const Program& p, int height, double lattice_pixels) const;

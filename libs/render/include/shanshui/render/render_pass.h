@@ -62,6 +62,11 @@ struct FrameInputs {
 //! The images the passes hand on; a pass reads what earlier passes wrote.
 struct FrameImages {
   const Framebuffer* gbuffer = nullptr;  //!< normal + curvature, surface + id, depth
+  //! A copy of the G-buffer's depth, made once a frame, for the image passes to attach: their
+  //! depth test against it keeps each program to the surfaces or to the background, while
+  //! they sample the G-buffer's own depth (sampling a texture that is attached would be a
+  //! feedback loop).
+  const Texture2D* attachable_depth = nullptr;
   //! With animated objects: the cached G-buffer of the static ones alone (null otherwise).
   const Framebuffer* static_gbuffer = nullptr;
   const Texture2D* canvas = nullptr;   //!< unit-variance paper noise (R32F)
