@@ -277,5 +277,13 @@ TEST(ErosionNoise, SeededTileableAndSpanningTheUnitRange) {
   }
 }
 
+TEST(ErosionNoise, TheCoarseChannelAloneIsTheFirstChannel) {
+  const image::Image both = erosionNoise(96, 5), coarse = erosionNoiseCoarse(96, 5);
+  ASSERT_EQ(coarse.channels, 1);
+  ASSERT_EQ(coarse.width, 96);
+  for (int y = 0; y < 96; ++y)
+    for (int x = 0; x < 96; ++x) ASSERT_EQ(coarse.at(x, y, 0), both.at(x, y, 0)) << x << "," << y;
+}
+
 }  // namespace
 }  // namespace shanshui::noise

@@ -106,11 +106,10 @@ class InkPass final : public RenderPass {
     if ((s.dissolvesBorders() || s.mist.enabled()) && noise_seed_ != s.seed) {
       // The erosion noise's coarse channel, read by nearest image loads (ink_surface.glsl's
       // valueNoise): kValueNoiseTexels a side.
-      const image::Image noise = noise::erosionNoise(1024, s.seed ^ 0x5A17ull);
-      std::vector<float> coarse(noise.pixels.size() / 2);
-      for (std::size_t i = 0; i < coarse.size(); ++i) coarse[i] = noise.pixels[2 * i];
-      value_noise_ = Texture2D(noise.width, noise.height, GL_R8);
-      glTextureSubImage2D(value_noise_->id(), 0, 0, 0, noise.width, noise.height, GL_RED, GL_FLOAT, coarse.data());
+      const image::Image coarse = noise::erosionNoiseCoarse(1024, s.seed ^ 0x5A17ull);
+      value_noise_ = Texture2D(coarse.width, coarse.height, GL_R8);
+      glTextureSubImage2D(value_noise_->id(), 0, 0, 0, coarse.width, coarse.height, GL_RED, GL_FLOAT,
+                          coarse.pixels.data());
       noise_seed_ = s.seed;
     }
   }

@@ -15,5 +15,7 @@ constexpr int kErosionCells = 4;
 //! The erosion and added noise of the shading (two channels, tileable, values in [0, 1]):
 //! value noise with three octaves on a periodic lattice, the same for the same seed.
 image::Image erosionNoise(int size, std::uint64_t seed);
+//! Its first channel alone (the erosion's coarse noise), at half the work.
+image::Image erosionNoiseCoarse(int size, std::uint64_t seed);
 
 }  // namespace shanshui::noise
