@@ -120,10 +120,7 @@ void main() {
   vec2 noise = presence_noise.gb;
 #else
   float here = presence(o, position);
-  vec2 noise = vec2(1.0, 0.5);
-#ifdef SHADING
-  noise = surfaceNoise(o, position);
-#endif
+  vec2 noise = surfaceNoise(o, position);
 #endif
   vec4 nc = imageLoad(u_normal_curvature, p);
   vec3 n = normalize(nc.xyz * 2.0 - 1.0);

@@ -96,11 +96,7 @@ void main() {
   vec4 h = column + depth * per_depth;
   vec3 position = h.xyz / h.w;
   float here = presence(o, position);
-  vec2 noise = vec2(1.0, 0.5);  // no erosion, nothing added
-#ifdef SHADING
-  noise = surfaceNoise(o, position);
-#endif
-  o_presence_noise = vec4(here, noise, 0.0);
+  o_presence_noise = vec4(here, surfaceNoise(o, position), 0.0);
   if ((o.line_flags & kStrokes) == 0u) return;
   vec4 nc = imageLoad(u_normal_curvature, p);
   // The neighbours −x, +x, −y, +y: offset, depth, encoded normal and curvature.

@@ -18,17 +18,22 @@ float valueNoise(vec2 uv) {
 #endif
 
 #ifdef SHADING
-// The shading's noise (render_pass.h's erosionNoiseTexture: erosion in r, added noise in g)
-// on the object's model x and y, as the G-buffer pass once sampled it per fragment. Call it
-// where the control flow is uniform: the level of detail comes from the pixel quad's
-// derivatives of the coordinates (across a silhouette they are large, and the noise there
-// its coarse average, for a pixel).
 layout(binding = 3) uniform sampler2D u_surface_noise;
+#endif
+
+// The shading's noise (render_pass.h's erosionNoiseTexture: erosion in r, added noise in g)
+// on the object's model x and y, as the G-buffer pass once sampled it per fragment; without
+// SHADING no erosion and nothing added. Call it where the control flow is uniform: the
+// level of detail comes from the pixel quad's derivatives of the coordinates (across a
+// silhouette they are large, and the noise there its coarse average, for a pixel).
 vec2 surfaceNoise(ObjectParams o, vec3 position) {
+#ifdef SHADING
   vec4 w = vec4(position, 1.0);
   return texture(u_surface_noise, vec2(dot(o.world_to_model_x, w), dot(o.world_to_model_y, w)) * o.noise_frequency).rg;
-}
+#else
+  return vec2(1.0, 0.5);
 #endif
+}
 
 // The G-buffer's colour targets are read as images: llvmpipe's image load is about a third
 // of the cost of a texel fetch (the ink pass ~10 % cheaper, measured side by side). The
