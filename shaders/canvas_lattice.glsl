@@ -5,6 +5,7 @@
 struct Space {
   mat4 to_model;  // clip coordinates → the object's model space (the dome's: world)
   mat4 to_clip;   // model space → clip coordinates
+  vec4 pixel;     // x: model units across a pixel at clip w 1
 };
 layout(std140, binding = 0) uniform Spaces { Space u_spaces[SPACES]; };  // [0]: background
 
@@ -13,26 +14,27 @@ uniform vec4 u_dome;      // world centre, radius
 uniform vec3 u_eye;       // world
 uniform uint u_seed;
 
-// The Kuhn tetrahedron of the cubic lattice of spacing 2^level (model units) holding P:
-// corner 0 is the cube's lowest corner `c`, then c + i1, c + i2, c + 1 (i1: the axis of the
-// largest fraction, i2: the largest two), with barycentric weights w; f is P's place in the
-// cube (0 … 1 on each axis). Selected arithmetically, without indexing by a variable (which
-// a software rasteriser spills to memory), and without a division or exp2: the spacing is
-// a power of two.
+// The Kuhn tetrahedron of the cubic lattice of unit spacing holding q (a point in units of
+// the lattice's spacing): corner 0 is the cube's lowest corner `c`, then c + i1, c + i2,
+// c + 1 (i1: the axis of the largest fraction, i2: the largest two), with barycentric
+// weights w; f is q's place in the cube (0 … 1 on each axis). Selected arithmetically,
+// without indexing by a variable (which a software rasteriser spills to memory).
 struct Tetrahedron {
   ivec3 c;
   vec3 i1, i2, f;
   vec4 w;
 };
 
-Tetrahedron kuhn(vec3 P, int level) {
-  vec3 q = P * ldexp(1.0, -level);
+Tetrahedron kuhnScaled(vec3 q) {
   vec3 base = floor(q), f = q - base;
   vec3 g = step(f.yzx, f.xyz), l = 1.0 - g;
   vec3 i1 = min(g, l.zxy), i2 = max(g, l.zxy);
   float hi = max(f.x, max(f.y, f.z)), lo = min(f.x, min(f.y, f.z)), mid = f.x + f.y + f.z - hi - lo;
   return Tetrahedron(ivec3(base), i1, i2, f, vec4(1.0 - hi, hi - mid, mid - lo, lo));
 }
+
+// The same for P in the lattice of spacing 2^level (model units).
+Tetrahedron kuhn(vec3 P, int level) { return kuhnScaled(P * ldexp(1.0, -level)); }
 
 // A lattice point's hash, one multiply-xorshift round, in two steps: the coordinates'
 // products (a corner's are its cube's plus the multipliers of the axes it steps along, so
@@ -45,23 +47,23 @@ uint cornerHash(uint level_seed, uvec3 products) {
   return h ^ (h >> 15);
 }
 
-// The view ray's exit through the dome around the scene (world space), and its clip w.
+// The view ray's exit through the dome around the scene (world space), and its clip w. The
+// ray is eye + s D with D = far.w (far − eye), far the ray's point on the far plane (far.w
+// > 0: its length does not matter), and s the larger root of |eye + s D − centre|² = r²:
+// one square root and one division (a software rasteriser pays for each).
 vec3 domePoint(vec2 ndc, out float w) {
   vec4 far = u_spaces[0].to_model * vec4(ndc, 1.0, 1.0);
-  vec3 d = normalize(far.xyz / far.w - u_eye);
-  vec3 o = u_eye - u_dome.xyz;
-  float b = dot(o, d), c = dot(o, o) - u_dome.w * u_dome.w;
-  vec3 P = u_eye + (-b + sqrt(max(b * b - c, 0.0))) * d;
+  vec3 D = far.xyz - u_eye * far.w, o = u_eye - u_dome.xyz;
+  float a = dot(D, D), b = dot(o, D), c = dot(o, o) - u_dome.w * u_dome.w;
+  vec3 P = u_eye + ((sqrt(max(b * b - a * c, 0.0)) - b) / a) * D;
   w = (u_spaces[0].to_clip * vec4(P, 1.0)).w;
   return P;
 }
 
 // Model units per pixel across the view at a point of clip w in `space`: one pixel further
-// along x at the same w, a clip offset of (2w / width, 0, 0, 0), which to_model takes to
-// that multiple of its first column.
-float modelPerPixel(int space, float w) {
-  return max(length(u_spaces[space].to_model[0].xyz) * (2.0 / u_viewport.x) * w, 1e-30);
-}
+// along x at the same w is a clip offset of (2w / width, 0, 0, 0), which to_model takes to
+// that multiple of its first column (Space.pixel, computed with the matrices).
+float modelPerPixel(int space, float w) { return max(u_spaces[space].pixel.x * w, 1e-30); }
 
 #ifdef MOTTLE
 // Rice paper's mottle: value noise (a random tone per lattice point, mixed by the

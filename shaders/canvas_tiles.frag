@@ -32,13 +32,14 @@ layout(binding = 1) uniform sampler2D u_surface;  // a: object id (index + 1) / 
 // software rasteriser less than a texture's texelFetch (no sampler state).
 layout(binding = 0, r8_snorm) readonly uniform image2D u_tile;
 
+uniform vec2 u_ndc_per_pixel;  // 2 / the viewport's size
 uniform float u_texels_per_pixel;
 uniform int u_tile_mask;        // tile size − 1 (a power of two)
 uniform float u_patch_pixels;  // lattice spacing on screen: patch × r, pixels
 uniform float u_tile_scale;    // tile values to unit variance
 #ifdef MOTTLE
 layout(binding = 1, r32f) readonly uniform image2D u_mottle_image;  // canvas_mottle.frag's
-uniform float u_mottle_cell;                                        // pixels of the view per texel
+uniform float u_mottle_texels;                                      // texels per pixel of the view
 #endif
 layout(location = 0) out vec2 o_canvas;  // grain (unit variance), marks (brightness change)
 
@@ -59,10 +60,11 @@ uniform vec3 u_spot;   // chance per grain spacing² of screen, contrast, larges
 vec4 unitBytes(uint h) { return vec4(uvec4(h, h >> 8, h >> 16, h >> 24) & 0xFFu) * (1.0 / 255.0); }
 
 // The fibre or spot of the lattice point hashed `h` at `d`, the pixel's offset from the
-// point's projection (pixels); `region` is the screen area the point's marks cover, in
-// grain spacings². Without branches: a software rasteriser runs both sides of a branch, so
-// the cheapest mark is one computed in full and multiplied by whether the point carries it.
-float pointMarks(vec2 d, uint h, float region) {
+// point's projection (pixels); the screen area the point's marks cover is area / m2 grain
+// spacings² (compared without dividing). Without branches: a software rasteriser runs both
+// sides of a branch, so the cheapest mark is one computed in full and multiplied by whether
+// the point carries it.
+float pointMarks(vec2 d, uint h, float area, float m2) {
   // Whether it carries a fibre or a spot from the halves of h (which also place the point's
   // tile copy: harmless), the shape from two more multiply-xorshift rounds.
   vec2 chance = vec2(uvec2(h >> 16, h & 0xFFFFu)) * (1.0 / 65536.0);
@@ -73,15 +75,17 @@ float pointMarks(vec2 d, uint h, float region) {
   vec4 u = unitBytes(h2), v = unitBytes(h3);  // u: centre offset, direction; v: length, bend, width, sign
   vec2 q = d - (u.xy - 0.5) * u_fibre.y;
   vec2 along = normalize(u.zw - 0.5 + 1e-3);
-  float half_length = u_fibre.y * (0.6 + 0.8 * v.x);
-  float s = dot(q, along) / half_length;  // −1 … 1 along the fibre
-  float across = (dot(q, vec2(-along.y, along.x)) - (v.y - 0.5) * 0.4 * half_length * (1.0 - s * s)) /
-                 (u_fibre.w * (0.6 + 0.8 * v.z));
+  float half_length = u_fibre.y * (0.6 + 0.8 * v.x), half_width = u_fibre.w * (0.6 + 0.8 * v.z);
+  float per_both = 1.0 / (half_length * half_width);  // one division for the two
+  float s = dot(q, along) * half_width * per_both;     // −1 … 1 along the fibre
+  float across =
+      (dot(q, vec2(-along.y, along.x)) - (v.y - 0.5) * 0.4 * half_length * (1.0 - s * s)) * half_length * per_both;
   float fibre = max(1.0 - across * across, 0.0) * (1.0 - smoothstep(0.5, 1.0, abs(s)));
   float radius = (0.2 + 0.8 * v.x * v.x) * u_spot.z;
-  float spot = 1.0 - smoothstep(radius - 0.5, radius + 0.5, length(q));
-  return step(chance.x, u_fibre.x * region) * (v.w < 0.75 ? -1.0 : 0.6) * u_fibre.z * fibre  // most darken, some lighten
-         - step(chance.y, u_spot.x * region) * u_spot.y * spot;
+  float spot = 1.0 - smoothstep(0.0, 1.0, length(q) - radius + 0.5);
+  vec2 carries = step(chance * m2, vec2(u_fibre.x, u_spot.x) * area);
+  return carries.x * (v.w < 0.75 ? -1.0 : 0.6) * u_fibre.z * fibre  // most darken, some lighten
+         - carries.y * u_spot.y * spot;
 }
 #endif
 
@@ -107,18 +111,19 @@ void addCorner(vec2 d, uvec3 products, float level_weight, float bary, uint leve
 // multiply: a sum is seed enough.
 uint levelSeed(int space, int level) { return u_seed + uint(space) * 0x68E31DA4u + uint(level + 512) * 0x1B56C4E9u; }
 
-// Adds the tile copies of lattice level `level` (spacing 2^level model units) at P, with
-// weight `weight` in all. J is the projection's derivative at P (pixels per model unit), the
-// same for every corner and both levels, in place of projecting each corner: it places a
-// corner's projection off by about the perspective's change across the tetrahedron, at most
-// ~3 % of the corner's distance on screen at a 45° field of view (the tetrahedron's size on
-// screen is fixed), so a copy is read up to that much stretched, smoothly. Of the four
+// Adds the tile copies of lattice level `level` at P, with weight `weight` in all: `spacing`
+// is the level's 2^level model units, and q is P / spacing. J is the projection's derivative
+// at P (pixels per model unit), the same for every corner and both levels, in place of
+// projecting each corner: it places a corner's projection off by about the perspective's
+// change across the tetrahedron, at most ~3 % of the corner's distance on screen at a 45°
+// field of view (the tetrahedron's size on screen is fixed), so a copy is read up to that
+// much stretched, smoothly. Of the four
 // corners the three of largest weight are read, chosen by selects (see the file's note).
-void addLevel(vec3 P, int level, float weight, int space, mat3x2 J, float texels_per_pixel, inout Sums s) {
-  Tetrahedron t = kuhn(P, level);
+void addLevel(vec3 q, float spacing, int level, float weight, int space, mat3x2 J, float texels_per_pixel, inout Sums s) {
+  Tetrahedron t = kuhnScaled(q);
   uint level_seed = levelSeed(space, level);
   // pixel − a = J (P − corner) = J spacing (f − step): the lowest corner's, less each step.
-  mat3x2 K = J * ldexp(1.0, level);
+  mat3x2 K = J * spacing;
   vec2 d0 = K * t.f;
   uvec3 p0 = cornerProducts(t.c);
   vec2 d1 = d0 - K * t.i1, d2 = d0 - K * t.i2, d3 = d0 - (K[0] + K[1] + K[2]);
@@ -142,16 +147,15 @@ float quarterSine(float t) {
   return x * (1.0 - x2 * (1.0 / 6.0 - x2 * (1.0 / 120.0 - x2 * (1.0 / 5040.0))));
 }
 
-// 2^t for t in [0, 1]: a cubic exact at both ends, within 0.015 % between.
-float exp2Unit(float t) { return 1.0 + t * (0.69592847 + t * (0.22494631 + t * 0.07912522)); }
-
 void main() {
   vec2 pixel = gl_FragCoord.xy;
-  vec2 ndc = pixel / u_viewport * 2.0 - 1.0;
-  float w;  // clip w: the distance along the view axis
+  vec2 ndc = pixel * u_ndc_per_pixel - 1.0;
+  // Without divisions where a product does: a software rasteriser pays for each.
+  float w, per_w;  // clip w (the distance along the view axis), and 1 / w
 #ifdef BACKGROUND
   const int space = 0;
   vec3 P = domePoint(ndc, w);
+  per_w = 1.0 / w;
 #else
   ivec2 p = ivec2(pixel);
   float depth = texelFetch(u_depth, p, 0).r;
@@ -161,25 +165,36 @@ void main() {
   int space = int(texelFetch(u_surface, p, 0).a * 255.0 + 0.5);
 #endif
   vec4 m = u_spaces[space].to_model * vec4(ndc, depth * 2.0 - 1.0, 1.0);
-  vec3 P = m.xyz / m.w;
-  w = 1.0 / m.w;
+  w = 1.0 / m.w;  // m.w = 1 / w: to_model inverts the projection
+  per_w = m.w;
+  vec3 P = m.xyz * w;
 #endif
   // d pixel / dP: the projection's derivative at P (its columns are the model axes').
   mat4 to_clip = u_spaces[space].to_clip;
-  vec2 per_w = 0.5 * u_viewport / w;
-  mat3x2 J = mat3x2(per_w * (vec2(to_clip[0][0], to_clip[0][1]) - ndc * to_clip[0][3]),
-                    per_w * (vec2(to_clip[1][0], to_clip[1][1]) - ndc * to_clip[1][3]),
-                    per_w * (vec2(to_clip[2][0], to_clip[2][1]) - ndc * to_clip[2][3]));
-  float level = log2(u_patch_pixels * modelPerPixel(space, w));
+  vec2 scale = 0.5 * u_viewport * per_w;
+  mat3x2 J = mat3x2(scale * (vec2(to_clip[0][0], to_clip[0][1]) - ndc * to_clip[0][3]),
+                    scale * (vec2(to_clip[1][0], to_clip[1][1]) - ndc * to_clip[1][3]),
+                    scale * (vec2(to_clip[2][0], to_clip[2][1]) - ndc * to_clip[2][3]));
+  // The lattice level, log2 of the patch in model units, split by its bits: the octave
+  // `lower` is the exponent, and the place in it t = log2 m of the mantissa m = 2^t in
+  // [1, 2), by a cubic exact at both ends (within 1.5e-4). The spacing 2^lower and its
+  // inverse are made from bits too: log2 and ldexp cost a software rasteriser a dozen
+  // instructions or more each (~1 ms of ~18 at 1024x768, with the divisions of the fade
+  // and the spot).
+  // The clamp keeps them normal floats for any scene.
+  int bits = floatBitsToInt(u_patch_pixels * modelPerPixel(space, w));
+  int lower = clamp((bits >> 23) - 127, -120, 120);
+  float mantissa = intBitsToFloat((bits & 0x7FFFFF) | 0x3F800000), u = mantissa - 1.0;
+  float t = u + u * (1.0 - u) * (0.43807325 + u * (-0.23669342 + u * 0.08030730));
+  float spacing = intBitsToFloat((127 + lower) << 23), per_spacing = intBitsToFloat((127 - lower) << 23);
   // The two lattices around P's level, weighted cos θ and sin θ with θ = π/2 (level − lower):
   // the mix turns at a constant rate while the camera moves in or out, over a whole octave
   // (a narrower band turns faster and costs more warping error in a dolly than it saves).
-  float lower = floor(level), t = level - lower;
   // With GRAIN_ON_SURFACE the lower level's copies are read 2^t times finer, the upper's
   // half that: the grain grows and shrinks with the surface between octaves, as a texture
   // pinned to it would.
 #ifdef GRAIN_ON_SURFACE
-  float texels_per_pixel = u_texels_per_pixel * exp2Unit(t);
+  float texels_per_pixel = u_texels_per_pixel * mantissa;
 #else
   float texels_per_pixel = u_texels_per_pixel;
 #endif
@@ -187,29 +202,30 @@ void main() {
   s.grain = 0.0;
   s.w2 = 0.0;
   float marks = 0.0;
-  addLevel(P, int(lower), quarterSine(t), space, J, texels_per_pixel, s);
+  addLevel(P * per_spacing, spacing, lower, quarterSine(t), space, J, texels_per_pixel, s);
 #ifdef GRAIN_ON_SURFACE
   texels_per_pixel *= 0.5;
 #endif
-  addLevel(P, int(lower) + 1, quarterSine(1.0 - t), space, J, texels_per_pixel, s);
+  addLevel(P * (0.5 * per_spacing), 2.0 * spacing, lower + 1, quarterSine(1.0 - t), space, J, texels_per_pixel, s);
 #ifdef PAPER_MARKS
   {
-    // The marks' level and the lattice point nearest P on it (see the marks' note above).
-    float marks_level = level + 0.5, turn = marks_level - floor(marks_level);
-    int m = int(floor(marks_level)) + 2;
-    vec3 q = P * ldexp(1.0, -m), point = floor(q + 0.5);
-    vec2 d = (J * ldexp(1.0, m)) * (q - point);
-    uint h = cornerHash(levelSeed(space, m), cornerProducts(ivec3(point)));
-    float spacing = ldexp(1.0, m - int(lower)) / exp2Unit(t);  // on screen, in grain spacings
-    float fade = smoothstep(0.0, 0.05, turn) * smoothstep(0.0, 0.05, 1.0 - turn);
-    marks += fade * pointMarks(d, h, spacing * spacing);
+    // The marks' level, floor(level + 0.5) + 2, and the lattice point nearest P on it (see
+    // the marks' note above).
+    bool upper = t >= 0.5;
+    float turn = upper ? t - 0.5 : t + 0.5, steps = upper ? 8.0 : 4.0;
+    vec3 q = P * (per_spacing * (upper ? 0.125 : 0.25)), point = floor(q + 0.5);
+    vec2 d = (J * (spacing * steps)) * (q - point);
+    uint h = cornerHash(levelSeed(space, lower + (upper ? 3 : 2)), cornerProducts(ivec3(point)));
+    // The lattice spacing on screen, in grain spacings: steps / mantissa.
+    float fade = smoothstep(0.0, 1.0, 20.0 * turn) * smoothstep(0.0, 1.0, 20.0 - 20.0 * turn);
+    marks += fade * pointMarks(d, h, steps * steps, mantissa * mantissa);
   }
 #endif
   float grain = s.w2 > 0.0 ? s.grain * inversesqrt(s.w2) * u_tile_scale : 0.0;
 #ifdef MOTTLE
   {
     // Bilinear between the four nearest cells' centres.
-    vec2 x = pixel / u_mottle_cell - 0.5, f = fract(x);
+    vec2 x = pixel * u_mottle_texels - 0.5, f = fract(x);
     ivec2 c = ivec2(floor(x)), last = imageSize(u_mottle_image) - 1;
     ivec2 lo = clamp(c, ivec2(0), last), hi = clamp(c + 1, ivec2(0), last);
     float bottom = mix(imageLoad(u_mottle_image, lo).r, imageLoad(u_mottle_image, ivec2(hi.x, lo.y)).r, f.x);

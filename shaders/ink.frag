@@ -25,7 +25,7 @@ layout(rgba16, binding = 4) readonly uniform image2D u_presence_noise;
 #endif
 #ifdef CANVAS
 // The paper: unit-variance grain, and its marks (fibres, spots, mottle) as a brightness change.
-layout(rg32f, binding = 2) readonly uniform image2D u_canvas;
+layout(rg16f, binding = 2) readonly uniform image2D u_canvas;
 uniform float u_canvas_contrast;
 #endif
 

@@ -16,7 +16,7 @@ layout(rg32f, binding = 1) readonly uniform image2D u_after;
 layout(rgba8, binding = 2) writeonly uniform image2D u_out;
 uniform vec3 u_paper;
 #ifdef CANVAS
-layout(rg32f, binding = 4) readonly uniform image2D u_canvas;  // grain, marks
+layout(rg16f, binding = 4) readonly uniform image2D u_canvas;  // grain, marks
 uniform float u_canvas_contrast;
 #else
 layout(r8ui, binding = 5) readonly uniform uimage2D u_active;  // one texel per AREA_W × AREA_H pixels

@@ -36,6 +36,23 @@ int maxQuadsPerInvocation() {
 // The mottle's program: the background's matrices only.
 const std::vector<std::string> kMottleDefines{"SPACES=1", "MOTTLE"};
 
+// The tiles canvas's space of the background (world) or of an object (canvas_lattice.glsl's
+// Space, std140).
+struct Space {
+  glm::mat4 to_model, to_clip;  // clip ↔ model
+  glm::vec4 pixel;              // x: model units across a pixel at clip w 1
+};
+
+// The space whose model → clip matrix is `model_view_projection`, in a view `width` pixels
+// wide.
+Space spaceOf(const glm::dmat4& model_view_projection, int width) {
+  const glm::dmat4 to_model = glm::inverse(model_view_projection);
+  // One pixel along x at clip w 1 is a clip offset of 2 / width, taken by to_model's first
+  // column.
+  const double per_pixel = glm::length(glm::dvec3(to_model[0])) * 2.0 / width;
+  return {glm::mat4(to_model), glm::mat4(model_view_projection), glm::vec4(static_cast<float>(per_pixel), 0, 0, 0)};
+}
+
 }  // namespace
 
 std::uint32_t canvasSeed(std::uint64_t scene_seed) {
@@ -65,7 +82,7 @@ CanvasPass::CanvasPass(const scene::Canvas& canvas, std::uint64_t seed, const me
   if (method_ == Method::Tiles) {
     GLint block = 0;
     glGetIntegerv(GL_MAX_UNIFORM_BLOCK_SIZE, &block);
-    const std::size_t needed = (objects + 1) * 2 * sizeof(glm::mat4);
+    const std::size_t needed = (objects + 1) * sizeof(Space);
     if (needed > static_cast<std::size_t>(block)) {
       throw makeError("canvas.method 'tiles' needs a ", needed, "-byte uniform block for ", objects,
                       " objects and this driver allows ", block, "; use canvas.method 'splat' or fewer objects");
@@ -233,7 +250,7 @@ const Texture2D& CanvasPass::run(const std::vector<Item>& items, const Framebuff
                                  const Texture2D& attachable_depth, const OrbitCamera& camera, int width, int height,
                                  GpuTimer* timer) {
   if (target_.width() != width || target_.height() != height) {
-    target_ = Framebuffer(width, height, {GL_RG32F}, false);
+    target_ = Framebuffer(width, height, {GL_RG16F}, false);
     static_key_.clear();
   }
   const noise::CanvasNoiseOptions o = noiseOptions(height);
@@ -335,18 +352,11 @@ void CanvasPass::runTiles(const std::vector<Item>& items, const Framebuffer& gbu
                           const OrbitCamera& camera, int width, int height, const noise::CanvasNoiseOptions& o) {
   // Clip ↔ model matrices of the background (world) and of each object, indexed by the
   // G-buffer's object id (the block sized in the constructor).
-  struct Space {
-    glm::mat4 to_model, to_clip;
-  };
   SHANSHUI_CHECK(items.size() == objects_);
   const double aspect = static_cast<double>(width) / height;
   const glm::dmat4 view_projection = glm::dmat4(camera.projection(aspect)) * glm::dmat4(camera.view());
-  std::vector<Space> spaces;
-  spaces.push_back({glm::mat4(glm::inverse(view_projection)), glm::mat4(view_projection)});
-  for (const Item& item : items) {
-    const glm::dmat4 m = view_projection * item.model;
-    spaces.push_back({glm::mat4(glm::inverse(m)), glm::mat4(m)});
-  }
+  std::vector<Space> spaces{spaceOf(view_projection, width)};
+  for (const Item& item : items) spaces.push_back(spaceOf(view_projection * item.model, width));
   glNamedBufferSubData(spaces_.id(), 0, static_cast<GLsizeiptr>(spaces.size() * sizeof(Space)), spaces.data());
   glBindBufferBase(GL_UNIFORM_BUFFER, 0, spaces_.id());
   glDisable(GL_BLEND);
@@ -365,6 +375,7 @@ void CanvasPass::runTiles(const std::vector<Item>& items, const Framebuffer& gbu
   for (const Program* p : {&tiles_, &tiles_background_}) {
     p->use();
     p->set("u_viewport", glm::vec2(width, height));
+    p->set("u_ndc_per_pixel", glm::vec2(2.0 / width, 2.0 / height));
     p->set("u_texels_per_pixel", texels_per_pixel_);
     p->set("u_patch_pixels", static_cast<float>(canvas_.patch * o.radius));
     p->set("u_dome", glm::vec4(glm::vec3(dome_centre_), static_cast<float>(dome_radius_)));
@@ -373,7 +384,7 @@ void CanvasPass::runTiles(const std::vector<Item>& items, const Framebuffer& gbu
     p->set("u_tile_scale", static_cast<float>(kTileRange));
     p->set("u_tile_mask", tile_.width() - 1);
     setMarks(*p, height, canvas_.patch * o.radius);
-    p->set("u_mottle_cell", mottle_cell);
+    p->set("u_mottle_texels", 1.0f / mottle_cell);
     glDepthFunc(p == &tiles_ ? GL_GREATER : GL_EQUAL);  // the triangle lies at depth 1: surfaces, then the background
     glDrawArrays(GL_TRIANGLES, 0, 3);
   }
@@ -418,9 +429,14 @@ void CanvasPass::setMarks(const Program& p, int height, double lattice_pixels) c
 
 void CanvasPass::runSplat(const std::vector<Item>& items, const Texture2D& depth, const OrbitCamera& camera, int width,
                           int height, const noise::CanvasNoiseOptions& o) {
-  target_.bind();
+  // The kernels are summed in floats (the reference canvas, hundreds of kernels a pixel),
+  // then copied into the half-float target.
+  if (splat_sums_.width() != width || splat_sums_.height() != height) {
+    splat_sums_ = Framebuffer(width, height, {GL_RG32F}, false);
+  }
+  splat_sums_.bind();
   const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};  // GL reads four components whatever the format
-  glClearNamedFramebufferfv(target_.id(), GL_COLOR, 0, zero);
+  glClearNamedFramebufferfv(splat_sums_.id(), GL_COLOR, 0, zero);
   glDisable(GL_DEPTH_TEST);
   glDisable(GL_CULL_FACE);
   glEnable(GL_DEPTH_CLAMP);  // the dome lies beyond the far plane
@@ -465,6 +481,8 @@ void CanvasPass::runSplat(const std::vector<Item>& items, const Texture2D& depth
   }
   glDisable(GL_BLEND);
   glDisable(GL_DEPTH_CLAMP);
+  glBlitNamedFramebuffer(splat_sums_.id(), target_.id(), 0, 0, width, height, 0, 0, width, height, GL_COLOR_BUFFER_BIT,
+                         GL_NEAREST);
 }
 
 }  // namespace shanshui::render

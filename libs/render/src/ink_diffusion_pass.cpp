@@ -121,7 +121,7 @@ void InkDiffusionPass::run(const Texture2D& colour, const PaperTexture& texture,
   // Read and written as images, which fixes their formats.
   SHANSHUI_CHECK_EQ(colour.format(), static_cast<GLenum>(GL_RGBA8));
   SHANSHUI_CHECK(output.width() == w && output.height() == h && output.format() == GL_RGBA8);
-  SHANSHUI_CHECK(!texture.grain || texture.grain->format() == GL_RG32F);
+  SHANSHUI_CHECK(!texture.grain || texture.grain->format() == GL_RG16F);
   ensureSize(w, h);
   if (timer) timer->begin("diffusion");
   // The window the passes compute: the whole picture, or the region grown by how far the

@@ -189,7 +189,7 @@ class InkPass final : public RenderPass {
     }
     if (in.timer) in.timer->begin("ink");
     target_.bind();
-    if (grainHere(in.scene)) glBindImageTexture(2, images.canvas->id(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_RG32F);
+    if (grainHere(in.scene)) glBindImageTexture(2, images.canvas->id(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_RG16F);
     for (const Program* ink : {&program_, &*paper_}) {
       ink->use();
       setSurfaceUniforms(*ink, in);

@@ -110,7 +110,8 @@ TEST_F(CanvasGl, StaticCanvasMatchesACpuSumOfTheSameKernels) {
         const double ref = staticCanvas(o, seed, x + 0.5, kSize - 1 - row + 0.5);
         const double d = std::abs(ref - gpu.at(x, row, 0));
         worst = std::max(worst, d);
-        close += d < 1e-3;
+        // The target holds half floats: 11 significant bits.
+        close += d < 1e-3 + std::abs(ref) / 2048.0;
         ++checked;
       }
     // Float rounding can move a kernel across its 5 % edge at a rare pixel.

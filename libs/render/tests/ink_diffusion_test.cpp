@@ -210,7 +210,7 @@ TEST_F(InkGpu, InPlaceEqualsASeparateOutput) {
       noise.at(x, y, 0) = g(rng);
       noise.at(x, y, 1) = 0.03f * g(rng);
     }
-  const Texture2D grain = Texture2D::fromImage(noise, GL_RG32F);
+  const Texture2D grain = Texture2D::fromImage(noise, GL_RG16F);
   ink::DiffusionOptions o;
   o.iterations = 3;
   o.ring_steps = 2;
@@ -243,7 +243,7 @@ TEST_F(InkGpu, ARegionRunEqualsAWholeRunOfTheChangedPicture) {
       noise.at(x, y, 0) = g(rng);
       noise.at(x, y, 1) = 0.03f * g(rng);
     }
-  const Texture2D grain = Texture2D::fromImage(noise, GL_RG32F);
+  const Texture2D grain = Texture2D::fromImage(noise, GL_RG16F);
   // Three pictures: the second and third repaint a patch (x0, y0 in image rows from the top).
   const image::Image base = picture(w, h, 14, true);
   std::vector<image::Image> frames{base};

@@ -19,7 +19,7 @@ namespace shanshui::render {
 
 //! The paper under the ink, beyond its colour: an absorbency image (one channel, tiled over
 //! the picture) read through clamp(offset + scale · value, 0, 1), and optionally the
-//! canvas (RG32F the size of the picture: unit-variance grain, and the paper's marks as a
+//! canvas (RG16F the size of the picture: unit-variance grain, and the paper's marks as a
 //! brightness change) that multiplies the result by (1 + contrast · grain)(1 + marks).
 struct PaperTexture {
   const Texture2D* absorbency = nullptr;
