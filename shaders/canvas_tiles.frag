@@ -28,15 +28,16 @@ layout(early_fragment_tests) in;
 layout(binding = 0) uniform sampler2D u_depth;    // the G-buffer's
 layout(binding = 1) uniform sampler2D u_surface;  // a: object id (index + 1) / 255
 #endif
-// Zero mean, a power of two on a side, wrapped by a mask. An image: reading a texel costs a
-// software rasteriser less than a texture's texelFetch (no sampler state).
-layout(binding = 0, r8_snorm) readonly uniform image2D u_tile;
-
+// Zero mean, a power of two on a side, wrapped by a mask; signed bytes (× u_tile_scale), rows
+// from the bottom, read by index. An image: reading a texel costs a software rasteriser less
+// than a texture's texelFetch (no sampler state), and a buffer's less than a 2D image's.
+layout(binding = 0, r8i) readonly uniform iimageBuffer u_tile;
+uniform int u_tile_shift;       // log2 of the tile's size
 uniform vec2 u_ndc_per_pixel;  // 2 / the viewport's size
 uniform float u_texels_per_pixel;
 uniform int u_tile_mask;        // tile size − 1 (a power of two)
 uniform float u_patch_pixels;  // lattice spacing on screen: patch × r, pixels
-uniform float u_tile_scale;    // tile values to unit variance
+uniform float u_tile_scale;    // tile bytes to unit variance
 #ifdef MOTTLE
 layout(binding = 1, r32f) readonly uniform image2D u_mottle_image;  // canvas_mottle.frag's
 uniform float u_mottle_texels;                                      // texels per pixel of the view
@@ -104,7 +105,8 @@ void addCorner(vec2 d, uvec3 products, float level_weight, float bary, uint leve
   // within a few lattice spacings, so d × texels_per_pixel + 4096 is positive and its
   // truncation is the floor of d × texels_per_pixel, plus 4096.
   ivec2 texel = ivec2(d * texels_per_pixel + 4096.0) + ivec2(h & 0xFFFFu, h >> 16);
-  s.grain += level_weight * bary * imageLoad(u_tile, texel & u_tile_mask).r;
+  texel &= u_tile_mask;
+  s.grain += level_weight * bary * float(imageLoad(u_tile, (texel.y << u_tile_shift) | texel.x).r);
 }
 
 // The seed of lattice level `level`'s points in `space`. The corners' hashes mix it with a

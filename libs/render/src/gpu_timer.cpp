@@ -35,6 +35,11 @@ void GpuTimer::end() {
   ends_.push_back(stamps_ - 1);
 }
 
+void GpuTimer::gap() {
+  SHANSHUI_CHECK(!open_);
+  last_was_end_ = false;
+}
+
 std::vector<PassTime> GpuTimer::collect() {
   SHANSHUI_CHECK(!open_);
   std::vector<GLuint64> t(stamps_);

@@ -199,7 +199,7 @@ TEST_F(CanvasGl, TheTileIsTheKernelSumAndWrapsWithoutASeam) {
   p.canvasAt(p.camera());
   const CanvasPass& canvas = *p.renderer->canvas();
   ASSERT_TRUE(canvas.usesTiles());
-  const image::Image tile = canvas.tile().download(1);
+  const image::Image tile = canvas.tile();
   const int size = tile.width;
   ASSERT_EQ(size, tile.height);
   ASSERT_EQ(size & (size - 1), 0);

@@ -1,9 +1,12 @@
+#include <chrono>
 #include <cmath>
 #include <memory>
+#include <thread>
 
 #include "gl_test.h"
 #include "shanshui/core/error.h"
 #include "shanshui/render/gl_context.h"
+#include "shanshui/render/gpu_timer.h"
 #include "shanshui/render/mesh_preview.h"
 #include "shanshui/render/shader_library.h"
 #include "shanshui/render/shader_program.h"
@@ -100,6 +103,26 @@ TEST_F(Headless, FloatTextureRoundTripsExactly) {
   const Texture2D t = Texture2D::fromImage(img, GL_RGBA32F);
   const image::Image back = t.download(4);
   EXPECT_EQ(back.pixels, img.pixels);  // including row order
+}
+
+TEST_F(Headless, WorkBetweenPassesCountsInTheNextPassUnlessMarkedAsAGap) {
+  // Oracle: a 60 ms pause between two passes that draw nothing. Back to back, the second
+  // pass starts at the first's end and so takes the pause; after gap() it starts afresh.
+  auto second = [](bool gap) {
+    GpuTimer timer;
+    timer.begin("first");
+    timer.end();
+    glFlush();
+    std::this_thread::sleep_for(std::chrono::milliseconds(60));
+    if (gap) timer.gap();
+    timer.begin("second");
+    timer.end();
+    const std::vector<PassTime> passes = timer.collect();
+    EXPECT_EQ(passes.size(), 2u);
+    return passes.back().gpu_ms;
+  };
+  EXPECT_GE(second(false), 50.0);
+  EXPECT_LT(second(true), 30.0);
 }
 
 TEST_F(Headless, DriverErrorsAreMappedToFileAndLine) {

@@ -66,9 +66,10 @@ class CanvasPass {
   noise::CanvasNoiseOptions noiseOptions(int height) const;
   //! Pass name for statistics: "canvas" or "canvas_static".
   const char* passName() const { return method_ == Method::Static ? "canvas_static" : "canvas"; }
-  //! The `tiles` canvas's tile: zero mean, variance 1 / kTileRange² (R8_SNORM); empty
-  //! before the first frame and for the other methods.
-  const Texture2D& tile() const { return tile_; }
+  //! The `tiles` canvas's tile as it is stored (8-bit steps of 1 / 127: zero mean, variance
+  //! 1 / kTileRange²), row 0 at the top; empty before the first frame and for the other
+  //! methods.
+  image::Image tile() const;
   //! The noise options the tile was drawn with (texels of the tile).
   const noise::CanvasNoiseOptions& tileOptions() const { return tile_options_; }
   //! Kernel cells across the tile: kTileCells (twice that for silk), fewer for large N′.
@@ -127,7 +128,9 @@ class CanvasPass {
   Program tiles_, tiles_background_, tile_synthesis_;  //!< the tiles canvas (surfaces, background), and its tile
   Program mottle_;                                     //!< rice paper's mottle (tiles)
   Framebuffer mottle_target_;
-  Texture2D tile_;
+  Buffer tile_bytes_;     //!< the tile, rows from the bottom, one signed byte a texel
+  BufferTexture tile_;    //!< tile_bytes_ as R8I texels (the shaders index it: y · size + x)
+  int tile_size_ = 0;     //!< texels on a side
   std::string tile_key_;  //!< the options the tile was drawn for
   noise::CanvasNoiseOptions tile_options_;
   int tile_cells_ = kTileCells;

@@ -65,8 +65,18 @@ struct FramebufferKind {
   }
   static void destroy(GLuint id) { glDeleteFramebuffers(1, &id); }
 };
+struct BufferTextureKind {
+  static GLuint create() {
+    GLuint id = 0;
+    glCreateTextures(GL_TEXTURE_BUFFER, 1, &id);
+    return id;
+  }
+  static void destroy(GLuint id) { glDeleteTextures(1, &id); }
+};
 using VertexArray = GlName<VertexArrayKind>;
 using Buffer = GlName<BufferKind>;
+//! A buffer texture's name (GL_TEXTURE_BUFFER): a view of a Buffer's bytes as texels.
+using BufferTexture = GlName<BufferTextureKind>;
 
 class Texture2D {
  public:

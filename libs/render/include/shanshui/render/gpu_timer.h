@@ -24,6 +24,9 @@ class GpuTimer {
   //! where the previous one ended shares its timestamp, so back-to-back passes add up.
   void begin(const std::string& name);
   void end();
+  //! Work since the last end() that no pass owns: the next pass starts from a stamp of its
+  //! own rather than the last pass's end, so that work counts in neither.
+  void gap();
   //! Waits for the GPU and returns the passes timed since the last collect(), in order.
   std::vector<PassTime> collect();
 
