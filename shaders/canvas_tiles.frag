@@ -54,39 +54,32 @@ layout(location = 0) out vec2 o_canvas;  // grain (unit variance), marks (bright
 // an octave (a pixel shows one point's marks: the grain's eight corners' cost a third of
 // the pass). A point's chance grows with its cube's area on screen, so that the marks per
 // pixel stay put as the camera moves in or out.
-uniform vec4 u_fibre;  // chance per grain spacing² of screen, mean half length (px), contrast, half width (px)
-uniform vec3 u_spot;   // chance per grain spacing² of screen, contrast, largest radius (px)
+uniform vec2 u_mark_chance;    // a fibre's and a spot's, per grain spacing² of screen
+uniform vec2 u_mark_contrast;  // a fibre's and a spot's
 
-// Four bytes of a hash as numbers in [0, 1].
-vec4 unitBytes(uint h) { return vec4(uvec4(h, h >> 8, h >> 16, h >> 24) & 0xFFu) * (1.0 / 255.0); }
+// The shapes: MARK_VARIANTS sprites of MARK_SPRITE² texels, u_mark_texels a pixel, centred
+// on the lattice point's projection; a texel holds a fibre (signed: most darken, some
+// lighten) and a spot, as bytes of 1 / 127 (CanvasPass::markSprite draws them).
+layout(binding = 3, rg8i) readonly uniform iimageBuffer u_marks;
+uniform float u_mark_texels;
 
 // The fibre or spot of the lattice point hashed `h` at `d`, the pixel's offset from the
 // point's projection (pixels); the screen area the point's marks cover is area / m2 grain
-// spacings² (compared without dividing). Without branches: a software rasteriser runs both
-// sides of a branch, so the cheapest mark is one computed in full and multiplied by whether
-// the point carries it.
+// spacings² (compared without dividing). Whether the point carries a fibre or a spot comes
+// from the halves of h (which also place the point's tile copy: harmless), its shape from
+// one more multiply-xorshift round. One read of a sprite instead of the shape's arithmetic
+// (~1 ms of ~19 at 1024x768): the read is out of range, so it returns 0 without touching
+// memory, where the point carries nothing or the pixel is beyond the sprite.
 float pointMarks(vec2 d, uint h, float area, float m2) {
-  // Whether it carries a fibre or a spot from the halves of h (which also place the point's
-  // tile copy: harmless), the shape from two more multiply-xorshift rounds.
   vec2 chance = vec2(uvec2(h >> 16, h & 0xFFFFu)) * (1.0 / 65536.0);
+  vec2 carries = step(chance * m2, u_mark_chance * area);
   uint h2 = (h ^ (h >> 16)) * 0x7FEB352Du;
   h2 ^= h2 >> 15;
-  uint h3 = h2 * 0x846CA68Bu;
-  h3 ^= h3 >> 16;
-  vec4 u = unitBytes(h2), v = unitBytes(h3);  // u: centre offset, direction; v: length, bend, width, sign
-  vec2 q = d - (u.xy - 0.5) * u_fibre.y;
-  vec2 along = normalize(u.zw - 0.5 + 1e-3);
-  float half_length = u_fibre.y * (0.6 + 0.8 * v.x), half_width = u_fibre.w * (0.6 + 0.8 * v.z);
-  float per_both = 1.0 / (half_length * half_width);  // one division for the two
-  float s = dot(q, along) * half_width * per_both;     // −1 … 1 along the fibre
-  float across =
-      (dot(q, vec2(-along.y, along.x)) - (v.y - 0.5) * 0.4 * half_length * (1.0 - s * s)) * half_length * per_both;
-  float fibre = max(1.0 - across * across, 0.0) * (1.0 - smoothstep(0.5, 1.0, abs(s)));
-  float radius = (0.2 + 0.8 * v.x * v.x) * u_spot.z;
-  float spot = 1.0 - smoothstep(0.0, 1.0, length(q) - radius + 0.5);
-  vec2 carries = step(chance * m2, vec2(u_fibre.x, u_spot.x) * area);
-  return carries.x * (v.w < 0.75 ? -1.0 : 0.6) * u_fibre.z * fibre  // most darken, some lighten
-         - carries.y * u_spot.y * spot;
+  ivec2 texel = ivec2(floor(d * u_mark_texels)) + MARK_SPRITE / 2;
+  bool read = carries.x + carries.y > 0.0 && all(lessThan(uvec2(texel), uvec2(MARK_SPRITE)));
+  int index = read ? (int(h2 & uint(MARK_VARIANTS - 1)) * MARK_SPRITE + texel.y) * MARK_SPRITE + texel.x : -1;
+  vec2 shape = vec2(imageLoad(u_marks, index).rg) * (1.0 / 127.0);
+  return carries.x * u_mark_contrast.x * shape.x - carries.y * u_mark_contrast.y * shape.y;
 }
 #endif
 

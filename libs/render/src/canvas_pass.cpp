@@ -137,7 +137,11 @@ std::vector<std::string> CanvasPass::tilesDefines(bool background) const {
   } else if (objects_ == 1) {
     d.emplace_back("SINGLE_OBJECT");
   }
-  if (canvas_.hasFibresOrSpots()) d.emplace_back("PAPER_MARKS");
+  if (canvas_.hasFibresOrSpots()) {
+    d.emplace_back("PAPER_MARKS");
+    d.push_back("MARK_VARIANTS=" + std::to_string(kMarkVariants));
+    d.push_back("MARK_SPRITE=" + std::to_string(kMarkSprite));
+  }
   if (canvas_.hasMottle()) d.emplace_back("MOTTLE");
   if (canvas_.grainOnSurface()) d.emplace_back("GRAIN_ON_SURFACE");
   return d;
@@ -270,7 +274,10 @@ const Texture2D& CanvasPass::run(const std::vector<Item>& items, const Framebuff
     static_key_ = key;
     return target_.colour(0);
   }
-  if (method_ == Method::Tiles) updateTile(o);  // before the timer: once per parameter set
+  if (method_ == Method::Tiles) {  // before the timer: once per parameter set
+    updateTile(o);
+    if (canvas_.hasFibresOrSpots()) updateMarkSprites(height);
+  }
   if (timer) timer->begin(passName());
   if (method_ == Method::Tiles) {
     runTiles(items, gbuffer, attachable_depth, camera, width, height, o);
@@ -390,6 +397,7 @@ void CanvasPass::runTiles(const std::vector<Item>& items, const Framebuffer& gbu
   glBindTextureUnit(0, gbuffer.depth().id());
   glBindTextureUnit(1, gbuffer.colour(1).id());
   glBindImageTexture(0, tile_.id(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_R8I);
+  if (marks_) glBindImageTexture(3, marks_.id(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_RG8I);
   for (const Program* p : {&tiles_, &tiles_background_}) {
     p->use();
     p->set("u_viewport", glm::vec2(width, height));
@@ -433,6 +441,82 @@ float CanvasPass::drawMottle(const OrbitCamera& camera, int width, int height) {
   return cell;
 }
 
+double CanvasPass::markTexelsPerPixel(int size, double half_length, double half_width, double spot_radius) {
+  // The farthest a mark reaches from its point: the centre's offset (up to half a mean
+  // half length on each axis), the longest half length (1.4 means) and the widest half
+  // width, or the largest spot; and a pixel for the edges' ramps.
+  const double offset = 0.5 * std::numbers::sqrt2 * half_length;
+  const double reach = offset + std::max(1.4 * half_length + 1.4 * half_width, spot_radius) + 1.0;
+  return size / (2.0 * reach);
+}
+
+std::vector<float> CanvasPass::markSprite(int variant, int size, double texels_per_pixel, double half_length,
+                                          double half_width, double spot_radius) {
+  // Eight numbers in [0, 1] from the variant's hash: u places the centre and turns the
+  // fibre, v sets its length, bend, width and whether it darkens (three in four) or lightens.
+  const std::uint32_t seed = noise::noiseHash(static_cast<std::uint32_t>(variant) * 0x9E3779B1u + 0x3C6EF372u);
+  double u[4], v[4];
+  for (std::uint32_t k = 0; k < 4; ++k) {
+    u[k] = (noise::noiseStream(seed, k) >> 8) / 16777216.0;
+    v[k] = (noise::noiseStream(seed, 4 + k) >> 8) / 16777216.0;
+  }
+  const double cx = (u[0] - 0.5) * half_length, cy = (u[1] - 0.5) * half_length;
+  double ax = u[2] - 0.5 + 1e-3, ay = u[3] - 0.5 + 1e-3;
+  const double norm = std::hypot(ax, ay);
+  ax /= norm, ay /= norm;
+  const double length = half_length * (0.6 + 0.8 * v[0]), width = half_width * (0.6 + 0.8 * v[2]);
+  const double sign = v[3] < 0.75 ? -1.0 : 0.6;
+  const double radius = (0.2 + 0.8 * v[0] * v[0]) * spot_radius;
+  auto smooth = [](double e0, double e1, double x) {
+    const double t = std::clamp((x - e0) / (e1 - e0), 0.0, 1.0);
+    return t * t * (3 - 2 * t);
+  };
+  std::vector<float> out(2 * static_cast<std::size_t>(size) * size);
+  for (int y = 0; y < size; ++y)
+    for (int x = 0; x < size; ++x) {
+      // The texel's centre, pixels from the point's projection, less the mark's centre.
+      const double qx = (x + 0.5 - size / 2) / texels_per_pixel - cx, qy = (y + 0.5 - size / 2) / texels_per_pixel - cy;
+      const double s = (qx * ax + qy * ay) / length;  // −1 … 1 along the fibre
+      const double across = (-qx * ay + qy * ax - (v[1] - 0.5) * 0.4 * length * (1 - s * s)) / width;
+      const double fibre = std::max(1 - across * across, 0.0) * (1 - smooth(0.5, 1.0, std::abs(s)));
+      const double spot = 1 - smooth(radius - 0.5, radius + 0.5, std::hypot(qx, qy));
+      const std::size_t at = 2 * (static_cast<std::size_t>(y) * size + x);
+      out[at] = static_cast<float>(sign * fibre);
+      out[at + 1] = static_cast<float>(spot);
+    }
+  return out;
+}
+
+CanvasPass::MarkSizes CanvasPass::markSizes(double fibre_length, int height) {
+  // Lengths are pixels at 1024 high; widths and spots no thinner than at 512.
+  const double scale = height / 1024.0;
+  return {0.5 * fibre_length * scale, 0.9 * std::max(scale, 0.5), 2.0 * std::max(scale, 0.5)};
+}
+
+void CanvasPass::updateMarkSprites(int height) {
+  const auto [half_length, half_width, spot_radius] = markSizes(canvas_.fibre_length, height);
+  std::ostringstream key;
+  key.precision(17);
+  key << half_length << "," << half_width << "," << spot_radius;
+  if (key.str() == marks_key_) return;
+  mark_texels_ = markTexelsPerPixel(kMarkSprite, half_length, half_width, spot_radius);
+  const std::size_t texels = static_cast<std::size_t>(kMarkSprite) * kMarkSprite;
+  std::vector<std::int8_t> bytes(2 * texels * kMarkVariants);
+  for (int variant = 0; variant < kMarkVariants; ++variant) {
+    const std::vector<float> sprite =
+        markSprite(variant, kMarkSprite, mark_texels_, half_length, half_width, spot_radius);
+    for (std::size_t i = 0; i < sprite.size(); ++i) {
+      bytes[2 * texels * variant + i] = static_cast<std::int8_t>(std::lround(127 * std::clamp(sprite[i], -1.0f, 1.0f)));
+    }
+  }
+  mark_bytes_ = Buffer::create();
+  glNamedBufferStorage(mark_bytes_.id(), static_cast<GLsizeiptr>(bytes.size()), bytes.data(), 0);
+  marks_ = BufferTexture::create();
+  glTextureBuffer(marks_.id(), GL_RG8I, mark_bytes_.id());
+  SHANSHUI_GL_CHECK("canvas mark sprites");
+  marks_key_ = key.str();
+}
+
 void CanvasPass::setMarks(const Program& p, int height, double lattice_pixels) const {
   // Lengths are pixels at 1024 high. Fibres and spots hang on lattice points, and a point's
   // chance of one is the density per 100² pixels times the screen area its marks cover: the
@@ -441,9 +525,9 @@ void CanvasPass::setMarks(const Program& p, int height, double lattice_pixels) c
   // (CanvasGl.RicePaperIsQuietPaperWithFibresAndSpots).
   const double scale = height / 1024.0;
   const double per_point = (lattice_pixels / (100 * scale)) * (lattice_pixels / (100 * scale)) * kMarkRegion;
-  p.set("u_fibre", glm::vec4(canvas_.fibres * per_point, 0.5 * canvas_.fibre_length * scale, canvas_.fibre_contrast,
-                             0.9 * std::max(scale, 0.5)));
-  p.set("u_spot", glm::vec3(canvas_.spots * per_point, 0.35, 2.0 * std::max(scale, 0.5)));
+  p.set("u_mark_chance", glm::vec2(canvas_.fibres * per_point, canvas_.spots * per_point));
+  p.set("u_mark_contrast", glm::vec2(canvas_.fibre_contrast, 0.35));
+  p.set("u_mark_texels", static_cast<float>(mark_texels_));
 }
 
 void CanvasPass::runSplat(const std::vector<Item>& items, const Texture2D& depth, const OrbitCamera& camera, int width,

@@ -532,6 +532,37 @@ double medianElongation(std::vector<Region> regions) {
   return regions[regions.size() / 2].elongation;
 }
 
+TEST(MarkSprites, EachMarkLiesWithinItsSpriteAndThreeFibresInFourDarken) {
+  // The shader reads a sprite only within its bounds (0 beyond): a mark must fade to 0
+  // before the sprite's edge, at the default sizes at 768 and 2160 pixels high. Fibres
+  // darken with a chance of 3/4 (a binomial count over the variants: within ±4 σ).
+  for (const int height : {768, 2160}) {
+    const auto [half_length, half_width, spot_radius] = CanvasPass::markSizes(scene::Canvas{}.fibre_length, height);
+    const int size = CanvasPass::kMarkSprite, variants = CanvasPass::kMarkVariants;
+    const double texels = CanvasPass::markTexelsPerPixel(size, half_length, half_width, spot_radius);
+    int darken = 0;
+    for (int v = 0; v < variants; ++v) {
+      const std::vector<float> sprite = CanvasPass::markSprite(v, size, texels, half_length, half_width, spot_radius);
+      double edge = 0, most = 0, sum = 0;
+      for (int y = 0; y < size; ++y)
+        for (int x = 0; x < size; ++x) {
+          const float f = sprite[2 * (y * size + x)];
+          most = std::max(most, static_cast<double>(std::abs(f)));
+          sum += f;
+          if (x == 0 || y == 0 || x == size - 1 || y == size - 1) {
+            edge =
+                std::max({edge, static_cast<double>(std::abs(f)), static_cast<double>(sprite[2 * (y * size + x) + 1])});
+          }
+        }
+      EXPECT_EQ(edge, 0.0) << "variant " << v << " at " << height;
+      EXPECT_GT(most, 0.5) << "variant " << v << " draws a fibre";
+      darken += sum < 0;
+    }
+    const double expected = 0.75 * variants, sigma = std::sqrt(variants * 0.75 * 0.25);
+    EXPECT_NEAR(darken, expected, 4 * sigma) << height;
+  }
+}
+
 TEST_F(CanvasGl, RicePaperIsQuietPaperWithFibresAndSpots) {
   // Issue 22's sandpaper: the grain alone at its old contrast (0.06) puts half the paper's
   // power above 0.2 cycles per pixel. The default paper keeps the grain faint and adds a

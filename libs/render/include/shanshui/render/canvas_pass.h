@@ -96,6 +96,24 @@ class CanvasPass {
   static constexpr double kMarkRegion = 0.8;
   //! The tile stores v / kTileRange, clamped to [-1, 1] (σ = 1).
   static constexpr double kTileRange = 4.0;
+  //! Rice paper's marks come in kMarkVariants shapes (a power of two), each a sprite of
+  //! kMarkSprite² texels around its lattice point (a power of two).
+  static constexpr int kMarkVariants = 64, kMarkSprite = 64;
+
+  //! The fibre (signed: most darken) and spot of mark shape `variant`, each in [-1, 1], in a
+  //! sprite of `size`² texels centred on the lattice point's projection, `texels_per_pixel`
+  //! of them a pixel: rows from the bottom, two values a texel. Fibres' mean half length and
+  //! half width, and spots' largest radius, in pixels.
+  static std::vector<float> markSprite(int variant, int size, double texels_per_pixel, double half_length,
+                                       double half_width, double spot_radius);
+  //! The marks' sizes in pixels in frames `height` high: fibres' mean half length (from the
+  //! mean length `fibre_length` at 1024 high) and half width, and spots' largest radius.
+  struct MarkSizes {
+    double half_length, half_width, spot_radius;
+  };
+  static MarkSizes markSizes(double fibre_length, int height);
+  //! Texels per pixel of the sprites that hold marks of these sizes (pixels) whole.
+  static double markTexelsPerPixel(int size, double half_length, double half_width, double spot_radius);
 
  private:
   enum class Method { Splat, Tiles, Static };
@@ -107,6 +125,8 @@ class CanvasPass {
   //! The rice paper marks' uniforms of `p`, for an output `height` tall whose grain lattice
   //! is `lattice_pixels` apart on screen.
   void setMarks(const Program& p, int height, double lattice_pixels) const;
+  //! Draws the fibres' and spots' shapes for frames `height` pixels high, when they changed.
+  void updateMarkSprites(int height);
   //! Draws rice paper's mottle into its small image, binds it to image unit 1 and returns
   //! the pixels of the view per texel.
   float drawMottle(const OrbitCamera& camera, int width, int height);
@@ -128,10 +148,14 @@ class CanvasPass {
   Program tiles_, tiles_background_, tile_synthesis_;  //!< the tiles canvas (surfaces, background), and its tile
   Program mottle_;                                     //!< rice paper's mottle (tiles)
   Framebuffer mottle_target_;
-  Buffer tile_bytes_;     //!< the tile, rows from the bottom, one signed byte a texel
-  BufferTexture tile_;    //!< tile_bytes_ as R8I texels (the shaders index it: y · size + x)
-  int tile_size_ = 0;     //!< texels on a side
-  std::string tile_key_;  //!< the options the tile was drawn for
+  Buffer tile_bytes_;         //!< the tile, rows from the bottom, one signed byte a texel
+  BufferTexture tile_;        //!< tile_bytes_ as R8I texels (the shaders index it: y · size + x)
+  int tile_size_ = 0;         //!< texels on a side
+  Buffer mark_bytes_;         //!< kMarkVariants sprites of kMarkSprite² texels (fibre, spot: signed bytes)
+  BufferTexture marks_;       //!< mark_bytes_ as RG8I texels
+  double mark_texels_ = 1.0;  //!< sprite texels per pixel
+  std::string marks_key_;     //!< the sizes the sprites were drawn for
+  std::string tile_key_;      //!< the options the tile was drawn for
   noise::CanvasNoiseOptions tile_options_;
   int tile_cells_ = kTileCells;
   float texels_per_pixel_ = 1.0f;
