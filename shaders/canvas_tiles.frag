@@ -57,27 +57,29 @@ layout(location = 0) out vec2 o_canvas;  // grain (unit variance), marks (bright
 uniform vec2 u_mark_chance;    // a fibre's and a spot's, per grain spacing² of screen
 uniform vec2 u_mark_contrast;  // a fibre's and a spot's
 
-// The shapes: MARK_VARIANTS sprites of MARK_SPRITE² texels, u_mark_texels a pixel, centred
-// on the lattice point's projection; a texel holds a fibre (signed: most darken, some
-// lighten) and a spot, as bytes of 1 / 127 (CanvasPass::markSprite draws them).
+// The shapes: u_mark_variants sprites of u_mark_sprite² texels (powers of two), u_mark_texels
+// a pixel, centred on the lattice point's projection; a texel holds a fibre (signed: most
+// darken, some lighten) and a spot, as bytes of 1 / 127 (CanvasPass::markSprite draws
+// them).
 layout(binding = 3, rg8i) readonly uniform iimageBuffer u_marks;
 uniform float u_mark_texels;
+uniform int u_mark_sprite, u_mark_variants;
 
 // The fibre or spot of the lattice point hashed `h` at `d`, the pixel's offset from the
 // point's projection (pixels); the screen area the point's marks cover is area / m2 grain
 // spacings² (compared without dividing). Whether the point carries a fibre or a spot comes
 // from the halves of h (which also place the point's tile copy: harmless), its shape from
 // one more multiply-xorshift round. One read of a sprite instead of the shape's arithmetic
-// (~1 ms of ~19 at 1024x768): the read is out of range, so it returns 0 without touching
+// (~0.8 ms of ~19 at 1024x768): the read is out of range, so it returns 0 without touching
 // memory, where the point carries nothing or the pixel is beyond the sprite.
 float pointMarks(vec2 d, uint h, float area, float m2) {
   vec2 chance = vec2(uvec2(h >> 16, h & 0xFFFFu)) * (1.0 / 65536.0);
   vec2 carries = step(chance * m2, u_mark_chance * area);
   uint h2 = (h ^ (h >> 16)) * 0x7FEB352Du;
   h2 ^= h2 >> 15;
-  ivec2 texel = ivec2(floor(d * u_mark_texels)) + MARK_SPRITE / 2;
-  bool read = carries.x + carries.y > 0.0 && all(lessThan(uvec2(texel), uvec2(MARK_SPRITE)));
-  int index = read ? (int(h2 & uint(MARK_VARIANTS - 1)) * MARK_SPRITE + texel.y) * MARK_SPRITE + texel.x : -1;
+  ivec2 texel = ivec2(floor(d * u_mark_texels)) + u_mark_sprite / 2;
+  bool read = carries.x + carries.y > 0.0 && all(lessThan(uvec2(texel), uvec2(u_mark_sprite)));
+  int index = read ? ((int(h2) & (u_mark_variants - 1)) * u_mark_sprite + texel.y) * u_mark_sprite + texel.x : -1;
   vec2 shape = vec2(imageLoad(u_marks, index).rg) * (1.0 / 127.0);
   return carries.x * u_mark_contrast.x * shape.x - carries.y * u_mark_contrast.y * shape.y;
 }
@@ -112,8 +114,8 @@ uint levelSeed(int space, int level) { return u_seed + uint(space) * 0x68E31DA4u
 // projecting each corner: it places a corner's projection off by about the perspective's
 // change across the tetrahedron, at most ~3 % of the corner's distance on screen at a 45°
 // field of view (the tetrahedron's size on screen is fixed), so a copy is read up to that
-// much stretched, smoothly. Of the four
-// corners the three of largest weight are read, chosen by selects (see the file's note).
+// much stretched, smoothly. Of the four corners the three of largest weight are read,
+// chosen by selects (see the file's note).
 void addLevel(vec3 q, float spacing, int level, float weight, int space, mat3x2 J, float texels_per_pixel, inout Sums s) {
   Tetrahedron t = kuhnScaled(q);
   uint level_seed = levelSeed(space, level);
@@ -173,10 +175,9 @@ void main() {
   // The lattice level, log2 of the patch in model units, split by its bits: the octave
   // `lower` is the exponent, and the place in it t = log2 m of the mantissa m = 2^t in
   // [1, 2), by a cubic exact at both ends (within 1.5e-4). The spacing 2^lower and its
-  // inverse are made from bits too: log2 and ldexp cost a software rasteriser a dozen
-  // instructions or more each (~1 ms of ~18 at 1024x768, with the divisions of the fade
-  // and the spot).
-  // The clamp keeps them normal floats for any scene.
+  // inverse are made from bits too (the clamp keeps them normal floats for any scene): log2
+  // and ldexp cost a software rasteriser a dozen instructions or more each (~0.8 ms of ~19
+  // at 1024x768).
   int bits = floatBitsToInt(u_patch_pixels * modelPerPixel(space, w));
   int lower = clamp((bits >> 23) - 127, -120, 120);
   float mantissa = intBitsToFloat((bits & 0x7FFFFF) | 0x3F800000), u = mantissa - 1.0;

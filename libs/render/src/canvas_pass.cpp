@@ -137,11 +137,7 @@ std::vector<std::string> CanvasPass::tilesDefines(bool background) const {
   } else if (objects_ == 1) {
     d.emplace_back("SINGLE_OBJECT");
   }
-  if (canvas_.hasFibresOrSpots()) {
-    d.emplace_back("PAPER_MARKS");
-    d.push_back("MARK_VARIANTS=" + std::to_string(kMarkVariants));
-    d.push_back("MARK_SPRITE=" + std::to_string(kMarkSprite));
-  }
+  if (canvas_.hasFibresOrSpots()) d.emplace_back("PAPER_MARKS");
   if (canvas_.hasMottle()) d.emplace_back("MOTTLE");
   if (canvas_.grainOnSurface()) d.emplace_back("GRAIN_ON_SURFACE");
   return d;
@@ -518,16 +514,18 @@ void CanvasPass::updateMarkSprites(int height) {
 }
 
 void CanvasPass::setMarks(const Program& p, int height, double lattice_pixels) const {
-  // Lengths are pixels at 1024 high. Fibres and spots hang on lattice points, and a point's
-  // chance of one is the density per 100² pixels times the screen area its marks cover: the
-  // shader scales it by that area in lattice spacings² (`lattice_pixels` apart on screen);
-  // kMarkRegion is the area for one spacing², measured on a plane facing the camera
-  // (CanvasGl.RicePaperIsQuietPaperWithFibresAndSpots).
+  // Fibres and spots hang on lattice points, and a point's chance of one is the density per
+  // 100² pixels (at 1024 high) times the screen area its marks cover: the shader scales it
+  // by that area in lattice spacings² (`lattice_pixels` apart on screen); kMarkRegion is the
+  // area for one spacing², measured on a plane facing the camera
+  // (CanvasGl.RicePaperIsQuietPaperWithFibresAndSpots). Their shapes are the sprites'.
   const double scale = height / 1024.0;
   const double per_point = (lattice_pixels / (100 * scale)) * (lattice_pixels / (100 * scale)) * kMarkRegion;
   p.set("u_mark_chance", glm::vec2(canvas_.fibres * per_point, canvas_.spots * per_point));
   p.set("u_mark_contrast", glm::vec2(canvas_.fibre_contrast, 0.35));
   p.set("u_mark_texels", static_cast<float>(mark_texels_));
+  p.set("u_mark_sprite", kMarkSprite);
+  p.set("u_mark_variants", kMarkVariants);
 }
 
 void CanvasPass::runSplat(const std::vector<Item>& items, const Texture2D& depth, const OrbitCamera& camera, int width,
