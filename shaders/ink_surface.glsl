@@ -64,7 +64,8 @@ float viewDepth(float d) {
   return n * f / (f - d * (f - n));
 }
 
-// 1 / viewDepth(d) without a division: inverse depth is affine in the depth-buffer value.
+// 1 / viewDepth(d), affine in the depth-buffer value: no division by the pixel's depth
+// (only by the uniform planes). 0 on the background.
 float inverseViewDepth(float d) {
   if (d >= 1.0) return 0.0;
   float n = u_near_far.x, f = u_near_far.y;

@@ -69,7 +69,7 @@ struct FrameImages {
   const Texture2D* attachable_depth = nullptr;
   //! With animated objects: the cached G-buffer of the static ones alone (null otherwise).
   const Framebuffer* static_gbuffer = nullptr;
-  const Texture2D* canvas = nullptr;   //!< unit-variance paper noise (R32F)
+  const Texture2D* canvas = nullptr;   //!< paper: unit-variance grain, marks (RG16F)
   const Texture2D* picture = nullptr;  //!< the picture so far (RGBA8)
   const Texture2D* shadow = nullptr;   //!< 0 lit .. 1 in shadow (R8), when the shadow pass ran
 };
