@@ -7,8 +7,9 @@
 // wrinkle texture), WRINKLE_SLOPE (an object's slope wrinkles on planar UVs are computed
 // here, once per pixel, not in the G-buffer pass), SINGLE_OBJECT (parameters without
 // indexing), CANVAS (the paper grain, when no diffusion pass comes after), PIGMENT (the
-// presence the atmosphere leaves, in alpha, for the pigment pass), DEBUG_OUTPUTS (line
-// weight, tone and wrinkle luma as extra targets, for tests). PAPER builds the background's
+// presence the atmosphere leaves, in alpha, for the pigment pass), ELEMENTS (the trees' and
+// moss dots' ink over the rest), DEBUG_OUTPUTS (line weight, tone and wrinkle luma as extra
+// targets, for tests). PAPER builds the background's
 // program, which the pass draws apart by the depth test.
 #include "ink_objects.glsl"
 #ifdef SHADING
@@ -22,6 +23,17 @@ uniform vec3 u_paper;
 // found per surface pixel.
 layout(r32ui, binding = 3) readonly uniform uimage2D u_stroke_ink;
 layout(rgba16, binding = 4) readonly uniform image2D u_presence_noise;
+#endif
+#ifdef ELEMENTS
+// Trees and moss dots (elements_pass.cpp): their ink, and the nearness (1 − depth) of what
+// drew it, to hide them behind what moved in front of their cached layer.
+layout(rg32f, binding = 6) readonly uniform image2D u_elements;
+uniform vec3 u_element_colour;
+
+float elementInk(ivec2 p, float depth) {
+  vec2 e = imageLoad(u_elements, p).rg;
+  return e.g >= 1.0 - depth ? e.r : 0.0;
+}
 #endif
 #ifdef CANVAS
 // The paper: unit-variance grain, and its marks (fibres, spots, mottle) as a brightness change.
@@ -92,7 +104,11 @@ void main() {
 #ifdef STROKES
   ink = strokeInk(p);
 #endif
-  o_colour = onPaper(p, mix(u_paper, objects[0].line_color, ink));
+  vec3 colour = mix(u_paper, objects[0].line_color, ink);
+#ifdef ELEMENTS
+  colour = mix(colour, u_element_colour, elementInk(p, 1.0));
+#endif
+  o_colour = onPaper(p, colour);
 #ifdef DEBUG_OUTPUTS
   o_line = vec2(ink, 1.0);
   o_tone = vec2(1.0);
@@ -205,6 +221,9 @@ void main() {
   float stroke = strokeInk(p);
   colour = mix(colour, o.line_color, stroke);
   line_weight = max(line_weight, stroke);
+#endif
+#ifdef ELEMENTS
+  colour = mix(colour, u_element_colour, elementInk(p, depth));
 #endif
   o_colour = onPaper(p, colour);
 #ifdef PIGMENT

@@ -56,6 +56,7 @@ std::vector<std::string> inkDefines(const scene::Scene& s, bool debug_outputs) {
   if (wrinkledHere(s)) d.emplace_back("WRINKLE_SLOPE");
   if (grainHere(s)) d.emplace_back("CANVAS");
   if (s.usesPigment() || s.usesShadow()) d.emplace_back("PIGMENT");
+  if (s.usesElements()) d.emplace_back("ELEMENTS");
   addSurfaceDefines(s, d);
   if (debug_outputs) d.emplace_back("DEBUG_OUTPUTS");
   return d;
@@ -190,8 +191,10 @@ class InkPass final : public RenderPass {
     if (in.timer) in.timer->begin("ink");
     target_.bind();
     if (grainHere(in.scene)) glBindImageTexture(2, images.canvas->id(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_RG16F);
+    if (images.elements) glBindImageTexture(6, images.elements->id(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_RG32F);
     for (const Program* ink : {&program_, &*paper_}) {
       ink->use();
+      if (images.elements) ink->set("u_element_colour", elementColour(in.scene));
       setSurfaceUniforms(*ink, in);
       ink->set("u_light_dir", glm::vec3(glm::normalize(in.scene.light.direction)));
       ink->set("u_paper", glm::vec3(in.scene.output.paper));
@@ -239,6 +242,13 @@ class InkPass final : public RenderPass {
       const double size = std::max(std::max(in.world_bounds.size().x, in.world_bounds.size().y), 1e-9);
       p.set("u_mist_noise", static_cast<float>(2.0 / size));
     }
+  }
+
+  // The elements' ink colour: the line colour of the first object that grows them.
+  static glm::vec3 elementColour(const scene::Scene& s) {
+    for (const scene::Object& o : s.objects)
+      if (o.hasElements()) return glm::vec3(o.lines.line_color);
+    return glm::vec3(0.0f);
   }
 
   void uploadObjectParams(const FrameInputs& in) {

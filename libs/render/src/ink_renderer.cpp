@@ -169,6 +169,7 @@ InkRenderer::InkRenderer(const scene::Scene& s, const std::vector<scene::LoadedO
     g.model_feature_size = a.feature_size;
     g.max_triangle_area = maxTriangleArea(a.mesh);
     if (o.strokes.enabled()) g.asset = objects[i].geometry;
+    g.elements = objects[i].elements;
     relief_points_.push_back(reliefSample(a.mesh));
     if (o.wrinkled()) {
       SHANSHUI_CHECK(objects[i].wrinkle != nullptr);

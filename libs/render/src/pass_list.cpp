@@ -30,6 +30,9 @@ bool edgesDarken(const scene::Scene& s) {
 bool blursMotion(const scene::Scene& s) {
   return s.motion_blur.enabled;
 }
+bool growsElements(const scene::Scene& s) {
+  return s.usesElements();
+}
 bool diffuses(const scene::Scene& s) {
   return s.diffusion.enabled();
 }
@@ -42,6 +45,7 @@ const std::vector<PassEntry>& passList() {
   static const std::vector<PassEntry> list = {
       {"gbuffer", always, gbufferStructure, makeGbufferPass},
       {"canvas", hasCanvas, canvasStructure, makeCanvasPass},
+      {"elements", growsElements, nothing, makeElementsPass},
       {"ink", always, inkStructure, makeInkPass},
       {"strokes", brushStrokes, strokesStructure, makeStrokesPass},
       {"pigment", pigmented, nothing, makePigmentPass},

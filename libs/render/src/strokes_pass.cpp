@@ -9,6 +9,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "atmosphere.h"
 #include "shanshui/core/error.h"
 #include "shanshui/render/gl_check.h"
 #include "shanshui/render/render_pass.h"
@@ -39,35 +40,6 @@ strokes::StrokeStyle brushStyle(scene::BrushStyle s) {
       break;
   }
   return strokes::StrokeStyle::None;
-}
-
-double smooth01(double x) {
-  x = std::clamp(x, 0.0, 1.0);
-  return x * x * (3.0 - 2.0 * x);
-}
-
-// How much of a stroke at `world` stands against the paper: the distance fade, the mist and
-// the dissolving border of ink_surface.glsl's presence(), with their noise at its mean (a
-// stroke is thin; the surface beside it carries the noise).
-double presence(const FrameInputs& in, std::size_t object, const glm::dmat4& toModel, glm::dvec3 world,
-                glm::dvec2 fadeRange) {
-  const scene::Scene& s = in.scene;
-  double f = 1.0 - s.output.fade * smooth01((glm::length(world - in.camera.eye()) - fadeRange.x) /
-                                            std::max(fadeRange.y - fadeRange.x, 1e-9));
-  if (s.mist.enabled()) {
-    const double z0 = in.world_bounds.min.z, extent = std::max(in.world_bounds.size().z, 1e-9);
-    const double h0 = (world.z - (z0 + s.mist.height * extent)) / std::max(s.mist.softness * extent, 1e-9);
-    f *= 1.0 - s.mist.density * (1.0 - smooth01(h0));
-  }
-  const scene::Object& o = s.objects[object];
-  if (o.dissolvesBorder()) {
-    const glm::dvec3 m = glm::dvec3(toModel * glm::dvec4(world, 1.0));
-    const glm::dvec3 half = 0.5 * in.objects[object].model_bounds.size();
-    const double width = o.border.width * std::min(half.x, half.y);
-    const double t = std::min(half.x - std::abs(m.x), half.y - std::abs(m.y)) / std::max(width, 1e-12);
-    f *= smooth01(t - 0.5 * o.border.roughness);
-  }
-  return std::clamp(f, 0.0, 1.0);
 }
 
 // Per object with strokes: its mesh in uploaded coordinates and its edge graph (on load).
@@ -175,12 +147,7 @@ class StrokesPass final : public RenderPass {
     const glm::dmat4 vp = glm::dmat4(in.camera.projection(static_cast<double>(w) / h)) * glm::dmat4(in.camera.view());
     const glm::dvec3 eye = in.camera.eye();
     const glm::dmat4 inverseVp = glm::inverse(vp);
-    // The distance fade's range, as the ink pass sets it: the scene's nearest and farthest corners.
-    glm::dvec2 fadeRange(1e300, 0.0);
-    for (int c = 0; c < 8; ++c) {
-      const double d = glm::length(in.world_bounds.corner(c) - eye);
-      fadeRange = {std::min(fadeRange.x, d), std::max(fadeRange.y, d)};
-    }
+    const glm::dvec2 fade = fadeRange(in);
     for (const StrokeMesh& sm : meshes_) {
       if (!chosen(sm)) continue;
       const scene::BrushStrokeParams& p = scene_.objects[sm.object].strokes;
@@ -214,8 +181,8 @@ class StrokesPass final : public RenderPass {
         for (std::size_t k = 0; k < path.size(); ++k) {
           const glm::dvec4 ndc(path[k].x / w * 2.0 - 1.0, path[k].y / h * 2.0 - 1.0, depth[k] * 2.0 - 1.0, 1.0);
           const glm::dvec4 world = inverseVp * ndc;
-          const auto ink = static_cast<float>(p.ink * kept *
-                                              presence(in, sm.object, toModel, glm::dvec3(world) / world.w, fadeRange));
+          const auto ink =
+              static_cast<float>(p.ink * kept * presence(in, sm.object, toModel, glm::dvec3(world) / world.w, fade));
           for (const strokes::StripVertex& v : {strip[2 * k], strip[2 * k + 1]}) {
             out.vertices.insert(out.vertices.end(), {static_cast<float>(v.position.x), static_cast<float>(v.position.y),
                                                      v.along, v.across, v.pressure, ink, colour.r, colour.g, colour.b});

@@ -102,6 +102,10 @@ bool Scene::usesShading() const {
   return anyObject(objects, [](const Object& o) { return o.shading.enabled; });
 }
 
+bool Scene::usesElements() const {
+  return anyObject(objects, [](const Object& o) { return o.hasElements(); });
+}
+
 namespace {
 
 std::vector<std::string> splitPath(const std::string& path) {

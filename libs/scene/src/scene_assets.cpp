@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <sstream>
 
 #include "shanshui/core/error.h"
 #include "shanshui/image/image_io.h"
@@ -160,7 +161,35 @@ LoadedObject AssetCache::get(const Scene& scene, std::size_t index) {
     asset->load_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     slot = std::move(asset);
   }
-  return {slot, wrinkle};
+  std::shared_ptr<const ElementSet> grown;
+  if (o.hasElements()) {
+    // Placed once per mesh and placement options; the drawing keys (ink, dot size) are not
+    // part of it.
+    const elements::TreeOptions& t = o.trees;
+    const elements::DotOptions& d = o.dots;
+    std::ostringstream k;
+    k.precision(17);
+    k << key << "|" << scene.seed << "|" << t.enabled << " " << t.density << " " << t.size << " " << t.size_spread
+      << " " << t.max_slope_deg << " " << t.band[0] << " " << t.band[1] << " " << t.open << " " << t.grove << " "
+      << t.grove_radius << " " << t.kinds[0] << " " << t.kinds[1] << " " << t.kinds[2] << " " << t.kinds[3] << " "
+      << t.seed << "|" << d.enabled << " " << d.density << " " << d.cluster << " " << d.spread << " " << d.at_trees
+      << " " << d.seed;
+    std::shared_ptr<const ElementSet>& placed = elements_[k.str()];
+    if (!placed) {
+      const auto start = std::chrono::steady_clock::now();
+      auto set = std::make_shared<ElementSet>();
+      try {
+        set->instances = elements::placeElements(slot->mesh, t, d, scene.seed, "objects." + std::to_string(index));
+      } catch (const Error&) {
+        elements_.erase(k.str());
+        throw;
+      }
+      set->place_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      placed = std::move(set);
+    }
+    grown = placed;
+  }
+  return {slot, wrinkle, grown};
 }
 
 std::vector<LoadedObject> AssetCache::getAll(const Scene& scene) {

@@ -303,6 +303,54 @@ void describe(V& v, PigmentParams& p) {
 }
 
 template <typename V>
+void describe(V& v, elements::TreeOptions& t) {
+  v.boolean({"enabled", "grow trees on this object (issue 44); false: no elements pass unless it has dots", kRebuild},
+            t.enabled);
+  v.number({"density",
+            "trees per hectare of horizontal area where the site suits them best (ridges, hollows, valley floors); "
+            "open slopes get `open` of it",
+            kRebuild, "per hectare"},
+           t.density, {0, 10000});
+  v.number({"size", "mean tree height (a 20 m pine is 20 model units on a DEM in metres)", kRebuild, "model units"},
+           t.size, {0, 1e6, true});
+  v.number({"size_spread", "log-normal spread of the heights", kRebuild}, t.size_spread, {0, 2});
+  v.number({"max_slope", "no tree on ground steeper than this; fewer from 70 % of it", kRebuild, "degrees"},
+           t.max_slope_deg, {0, 90});
+  v.numbers({"band", "lowest and highest tree line, fractions of the object's relief", kRebuild}, t.band, kUnit);
+  v.check("band", [&]() -> std::string {
+    if (t.band[0] < t.band[1]) return "";
+    return "the band's low end " + std::to_string(t.band[0]) + " must be below its high end " +
+           std::to_string(t.band[1]);
+  });
+  v.number({"open", "density on open slopes relative to ridges, hollows and valley floors", kRebuild}, t.open, kUnit);
+  v.number({"grove", "mean trees per grove; 1 scatters them one by one", kRebuild}, t.grove, {1, 1000});
+  v.number({"grove_radius", "spread of a grove; 0: four mean tree heights", kRebuild, "model units"}, t.grove_radius,
+           {0, 1e6});
+  v.numbers({"kinds", "shares of pine, leafy (dot leaves), bare (branches) and distant (a few vertical dots) trees",
+             kRebuild},
+            t.kinds, {0, 1000});
+  v.integer({"seed", "placement and growth; 0: the scene's seed", kRebuild}, t.seed, {0, 1LL << 53});
+  v.number({"ink", "scales the ink of every mark of the trees (1: as grown, the darkest near 0.95)"}, t.ink, kUnit);
+}
+
+template <typename V>
+void describe(V& v, elements::DotOptions& d) {
+  v.boolean(
+      {"enabled", "moss dots (苔点): clusters of dark dabs on ridges, rock edges and at the feet of trees", kRebuild},
+      d.enabled);
+  v.number(
+      {"density", "clusters per hectare of horizontal area where the site suits them best", kRebuild, "per hectare"},
+      d.density, {0, 10000});
+  v.number({"cluster", "mean dots per cluster", kRebuild}, d.cluster, {1, 100});
+  v.number({"spread", "a cluster's radius; 0: 0.4 % of the object's larger side", kRebuild, "model units"}, d.spread,
+           {0, 1e6});
+  v.number({"at_trees", "share of trees with one to three dots at their feet", kRebuild}, d.at_trees, kUnit);
+  v.integer({"seed", "placement; 0: the scene's seed", kRebuild}, d.seed, {0, 1LL << 53});
+  v.number({"size", "a dot's size", Effect::Uniform, "pixels at 1024 high"}, d.size_px, {0.5, 64});
+  v.number({"ink", "a dot's ink: the darkest accents of the picture"}, d.ink, kUnit);
+}
+
+template <typename V>
 void describe(V& v, Object& o) {
   v.text({"name", "shown in the viewer; empty: `objects.N`"}, o.name, Text::Plain);
   v.text({"mesh", "`.obj`, `.ply`, `.off`, repaired on load like `shanshui-repair`; give `mesh` or `dem`", kRebuild},
@@ -363,6 +411,8 @@ void describe(V& v, Object& o) {
   v.group("strokes", o.strokes, Table::Own);
   v.group("pigment", o.pigment, Table::Own);
   v.group("substrate", o.substrate, Table::Inline);
+  v.group("trees", o.trees, Table::Own);
+  v.group("dots", o.dots, Table::Own);
 }
 
 template <typename V>

@@ -253,31 +253,26 @@ TEST(Scene, RebuildKeysAreTheOnesThatChangeVariantsOrFiles) {
   for (const SchemaEntry& e : sceneSchema()) {
     if (e.effect == Effect::Rebuild) rebuild.insert(e.path);
   }
-  const std::set<std::string> expected = {"objects",
-                                          "objects.*.mesh",
-                                          "objects.*.dem",
-                                          "objects.*.z_scale",
-                                          "objects.*.max_vertices",
-                                          "objects.*.cell_size",
-                                          "objects.*.up",
-                                          "objects.*.recentre",
-                                          "objects.*.lines.enabled",
-                                          "objects.*.lines.curvature",
-                                          "objects.*.lines.smoothing",
-                                          "objects.*.shading.enabled",
-                                          "objects.*.wrinkle.texture",
-                                          "objects.*.wrinkle.uv",
-                                          "objects.*.wrinkle.mapping",
-                                          "objects.*.strokes.style",  // builds the strokes pass
-                                          "objects.*.pigment.name",   // builds the pigment pass
-                                          "shadow.pigment.name",      // builds the shadow pass
-                                          "substrate.enabled",        // builds the substrate pass
-                                          "substrate.texture",        // a file
-                                          "edges.enabled",            // builds the edges pass
-                                          "motion_blur.enabled",      // velocity target, blur pass
-                                          "canvas.type",
-                                          "canvas.static_pattern",
-                                          "canvas.method"};
+  const std::set<std::string> expected = {
+      "objects", "objects.*.mesh", "objects.*.dem", "objects.*.z_scale", "objects.*.max_vertices",
+      "objects.*.cell_size", "objects.*.up", "objects.*.recentre", "objects.*.lines.enabled",
+      "objects.*.lines.curvature", "objects.*.lines.smoothing", "objects.*.shading.enabled",
+      "objects.*.wrinkle.texture", "objects.*.wrinkle.uv", "objects.*.wrinkle.mapping",
+      "objects.*.strokes.style",  // builds the strokes pass
+      "objects.*.pigment.name",   // builds the pigment pass
+      // Elements are placed on load from these (and build
+      // the elements pass).
+      "objects.*.trees.enabled", "objects.*.trees.density", "objects.*.trees.size", "objects.*.trees.size_spread",
+      "objects.*.trees.max_slope", "objects.*.trees.band", "objects.*.trees.open", "objects.*.trees.grove",
+      "objects.*.trees.grove_radius", "objects.*.trees.kinds", "objects.*.trees.seed", "objects.*.dots.enabled",
+      "objects.*.dots.density", "objects.*.dots.cluster", "objects.*.dots.spread", "objects.*.dots.at_trees",
+      "objects.*.dots.seed",
+      "shadow.pigment.name",  // builds the shadow pass
+      "substrate.enabled",    // builds the substrate pass
+      "substrate.texture",    // a file
+      "edges.enabled",        // builds the edges pass
+      "motion_blur.enabled",  // velocity target, blur pass
+      "canvas.type", "canvas.static_pattern", "canvas.method"};
   EXPECT_EQ(rebuild, expected);
 }
 

@@ -33,6 +33,8 @@ struct SceneObjectGpu {
   double feature_size = 0.0;  //!< world units
   //! The loaded mesh (model coordinates), kept for passes that work on the CPU (strokes).
   std::shared_ptr<const scene::ObjectAsset> asset;
+  //! Trees and moss dots grown on it (model coordinates); null when it grows none.
+  std::shared_ptr<const scene::ElementSet> elements;
 };
 
 //! What every pass of a frame reads.
@@ -72,6 +74,8 @@ struct FrameImages {
   const Texture2D* canvas = nullptr;   //!< paper: unit-variance grain, marks (RG16F)
   const Texture2D* picture = nullptr;  //!< the picture so far (RGBA8)
   const Texture2D* shadow = nullptr;   //!< 0 lit .. 1 in shadow (R8), when the shadow pass ran
+  //! The elements' ink (r) and nearness, 1 − window depth (g), RG32F, when the elements pass ran.
+  const Texture2D* elements = nullptr;
 };
 
 class RenderPass {
@@ -120,6 +124,7 @@ std::unique_ptr<RenderPass> makeGbufferPass(const PassSetup&);
 std::string gbufferStructure(const scene::Scene&);
 std::unique_ptr<RenderPass> makeCanvasPass(const PassSetup&);
 std::string canvasStructure(const scene::Scene&);
+std::unique_ptr<RenderPass> makeElementsPass(const PassSetup&);
 std::unique_ptr<RenderPass> makeInkPass(const PassSetup&);
 std::string inkStructure(const scene::Scene&);
 //! Whether object i's slope wrinkles are computed in the ink pass (planar UVs are a function

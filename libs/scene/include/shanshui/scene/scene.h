@@ -14,6 +14,7 @@
 #include <glm/glm.hpp>
 #include <nlohmann/json_fwd.hpp>
 
+#include "shanshui/elements/placement.h"
 #include "shanshui/ink/diffusion.h"
 
 namespace shanshui::scene {
@@ -217,6 +218,13 @@ struct Object {
   BrushStrokeParams strokes;
   PigmentParams pigment;
   SubstrateWeights substrate;
+  elements::TreeOptions trees;  //!< trees grown on the surface (issue 44)
+  elements::DotOptions dots;    //!< moss dots on ridges, rock edges and at the feet of trees
+  //! Some element (a tree or a moss dot) is grown on this object.
+  bool hasElements() const {
+    const bool grows_trees = trees.enabled && trees.density > 0;
+    return grows_trees || (dots.enabled && (dots.density > 0 || (grows_trees && dots.at_trees > 0)));
+  }
   //! The wrinkle texture is drawn (a texture, and shading on).
   bool wrinkled() const { return !wrinkle.texture.empty() && shading.enabled; }
   bool dissolvesBorder() const {
@@ -421,6 +429,7 @@ struct Scene {
   bool usesPigment() const;             //!< some object has a pigment wash
   bool usesShadow() const { return shadow.enabled(); }
   bool usesShading() const;
+  bool usesElements() const;  //!< some object grows trees or moss dots
   bool hasAnimation() const;
   bool dissolvesBorders() const;
 };

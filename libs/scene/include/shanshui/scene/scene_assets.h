@@ -6,6 +6,7 @@
 #include <memory>
 #include <string>
 
+#include "shanshui/elements/placement.h"
 #include "shanshui/image/image.h"
 #include "shanshui/mesh/mesh.h"
 #include "shanshui/scene/scene.h"
@@ -22,10 +23,18 @@ struct ObjectAsset {
   double load_seconds = 0.0;
 };
 
-//! One object's geometry and its wrinkle image (one channel, Eq. 5's luma; null without).
+//! Elements grown on an object (trees, moss dots), in its model coordinates.
+struct ElementSet {
+  std::vector<elements::Instance> instances;
+  double place_seconds = 0.0;
+};
+
+//! One object's geometry, its wrinkle image (one channel, Eq. 5's luma; null without) and
+//! the elements grown on it (null when it grows none).
 struct LoadedObject {
   std::shared_ptr<const ObjectAsset> geometry;
   std::shared_ptr<const image::Image> wrinkle;
+  std::shared_ptr<const ElementSet> elements = nullptr;
 };
 
 //! Keeps loaded assets by what they were made from, so a viewer that changes a parameter
@@ -40,6 +49,7 @@ class AssetCache {
  private:
   std::map<std::string, std::shared_ptr<const ObjectAsset>> meshes_;
   std::map<std::string, std::shared_ptr<const image::Image>> images_;
+  std::map<std::string, std::shared_ptr<const ElementSet>> elements_;
 };
 
 //! Prepares a loaded mesh for object `o`: recentres it when asked, makes planar UVs or checks

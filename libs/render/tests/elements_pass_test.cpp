@@ -1,0 +1,217 @@
+// The elements pass (issue 44) against what is known of each element: a dot stays on its
+// surface point through an orbit, a ridge hides what stands behind it, a tree's ink changes
+// continuously as it recedes, the same seed paints the same picture, and a scene without
+// elements builds nothing for them.
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "gl_test.h"
+#include "scene_in_memory.h"
+#include "shanshui/mesh/shapes.h"
+#include "shanshui/render/ink_renderer.h"
+#include "shanshui/scene/scene.h"
+#include "shanshui/scene/scene_assets.h"
+
+namespace shanshui::render {
+namespace {
+
+using nlohmann::json;
+
+class Elements : public test::HeadlessGl {};
+
+constexpr int kWidth = 320, kHeight = 240;
+
+// A one-object scene on `m` (model = world: z up, not recentred) that draws elements and
+// nothing else of the surface: no lines, no shading, no atmosphere.
+scene::Scene elementScene(json extra = json::object()) {
+  json o = {{"up", "z"},
+            {"recentre", false},
+            {"lines", {{"enabled", false}}},
+            {"shading", {{"enabled", false}}},
+            {"border", {{"mode", "keep"}}},
+            {"dots", {{"enabled", true}, {"size", 24.0}}}};
+  o.update(extra, true);
+  return test::sceneWith(o, {{"output", {{"fade", 0.0}, {"width", kWidth}, {"height", kHeight}}}});
+}
+
+std::vector<scene::LoadedObject> withElements(const scene::Scene& s, const mesh::Mesh& m,
+                                              std::vector<elements::Instance> placed) {
+  std::vector<scene::LoadedObject> loaded = test::prepare(s, m);
+  auto set = std::make_shared<scene::ElementSet>();
+  set->instances = std::move(placed);
+  loaded[0].elements = std::move(set);
+  return loaded;
+}
+
+elements::Instance dotAt(glm::vec3 p) {
+  elements::Instance i;
+  i.position = p;
+  i.kind = elements::Kind::MossDot;
+  i.size = 1.0f;
+  i.seed = 12345;
+  return i;
+}
+
+// Where world point p lands in a picture (x right, y down from the top row; pixel centres at
+// half integers).
+glm::dvec2 projected(const OrbitCamera& cam, glm::dvec3 p) {
+  const glm::dvec4 c =
+      glm::dmat4(cam.projection(static_cast<double>(kWidth) / kHeight)) * glm::dmat4(cam.view()) * glm::dvec4(p, 1.0);
+  return {(c.x / c.w + 1.0) * 0.5 * kWidth, (1.0 - c.y / c.w) * 0.5 * kHeight};
+}
+
+// The elements' ink (row 0 at the top).
+image::Image elementInk(const InkRenderer& r) {
+  return r.passTarget("elements")->colour(0).download(2);
+}
+
+// The ink-weighted centre of the ink within `radius` pixels of `around`, and its total.
+glm::dvec3 inkCentre(const image::Image& ink, glm::dvec2 around, double radius) {
+  glm::dvec3 sum(0.0);
+  for (int y = 0; y < ink.height; ++y) {
+    for (int x = 0; x < ink.width; ++x) {
+      const glm::dvec2 p(x + 0.5, y + 0.5);
+      if (glm::length(p - around) > radius) continue;
+      const double v = ink.at(x, y, 0);
+      sum += glm::dvec3(v * p, v);
+    }
+  }
+  return sum.z > 0.0 ? glm::dvec3(glm::dvec2(sum) / sum.z, sum.z) : glm::dvec3(0.0);
+}
+
+mesh::Mesh plane() {
+  return mesh::heightGrid(
+      21, 21, 10.0, [](double, double) { return 0.0; }, glm::dvec3(-100.0, -100.0, 0.0));
+}
+
+TEST_F(Elements, ASceneWithoutElementsBuildsNothingForThem) {
+  const mesh::Mesh m = plane();
+  const scene::Scene bare = elementScene({{"dots", {{"enabled", false}}}});
+  InkRenderer without(bare, test::prepare(bare, m));
+  EXPECT_EQ(std::count(without.passesBuilt().begin(), without.passesBuilt().end(), "elements"), 0);
+  for (const std::string& v : without.variants().at("ink")) EXPECT_EQ(v.find("ELEMENTS"), std::string::npos) << v;
+  // Trees asked for but at no density: nothing either.
+  const scene::Scene none =
+      elementScene({{"dots", {{"enabled", false}}}, {"trees", {{"enabled", true}, {"density", 0.0}}}});
+  InkRenderer also(none, test::prepare(none, m));
+  EXPECT_EQ(std::count(also.passesBuilt().begin(), also.passesBuilt().end(), "elements"), 0);
+  const scene::Scene s = elementScene();
+  InkRenderer with(s, withElements(s, m, {dotAt({0, 0, 0})}));
+  EXPECT_EQ(std::count(with.passesBuilt().begin(), with.passesBuilt().end(), "elements"), 1);
+  EXPECT_NE(with.variants().at("ink").front().find("ELEMENTS"), std::string::npos);
+}
+
+TEST_F(Elements, ADotStaysOnItsSurfacePointThroughAnOrbit) {
+  const mesh::Mesh m = plane();
+  const scene::Scene s = elementScene();
+  const std::vector<glm::vec3> points{{0, 0, 0}, {40, -30, 0}, {-55, 35, 0}};
+  std::vector<elements::Instance> dots;
+  for (const glm::vec3& p : points) dots.push_back(dotAt(p));
+  InkRenderer r(s, withElements(s, m, dots));
+  double worst = 0.0;
+  for (double azimuth = -180.0; azimuth < 180.0; azimuth += 30.0) {
+    for (double elevation : {20.0, 50.0}) {
+      const OrbitCamera cam = r.camera({azimuth, elevation, 1.0}, static_cast<double>(kWidth) / kHeight);
+      r.render(cam, kWidth, kHeight);
+      const image::Image ink = elementInk(r);
+      for (const glm::vec3& p : points) {
+        const glm::dvec2 at = projected(cam, glm::dvec3(p));
+        const glm::dvec3 c = inkCentre(ink, at, 8.0);
+        ASSERT_GT(c.z, 5.0) << "no dot near " << at.x << ", " << at.y << " at azimuth " << azimuth;
+        worst = std::max(worst, glm::length(glm::dvec2(c) - at));
+      }
+    }
+  }
+  EXPECT_LT(worst, 0.5) << "pixels between a dot's ink and its surface point";
+}
+
+TEST_F(Elements, ARidgeHidesWhatStandsBehindIt) {
+  // A ridge 40 high along y at x = 0; one dot at its foot on the far side, one on the near.
+  const mesh::Mesh m = mesh::heightGrid(
+      81, 21, 5.0, [](double x, double) { return 40.0 * std::exp(-std::pow((x - 200.0) / 25.0, 2)); },
+      glm::dvec3(-200.0, -50.0, 0.0));
+  const scene::Scene s = elementScene();
+  const glm::vec3 behind(120.0f, 0.0f, 0.0f), before(-120.0f, 0.0f, 0.0f);
+  InkRenderer r(s, withElements(s, m, {dotAt(behind), dotAt(before)}));
+  // Looking along +x from low down: the ridge stands between the eye and `behind`.
+  const OrbitCamera cam = r.camera({180.0, 8.0, 1.0}, static_cast<double>(kWidth) / kHeight);
+  r.render(cam, kWidth, kHeight);
+  const image::Image ink = elementInk(r);
+  const glm::dvec2 a = projected(cam, glm::dvec3(behind)), b = projected(cam, glm::dvec3(before));
+  ASSERT_TRUE(a.x > 0 && a.x < kWidth && a.y > 0 && a.y < kHeight) << a.x << " " << a.y;
+  // Is the far dot really behind the ridge from here? The ridge's crest projects above it.
+  EXPECT_LT(projected(cam, {0.0, 0.0, 40.0}).y, a.y);
+  EXPECT_EQ(inkCentre(ink, a, 4.0).z, 0.0);
+  EXPECT_GT(inkCentre(ink, b, 4.0).z, 5.0);
+  // Without the ridge the far dot shows.
+  const mesh::Mesh flat = mesh::heightGrid(
+      81, 21, 5.0, [](double, double) { return 0.0; }, glm::dvec3(-200.0, -50.0, 0.0));
+  InkRenderer open(s, withElements(s, flat, {dotAt(behind), dotAt(before)}));
+  open.render(cam, kWidth, kHeight);
+  EXPECT_GT(inkCentre(elementInk(open), a, 4.0).z, 5.0);
+}
+
+TEST_F(Elements, ATreesInkChangesContinuouslyAsItRecedes) {
+  const mesh::Mesh m = plane();
+  for (elements::Kind kind :
+       {elements::Kind::Pine, elements::Kind::Leafy, elements::Kind::Bare, elements::Kind::Distant}) {
+    SCOPED_TRACE(static_cast<int>(kind));
+    const scene::Scene s = elementScene({{"dots", {{"enabled", false}}}, {"trees", {{"enabled", true}}}});
+    elements::Instance tree;
+    tree.kind = kind;
+    tree.size = 20.0f;
+    tree.seed = 3;
+    InkRenderer r(s, withElements(s, m, {tree}));
+    // Dolly out in steps of 4 % of the distance: the tree goes from ~150 px high to ~3 px,
+    // through both cross-fades, and its ink (the sum over the picture) should scale about
+    // as its area on screen, never jump.
+    std::vector<double> ink;
+    for (double zoom = 4.0; zoom > 0.08; zoom /= 1.04) {
+      const OrbitCamera cam = r.camera({-60.0, 15.0, zoom}, static_cast<double>(kWidth) / kHeight);
+      r.render(cam, kWidth, kHeight);
+      const image::Image e = elementInk(r);
+      double sum = 0.0;
+      for (int y = 0; y < e.height; ++y)
+        for (int x = 0; x < e.width; ++x) sum += e.at(x, y, 0);
+      ink.push_back(sum);
+    }
+    ASSERT_GT(ink.front(), 50.0);
+    ASSERT_GT(ink.back(), 0.05);
+    // While the tree carries at least two pixels' worth of ink (below that a mark narrower
+    // than a pixel covers one pixel centre or two, whatever the brushwork does).
+    double largest = 0.0;
+    for (std::size_t i = 1; i < ink.size() && ink[i] >= 2.0; ++i)
+      largest = std::max(largest, std::abs(std::log(ink[i] / ink[i - 1])));
+    // The area alone changes by 2 log 1.04 = 0.08 a step; a level dropped at once would
+    // change it by a factor of two or more.
+    EXPECT_LT(largest, 0.3);
+  }
+}
+
+TEST_F(Elements, TheSameSeedPaintsTheSamePicture) {
+  const mesh::Mesh m = mesh::heightGrid(
+      41, 41, 10.0, [](double x, double y) { return 30.0 * std::sin(x / 60.0) * std::cos(y / 50.0); },
+      glm::dvec3(-200.0, -200.0, 0.0));
+  auto picture = [&](int seed) {
+    const scene::Scene s =
+        elementScene({{"trees", {{"enabled", true}, {"density", 60.0}, {"size", 15.0}, {"seed", seed}}},
+                      {"dots", {{"density", 20.0}}}});
+    std::vector<scene::LoadedObject> loaded = test::prepare(s, m);
+    auto set = std::make_shared<scene::ElementSet>();
+    set->instances = elements::placeElements(loaded[0].geometry->mesh, s.objects[0].trees, s.objects[0].dots, s.seed);
+    EXPECT_GT(set->instances.size(), 20u);
+    loaded[0].elements = set;
+    InkRenderer r(s, loaded);
+    return r.renderImage({-60.0, 35.0, 1.0});
+  };
+  const image::Image a = picture(4), b = picture(4), c = picture(5);
+  EXPECT_EQ(a.pixels, b.pixels);
+  EXPECT_NE(a.pixels, c.pixels);
+}
+
+}  // namespace
+}  // namespace shanshui::render

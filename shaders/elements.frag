@@ -1,0 +1,40 @@
+#version 450 core
+// One brush mark of an element (libs/elements/brushwork.h's shapes): its ink where the
+// brush covers the pixel, with a broken edge (dabs) or a bristle's streaks (strokes), and
+// the nearness of the mark, 1 − depth; the pass keeps the largest of each (GL_MAX).
+in vec2 v_local;
+flat in float v_length;
+flat in float v_ink;
+flat in int v_shape;
+flat in float v_seed;
+flat in float v_pixel;
+layout(location = 0) out vec2 o_ink;
+
+float hash(vec2 p) {
+  return fract(sin(dot(p, vec2(127.1, 311.7))) * 43758.5453);
+}
+
+const int kDab = 0, kLeaf = 1, kBranch = 2;
+
+void main() {
+  float s = v_local.x, t = v_local.y, len = v_length;
+  float u = len > 0.0 ? clamp(s / len, 0.0, 1.0) : 0.5;
+  float d;  // below 1 inside the mark
+  if (v_shape == kDab) {
+    vec2 q = vec2(s - clamp(s, 0.0, len), t);
+    float a = atan(q.y, q.x), r = v_seed * 6.2831853;
+    d = length(q) * (1.0 + 0.13 * sin(3.0 * a + r) + 0.07 * sin(5.0 * a + 3.0 * r));
+  } else if (v_shape == kLeaf) {
+    float half_width = pow(max(sin(3.14159265 * u), 0.0), 0.6);
+    d = (s < 0.0 || s > len) ? 2.0 : abs(t) / max(half_width, 1e-3);
+  } else {
+    float half_width = mix(1.0, 0.55, u);
+    d = s < 0.0 ? length(vec2(s, t)) : (s > len ? length(vec2(s - len, t)) / 0.55 : abs(t) / half_width);
+  }
+  float cover = 1.0 - smoothstep(1.0 - v_pixel, 1.0 + v_pixel, d);
+  // Bristles: the ink varies across the stroke in a few streaks along it.
+  float streak = hash(vec2(floor((t * 0.5 + 0.5) * 5.0), floor(v_seed * 4096.0)));
+  float ink = v_ink * cover * (0.8 + 0.2 * streak);
+  if (ink <= 0.0) discard;
+  o_ink = vec2(ink, 1.0 - gl_FragCoord.z);
+}
