@@ -164,11 +164,10 @@ int main(int argc, char** argv) {
         const image::Image positions = renderer.worldPositions();
         for (std::size_t k = 0; k < subject.pixels.size(); ++k) subject.pixels[k] = positions.pixels[4 * k + 3];
         const render::LookStatistics look = render::lookStatistics(img, sc.output.paper, &subject);
-        f["look"] = {{"paper_share", look.paper_share},
-                     {"dark_share", look.dark_share},
-                     {"dark_width_px", look.dark_width_px},
-                     {"far_near_ink", look.far_near_ink},
-                     {"longest_straight", look.longest_straight}};
+        f["look"] = {{"paper_share", look.paper_share},           {"dark_share", look.dark_share},
+                     {"dark_width_px", look.dark_width_px},       {"far_near_ink", look.far_near_ink},
+                     {"longest_straight", look.longest_straight}, {"marks_per_mp", look.marks_per_mp},
+                     {"mark_size_spread", look.mark_size_spread}};
       }
       stats["frames"].push_back(f);
       if (frames > 1) std::fprintf(stderr, "\rframe %d/%d", i + 1, frames);

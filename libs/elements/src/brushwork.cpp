@@ -53,7 +53,7 @@ void needleFan(Grower& g, glm::vec2 centre, float size) {
         kPi * (-0.15f + 1.3f * (static_cast<float>(k) + g.uniform(0.0f, 0.7f)) / static_cast<float>(needles));
     const float len = size * g.uniform(0.8f, 1.15f);
     const glm::vec2 tip = centre + len * glm::vec2(std::cos(a), 0.55f * std::sin(a));
-    g.add(centre, tip, 0.11f * size, g.uniform(0.78f, 0.97f), Shape::Leaf, kNear);
+    g.add(centre, tip, 0.15f * size, g.uniform(0.82f, 1.0f), Shape::Leaf, kNear);
   }
 }
 
@@ -72,7 +72,7 @@ void pine(Grower& g) {
     const glm::vec2 tip = on_trunk + glm::vec2(side * reach, g.uniform(-0.01f, 0.04f));
     g.add(on_trunk, tip, 0.018f, 0.9f, Shape::Branch, kNear);
     // Two or three needle fans along the branch, the largest at its tip.
-    const int fans = g.count(2, 3);
+    const int fans = 3;
     for (int k = 0; k < fans; ++k) {
       const float along = 1.0f - 0.35f * static_cast<float>(k);
       needleFan(g, on_trunk + along * (tip - on_trunk) + glm::vec2(0.0f, 0.01f),
@@ -131,20 +131,21 @@ void bare(Grower& g) {
   g.add({0.0f, 0.1f}, {0.0f, 0.78f}, 0.14f, 0.6f, Shape::Leaf, kFar);
 }
 
-// A distant tree: a thin stem under a spire of short level dabs, narrower towards the top.
+// A distant tree: a clump of upright dots (the Mi family's dots) over a short stem.
 void distant(Grower& g) {
   g.add({0.0f, 0.0f}, {g.uniform(-0.03f, 0.03f), 0.3f}, 0.03f, 0.85f, Shape::Branch, kNear);
-  const int dabs = g.count(8, 11);
-  for (int i = 0; i < dabs; ++i) {
-    const float f = static_cast<float>(i) / static_cast<float>(dabs - 1);
-    const glm::vec2 c(g.uniform(-0.025f, 0.025f), 0.22f + 0.68f * f);
-    const float half = (0.09f - 0.06f * f) * g.uniform(0.7f, 1.2f);
-    g.add(c - glm::vec2(half, g.uniform(-0.015f, 0.015f)), c + glm::vec2(half, g.uniform(-0.015f, 0.015f)),
-          g.uniform(0.08f, 0.11f), g.uniform(0.75f, 0.95f), Shape::Dab, kNear);
+  const int dots = g.count(5, 8);
+  for (int i = 0; i < dots; ++i) {
+    const float a = 2.0f * kPi * (static_cast<float>(i) + g.uniform(0.0f, 0.5f)) / static_cast<float>(dots);
+    const float r = g.uniform(0.2f, 1.0f);
+    const glm::vec2 c(0.13f * r * std::cos(a), 0.55f + 0.22f * r * std::sin(a));
+    const float len = g.uniform(0.12f, 0.2f);
+    g.add(c - glm::vec2(0.0f, 0.5f * len), c + glm::vec2(g.uniform(-0.02f, 0.02f), 0.5f * len), g.uniform(0.07f, 0.1f),
+          g.uniform(0.75f, 0.97f), Shape::Leaf, kNear);
   }
-  g.add({0.0f, 0.25f}, {0.0f, 0.6f}, 0.2f, 0.85f, Shape::Leaf, kMiddle);
-  g.add({0.02f, 0.5f}, {0.0f, 0.9f}, 0.14f, 0.85f, Shape::Leaf, kMiddle);
-  g.add({0.0f, 0.22f}, {0.0f, 0.9f}, 0.28f, 0.82f, Shape::Leaf, kFar);
+  g.add({-0.06f, 0.38f}, {-0.05f, 0.72f}, 0.14f, 0.85f, Shape::Leaf, kMiddle);
+  g.add({0.06f, 0.42f}, {0.05f, 0.76f}, 0.14f, 0.85f, Shape::Leaf, kMiddle);
+  g.add({0.0f, 0.3f}, {0.0f, 0.82f}, 0.28f, 0.82f, Shape::Leaf, kFar);
 }
 
 float smooth(float e0, float e1, float x) {

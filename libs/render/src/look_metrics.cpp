@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdint>
 #include <numbers>
+#include <tuple>
 #include <vector>
 
 #include <opencv2/imgproc.hpp>
@@ -141,7 +142,42 @@ LookStatistics lookStatistics(const image::Image& rgb, const glm::dvec3& paper, 
   for (const cv::Vec4i& s : segments) {
     out.longest_straight = std::max(out.longest_straight, std::hypot(s[2] - s[0], s[3] - s[1]) / w);
   }
+  image::Image ink_image(w, h, 1);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) ink_image.at(x, y, 0) = ink.at<float>(y, x);
+  std::tie(out.marks_per_mp, out.mark_size_spread) = darkMarks(ink_image);
   return out;
+}
+
+std::pair<double, double> darkMarks(const image::Image& ink) {
+  SHANSHUI_CHECK(ink.channels == 1 && ink.width > 0 && ink.height > 0);
+  cv::Mat full(ink.height, ink.width, CV_32F);
+  for (int y = 0; y < ink.height; ++y)
+    for (int x = 0; x < ink.width; ++x) full.at<float>(y, x) = ink.at(x, y, 0);
+  // At one megapixel, whatever the picture's size: a mark is measured at the scale the
+  // paintings it is compared with were.
+  const double scale = std::sqrt(1e6 / (static_cast<double>(ink.width) * ink.height));
+  const cv::Size size(std::max(1, static_cast<int>(std::lround(ink.width * scale))),
+                      std::max(1, static_cast<int>(std::lround(ink.height * scale))));
+  cv::Mat mp;
+  cv::resize(full, mp, size, 0, 0, scale < 1.0 ? cv::INTER_AREA : cv::INTER_LINEAR);
+  const cv::Mat dark = mp > 1.0f / 3.0f;
+  cv::Mat labels, stats, centroids;
+  const int n = cv::connectedComponentsWithStats(dark, labels, stats, centroids, 8, CV_32S);
+  std::vector<double> sizes;
+  for (int i = 1; i < n; ++i) {
+    const int area = stats.at<int>(i, cv::CC_STAT_AREA);
+    if (area >= 3) sizes.push_back(std::log2(static_cast<double>(area)));
+  }
+  const double per_mp = static_cast<double>(sizes.size()) / (static_cast<double>(size.area()) / 1e6);
+  if (sizes.size() < 4) return {per_mp, 0.0};
+  std::sort(sizes.begin(), sizes.end());
+  auto at = [&](double q) {  // linear interpolation between order statistics
+    const double k = q * static_cast<double>(sizes.size() - 1);
+    const auto i = static_cast<std::size_t>(k);
+    return sizes[i] + (k - static_cast<double>(i)) * (sizes[std::min(i + 1, sizes.size() - 1)] - sizes[i]);
+  };
+  return {per_mp, at(0.75) - at(0.25)};
 }
 
 }  // namespace shanshui::render
