@@ -1,22 +1,37 @@
 #version 450 core
-// The elements' marks (libs/render/src/elements_pass.cpp): six vertices a mark, read from
-// the storage buffer by gl_VertexID, each mark a quad around its segment a → b (round caps
-// and a pixel of room for the edge's smoothing) on an upright billboard through the
+// The elements' marks (libs/render/src/elements_pass.cpp): six vertices an entry that
+// elements_expand.comp appended, each a quad around the template mark's segment a → b (round
+// caps and a pixel of room for the edge's smoothing) on an upright billboard through the
 // element's foot that faces the camera.
+struct FrameInstance {
+  vec4 anchor_ppu;  // foot (world), pixels per world unit there
+  vec4 look;        // distance drawn towards the eye, seed, mirrored, lean
+};
+struct Entry {
+  uint instance;
+  uint mark;
+  float ink;
+  float size;  // world units per template unit
+};
 struct Mark {
-  vec4 anchor_ink;  // the element's foot (world), ink
-  vec4 ab;          // ends in the billboard's plane (world units, x right, y up)
-  vec4 shape;       // half width (world units), shape, seed, pixels per world unit at the foot
-  vec4 extra;       // distance drawn towards the eye (world units)
+  vec4 ab;     // ends, in units of the element's height (x right, y up from the foot)
+  vec4 shape;  // width, ink, shape, levels
 };
 layout(std430, binding = 2) readonly buffer Marks {
   Mark marks[];
 };
+layout(std430, binding = 3) readonly buffer Frame {
+  FrameInstance frame_instances[];
+};
+layout(std430, binding = 4) readonly buffer Entries {
+  Entry entries[];
+};
 uniform mat4 u_view_projection;
 uniform vec3 u_eye;
 uniform vec3 u_right;  // the camera's right, level
-out vec2 v_local;        // along and across the mark, in half widths
-flat out float v_length; // a → b, in half widths
+uniform uint u_capacity;
+out vec2 v_local;         // along and across the mark, in half widths
+flat out float v_length;  // a → b, in half widths
 flat out float v_ink;
 flat out int v_shape;
 flat out float v_seed;
@@ -27,32 +42,50 @@ flat out float v_pixel;  // one pixel, in half widths
 const float kLeastHalfWidthPx = 0.6;
 
 void main() {
-  Mark m = marks[gl_VertexID / 6];
+  uint k = uint(gl_VertexID) / 6u;
+  if (k >= u_capacity) {
+    gl_Position = vec4(2.0, 2.0, 2.0, 1.0);  // outside the view: nothing drawn
+    return;
+  }
+  Entry e = entries[k];
+  FrameInstance f = frame_instances[e.instance];
+  Mark m = marks[e.mark];
   const vec2 corners[6] = vec2[6](vec2(0, 0), vec2(1, 0), vec2(1, 1), vec2(0, 0), vec2(1, 1), vec2(0, 1));
   vec2 c = corners[gl_VertexID % 6];
-  float half_width = m.shape.x, per_unit = m.shape.w, ink = m.anchor_ink.w;
+  // The template's mark, mirrored, leant and scaled to the element.
+  vec2 a = m.ab.xy, b = m.ab.zw;
+  if (f.look.z > 0.5) {
+    a.x = -a.x;
+    b.x = -b.x;
+  }
+  float cl = cos(f.look.w), sl = sin(f.look.w);
+  mat2 turn = mat2(cl, -sl, sl, cl);  // columns: where x and y go (clockwise for a positive lean)
+  a = e.size * (turn * a);
+  b = e.size * (turn * b);
+  float per_unit = f.anchor_ppu.w, ink = min(e.ink * m.shape.y, 1.0);
+  float half_width = 0.5 * e.size * m.shape.x;
   float px = half_width * per_unit;
   if (px < kLeastHalfWidthPx) {
     ink *= px / kLeastHalfWidthPx;
     half_width = kLeastHalfWidthPx / per_unit;
   }
-  vec2 d = m.ab.zw - m.ab.xy;
+  vec2 d = b - a;
   float len = length(d);
   vec2 dir = len > 1e-6 * half_width ? d / len : vec2(0.0, 1.0);
   vec2 across_dir = vec2(-dir.y, dir.x);
   float room = half_width + 1.0 / per_unit;
   float along = mix(-room, len + room, c.x), across = mix(-room, room, c.y);
-  vec2 local = m.ab.xy + dir * along + across_dir * across;
-  vec3 world = m.anchor_ink.xyz + u_right * local.x + vec3(0.0, 0.0, local.y);
+  vec2 local = a + dir * along + across_dir * across;
+  vec3 world = f.anchor_ppu.xyz + u_right * local.x + vec3(0.0, 0.0, local.y);
   // Towards the eye along the vertex's own ray: the same place on screen, in front of the
   // ground the element stands on.
   vec3 ray = world - u_eye;
-  world = u_eye + ray * max(1.0 - m.extra.x / max(length(ray), 1e-30), 0.5);
+  world = u_eye + ray * max(1.0 - f.look.x / max(length(ray), 1e-30), 0.5);
   gl_Position = u_view_projection * vec4(world, 1.0);
   v_local = vec2(along, across) / half_width;
   v_length = len / half_width;
   v_ink = ink;
-  v_shape = int(m.shape.y + 0.5);
-  v_seed = m.shape.z;
+  v_shape = int(m.shape.z + 0.5);
+  v_seed = f.look.y;
   v_pixel = 1.0 / (half_width * per_unit);
 }

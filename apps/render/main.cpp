@@ -1,7 +1,10 @@
 // shanshui-render: headless (EGL) ink-wash rendering of a scene to images and statistics.
+#include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <map>
 
 #include <nlohmann/json.hpp>
 
@@ -64,6 +67,72 @@ std::filesystem::path framePath(const std::string& pattern, int index, int count
   return p.parent_path() / (p.stem().string() + suffix + p.extension().string());
 }
 
+// --benchmark: frames back to back with the camera turning (no frame is a cache hit), timed
+// per pass on the GPU, nothing read back or encoded between them; the first two seconds warm
+// the GPU up and are not counted. Each frame still waits for its timer queries.
+void runBenchmark(const std::string& input, std::vector<std::string> sets, const std::string& size, int count,
+                  const std::string& stats_path) {
+  if (size.size()) {
+    const Size2 s = parseSize(size, "--size");
+    sets.push_back("output.width=" + std::to_string(s.width));
+    sets.push_back("output.height=" + std::to_string(s.height));
+  }
+  const scene::Scene sc = scene::loadSceneInput(input, sets);
+  OutputSet outputs({input});
+  if (!stats_path.empty()) outputs.declare(stats_path, "--stats", {".json"});
+  scene::AssetCache cache;
+  const auto objects = cache.getAll(sc);
+  const auto context = render::GlContext::create({.kind = render::ContextKind::Headless});
+  render::InkRenderer renderer(sc, objects);
+  const int w = sc.output.pixelWidth(), h = sc.output.pixelHeight();
+  const scene::CameraKey start = render::frameKey(sc, 0, 1, 0.0);
+  std::map<std::string, std::vector<double>> passes;
+  std::vector<double> frame_ms, gpu_ms;
+  const auto warm_until = std::chrono::steady_clock::now() + std::chrono::seconds(2);
+  for (int i = 0, counted = 0; counted < count; ++i) {
+    scene::CameraKey key = start;
+    key.azimuth_deg += 0.25 * i;
+    render::FrameStats fs;
+    renderer.render(renderer.camera(key, static_cast<double>(w) / h), w, h, &fs, true, i / 60.0);
+    if (std::chrono::steady_clock::now() < warm_until) continue;
+    ++counted;
+    frame_ms.push_back(fs.frame_ms);
+    double sum = 0.0;
+    for (const auto& p : fs.passes) {
+      passes[p.name].push_back(p.gpu_ms);
+      sum += p.gpu_ms;
+    }
+    gpu_ms.push_back(sum);
+  }
+  auto quantile = [](std::vector<double> v, double q) {
+    std::sort(v.begin(), v.end());
+    return v.empty() ? 0.0 : v[std::min(v.size() - 1, static_cast<std::size_t>(q * static_cast<double>(v.size())))];
+  };
+  nlohmann::json out = {{"scene", input},
+                        {"device", context->description()},
+                        {"size", {w, h}},
+                        {"frames", count},
+                        {"passes_built", renderer.passesBuilt()},
+                        {"elements", nlohmann::json::array()},
+                        {"frame_wall_ms", {{"median", quantile(frame_ms, 0.5)}, {"p90", quantile(frame_ms, 0.9)}}},
+                        {"passes_gpu_ms", {{"median", quantile(gpu_ms, 0.5)}, {"p90", quantile(gpu_ms, 0.9)}}},
+                        {"pass_gpu_ms", nlohmann::json::object()}};
+  for (const auto& o : objects)
+    out["elements"].push_back({{"count", o.elements ? o.elements->instances.size() : 0},
+                               {"place_seconds", o.elements ? o.elements->place_seconds : 0.0}});
+  std::printf("%s\n%s, %dx%d, %d frames after 2 s of warm-up\n", context->description().c_str(), input.c_str(), w, h,
+              count);
+  for (const auto& [name, v] : passes) {
+    out["pass_gpu_ms"][name] = {{"median", quantile(v, 0.5)}, {"p90", quantile(v, 0.9)}};
+    std::printf("  %-18s GPU median %8.3f ms  p90 %8.3f ms\n", name.c_str(), quantile(v, 0.5), quantile(v, 0.9));
+  }
+  std::printf("  %-18s GPU median %8.3f ms  p90 %8.3f ms\n", "passes", quantile(gpu_ms, 0.5), quantile(gpu_ms, 0.9));
+  std::printf("  %-18s wall median %7.3f ms  p90 %8.3f ms (%.0f fps)\n", "frame", quantile(frame_ms, 0.5),
+              quantile(frame_ms, 0.9), 1000.0 / std::max(quantile(frame_ms, 0.5), 1e-9));
+  if (!stats_path.empty()) outputs.stage(stats_path, tools::jsonText(out));
+  outputs.commit();
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -82,7 +151,7 @@ int main(int argc, char** argv) {
       "Scene keys: docs/scene.md.");
   std::string input, output, size, stats_path;
   std::vector<std::string> sets;
-  int frames = 1;
+  int frames = 1, benchmark = 0;
   double orbit = 360.0, fps = 24.0;
   std::string describe_into;
   bool verbose = false, smallest = false, describe = false;
@@ -97,6 +166,11 @@ int main(int argc, char** argv) {
   app.add_option("--orbit", orbit, "degrees turned around +Z over the frames (no camera.path)")->default_val(360.0);
   app.add_option("--fps", fps, "frames per second of a sequence: frame i is at time i / fps (spinning objects)")
       ->default_val(24.0);
+  app.add_option("--benchmark", benchmark,
+                 "time N frames back to back (camera turning a quarter degree a frame, no readback or encoding), "
+                 "after two seconds of warm-up: per pass GPU median and 90th percentile, frame wall time; no -o "
+                 "needed")
+      ->default_val(0);
   app.add_option("--set", sets, "override a scene key, dotted path = JSON value (repeatable)");
   app.add_option("--stats", stats_path, "write JSON statistics: passes built, per frame time and pass GPU times");
   app.add_flag("--smallest", smallest, "compress PNG/TIFF/EXR output hardest (slower); default: fast compression");
@@ -114,6 +188,12 @@ int main(int argc, char** argv) {
       return;
     }
     if (input.empty()) throw makeError("scene: required (a scene, mesh or DEM file; see --help)");
+    if (benchmark < 0 || benchmark > 1000000)
+      throw makeError("--benchmark: ", benchmark, " is out of range; expected [0, 1000000]");
+    if (benchmark > 0) {
+      runBenchmark(input, sets, size, benchmark, stats_path);
+      return;
+    }
     if (output.empty()) throw makeError("-o: required (the image to write; see --help)");
     if (frames < 1 || frames > 100000) throw makeError("--frames: ", frames, " is out of range; expected [1, 100000]");
     if (!std::isfinite(orbit)) throw makeError("--orbit: must be finite");
@@ -144,6 +224,8 @@ int main(int argc, char** argv) {
     stats["variants"] = renderer.variants();
     stats["load_seconds"] = nlohmann::json::array();
     for (const auto& o : objects) stats["load_seconds"].push_back(o.geometry->load_seconds);
+    stats["place_seconds"] = nlohmann::json::array();  // trees and moss dots, per object
+    for (const auto& o : objects) stats["place_seconds"].push_back(o.elements ? o.elements->place_seconds : 0.0);
     stats["frames"] = nlohmann::json::array();
     for (int i = 0; i < frames; ++i) {
       render::FrameStats fs;

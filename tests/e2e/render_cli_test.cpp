@@ -46,12 +46,13 @@ TEST(RenderCli, StatsListThePassesBuiltAndTheirGpuTimePerFrame) {
     EXPECT_EQ(img.height, 120);
   }
   const json s = readJson(dir / "s.json");
-  EXPECT_EQ(s["passes_built"], json({"gbuffer", "canvas", "ink"}));
+  EXPECT_EQ(s["passes_built"], json({"gbuffer", "canvas", "elements", "ink"}));
   // The sample draws its lines as strokes: the ink pass has a lines stage before it, which
   // also samples the shading's noise (SHADING). Its slope wrinkles on planar UVs are
   // computed in the ink pass, not the G-buffer's.
-  EXPECT_EQ(s["variants"]["ink"], json({"LINES STROKES SHADING WRINKLE WRINKLE_SLOPE CANVAS SINGLE_OBJECT BORDER MIST",
-                                        "lines: SINGLE_OBJECT BORDER MIST SHADING"}));
+  EXPECT_EQ(s["variants"]["ink"],
+            json({"LINES STROKES SHADING WRINKLE WRINKLE_SLOPE CANVAS ELEMENTS SINGLE_OBJECT BORDER MIST",
+                  "lines: SINGLE_OBJECT BORDER MIST SHADING"}));
   // The tiles canvas: its tile, the surfaces' and the background's programs (rice paper's
   // fibres, spots and mottle; the grain pinned to the surface under zoom), the mottle's.
   EXPECT_EQ(s["variants"]["canvas"],
@@ -62,7 +63,7 @@ TEST(RenderCli, StatsListThePassesBuiltAndTheirGpuTimePerFrame) {
   ASSERT_EQ(s["frames"].size(), 3u);
   for (const json& f : s["frames"]) {
     EXPECT_FALSE(f["cached"].get<bool>());
-    EXPECT_EQ(passNames(f), std::set<std::string>({"gbuffer", "canvas", "lines", "ink"}));
+    EXPECT_EQ(passNames(f), std::set<std::string>({"gbuffer", "canvas", "elements", "lines", "ink"}));
     double sum = 0;
     for (const auto& [k, v] : f["passes"].items()) {
       EXPECT_GE(v.get<double>(), 0.0) << k;
@@ -84,13 +85,14 @@ TEST(RenderCli, TheLightColourSampleRunsThePigmentShadowEdgesAndSubstratePasses)
                      " --set objects.0.max_vertices=5000");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const json s = readJson(dir / "s.json");
-  EXPECT_EQ(s["passes_built"], json({"gbuffer", "canvas", "ink", "pigment", "shadow", "edges", "substrate"}));
+  EXPECT_EQ(s["passes_built"],
+            json({"gbuffer", "canvas", "elements", "ink", "pigment", "shadow", "edges", "substrate"}));
   EXPECT_NE(s["variants"]["ink"][0].get<std::string>().find("PIGMENT"), std::string::npos);
   EXPECT_EQ(s["variants"]["edges"], json({"SHADOW"}));
   EXPECT_EQ(s["variants"]["substrate"], json({"CANVAS"}));
   ASSERT_EQ(s["frames"].size(), 1u);
-  EXPECT_EQ(passNames(s["frames"][0]),
-            std::set<std::string>({"gbuffer", "canvas", "lines", "ink", "pigment", "shadow", "edges", "substrate"}));
+  EXPECT_EQ(passNames(s["frames"][0]), std::set<std::string>({"gbuffer", "canvas", "elements", "lines", "ink",
+                                                              "pigment", "shadow", "edges", "substrate"}));
 }
 
 TEST(RenderCli, ASceneWithoutWrinklesCanvasOrDiffusionRunsNoneOfThem) {
@@ -129,13 +131,13 @@ TEST(RenderCli, LinesOnlyAndShadingOnlyBuildOnlyTheirShaderCode) {
   const json a = readJson(dir / "a.json");
   // Strokes only: the bands' code (BAND_LINES) is left out of the ink pass.
   EXPECT_EQ(a["variants"]["ink"],
-            json({"LINES STROKES CANVAS SINGLE_OBJECT BORDER MIST", "lines: SINGLE_OBJECT BORDER MIST"}));
+            json({"LINES STROKES CANVAS ELEMENTS SINGLE_OBJECT BORDER MIST", "lines: SINGLE_OBJECT BORDER MIST"}));
   EXPECT_EQ(a["variants"]["gbuffer"], json({"OBJECT_CURVATURE"})) << "no noise, no wrinkle texture, no UVs";
   r = run(base + " -o " + quote(dir / "b.png") + " --stats " + quote(dir / "b.json") +
           " --set objects.0.lines.enabled=false");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const json b = readJson(dir / "b.json");
-  EXPECT_EQ(b["variants"]["ink"], json({"SHADING WRINKLE WRINKLE_SLOPE CANVAS SINGLE_OBJECT BORDER MIST"}));
+  EXPECT_EQ(b["variants"]["ink"], json({"SHADING WRINKLE WRINKLE_SLOPE CANVAS ELEMENTS SINGLE_OBJECT BORDER MIST"}));
   // No curvature of either kind, no UV varying, no noise (the ink pass samples it).
   EXPECT_EQ(b["variants"]["gbuffer"], json({""}));
   // Eq. 1's bands instead of strokes: no lines stage, no stroke code, the bands' code.
@@ -144,7 +146,7 @@ TEST(RenderCli, LinesOnlyAndShadingOnlyBuildOnlyTheirShaderCode) {
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const json c = readJson(dir / "c.json");
   EXPECT_EQ(c["variants"]["ink"],
-            json({"LINES BAND_LINES SHADING WRINKLE WRINKLE_SLOPE CANVAS SINGLE_OBJECT BORDER MIST"}));
+            json({"LINES BAND_LINES SHADING WRINKLE WRINKLE_SLOPE CANVAS ELEMENTS SINGLE_OBJECT BORDER MIST"}));
   EXPECT_EQ(passNames(c["frames"][0]).count("lines"), 0u);
 }
 
@@ -195,14 +197,14 @@ TEST(RenderCli, EverySampleSceneAndALoneDemRenderInTheirFormat) {
     EXPECT_LT(dark_share, 0.25) << "mostly paper";
   }
   EXPECT_GE(scenes, 4) << "the default and the three distances";
-  // A DEM alone gets the sample's style: strokes, rice paper, mist, a dissolving border.
+  // A DEM alone gets the sample's style: strokes, rice paper, mist, a dissolving border, trees and dots.
   const auto r = run(bin("shanshui-render") + " " + quote(test::sourceDir() / "samples/terrain/mount_st_helens.dem") +
                      " -o " + quote(dir / "lone.png") + " --size 160x120 --stats " + quote(dir / "lone.json") +
                      " --set objects.0.max_vertices=20000");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const json s = readJson(dir / "lone.json");
-  EXPECT_EQ(s["passes_built"], json({"gbuffer", "canvas", "ink"}));
-  EXPECT_EQ(s["variants"]["ink"][0], "LINES STROKES SHADING CANVAS SINGLE_OBJECT BORDER MIST");
+  EXPECT_EQ(s["passes_built"], json({"gbuffer", "canvas", "elements", "ink"}));
+  EXPECT_EQ(s["variants"]["ink"][0], "LINES STROKES SHADING CANVAS ELEMENTS SINGLE_OBJECT BORDER MIST");
   EXPECT_LT(darkness(image::loadImage(dir / "lone.png")).first, 0.35f);
 }
 

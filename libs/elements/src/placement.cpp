@@ -207,7 +207,9 @@ Site Terrain::site(double x, double y) const {
   s.height = relief > 0.0 ? std::clamp((p.z - bounds_.min.z) / relief, 0.0, 1.0) : 0.0;
   s.ridge = sample(ridge_, x, y);
   s.hollow = sample(hollow_, x, y);
-  s.floor = (1.0 - smooth(4.0, 12.0, s.slope_deg)) * (1.0 - smooth(0.12, 0.3, s.height));
+  // A valley floor: flat, low and lying below its surroundings (where a stream or a bank
+  // would be), not a whole plain.
+  s.floor = (1.0 - smooth(4.0, 12.0, s.slope_deg)) * (1.0 - smooth(0.12, 0.3, s.height)) * s.hollow;
   return s;
 }
 
@@ -232,7 +234,7 @@ std::vector<Instance> placeElements(const mesh::Mesh& m, const TreeOptions& tree
 
   if (want_trees) {
     Random r(streamValue(trees.seed ? trees.seed : scene_seed, 0x7e55ull));
-    const double sigma = trees.grove_radius > 0.0 ? trees.grove_radius : 4.0 * trees.size;
+    const double sigma = trees.grove_radius > 0.0 ? trees.grove_radius : 6.0 * trees.size;
     const double reach = 3.0 * sigma;
     const double w = b.size().x + 2 * reach, h = b.size().y + 2 * reach;
     const int groves = r.poisson(trees.density / 1e4 * w * h / trees.grove);

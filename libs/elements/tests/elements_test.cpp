@@ -80,11 +80,13 @@ TEST(Placement, NoTreeAboveTheSlopeLimitOrOutsideTheBand) {
 }
 
 TEST(Placement, DensityFollowsTheRuleOnAFullySuitedPlane) {
-  // A flat valley floor suits trees fully: density × 400 ha trees, whatever the groves.
+  // A plain whose open slopes get the full density: density × 400 ha trees, whatever the
+  // groves.
   for (double grove : {1.0, 8.0}) {
     SCOPED_TRACE(grove);
     TreeOptions t = trees(2.0);
     t.grove = grove;
+    t.open = 1.0;
     double total = 0.0;
     const int runs = 6;
     for (int seed = 1; seed <= runs; ++seed) total += static_cast<double>(placeElements(flat(), t, {}, seed).size());
@@ -99,6 +101,7 @@ TEST(Placement, DensityFollowsTheRuleOnAFullySuitedPlane) {
 
 TEST(Placement, TreesStandInGrovesNotAnEvenScatter) {
   TreeOptions t = trees(2.0);
+  t.open = 1.0;
   t.grove = 10.0;
   t.grove_radius = 40.0;
   const std::vector<Instance> groves = placeElements(flat(), t, {}, 3);
@@ -172,6 +175,7 @@ TEST(Placement, MossDotsGatherOnRidgesAndRockEdgesAndAtTreeFeet) {
   d.density = 0.0;
   d.at_trees = 1.0;
   TreeOptions t = trees(2.0);
+  t.open = 1.0;
   const std::vector<Instance> feet = placeElements(flat(), t, d, 4);
   const std::size_t n = treesIn(feet);
   EXPECT_GE(feet.size() - n, n);

@@ -3,20 +3,24 @@
 // ink pass lays over the picture before the paper and the diffusion, so they get the same
 // ink treatment as the slope they stand on.
 //
-// Each frame that the camera, size or parameters change, every element in view is expanded
-// on the CPU into its marks for the levels of detail its size on screen asks for (far dab,
-// middle strokes, full brushwork, cross-faded by elements::levelWeights), with the ink the
-// distance fade, mist and border leave at its foot (atmosphere.h). The marks go to the GPU
-// as one storage buffer; shaders/elements.vert stands each on an upright billboard through
-// the element's foot, facing the camera, drawn depth-tested against the G-buffer (nudged
+// The elements and the brushwork grown for each kind (16 variants a kind, marks sorted by
+// level of detail) are uploaded once. Each frame that the camera, size or parameters change,
+// shaders/elements_expand.comp runs one thread per element: it culls what is out of view,
+// weighs the levels of detail by the element's height on screen (far dab, middle strokes,
+// full brushwork, cross-faded as elements::levelWeights), takes the ink the distance fade,
+// mist and border leave at its foot, and appends an entry per mark of the active levels.
+// One indirect draw then stands each mark on an upright billboard through the element's foot
+// facing the camera (shaders/elements.vert), depth-tested against the G-buffer and nudged
 // towards the eye along each vertex's own ray, which keeps its place on screen, so the
-// ground it stands on does not hide its foot). The layer keeps the largest ink and the
+// ground it stands on does not hide its foot. The layer keeps the largest ink and the
 // nearness of what drew it: with animated objects it is drawn against the static objects'
 // depth only when the static layer is, and the ink pass hides what an animated object
-// covers by comparing nearness with its depth.
+// covers by comparing nearness with its depth. Nothing per element runs on the CPU.
 #include <algorithm>
 #include <array>
 #include <cmath>
+
+#include <glm/gtc/matrix_access.hpp>
 
 #include "atmosphere.h"
 #include "shanshui/core/error.h"
@@ -29,34 +33,98 @@ namespace shanshui::render {
 
 namespace {
 
-// One mark on the GPU (std430, shaders/elements.vert's Mark).
-struct GpuMark {
-  glm::vec4 anchor_ink;  //!< the element's foot (world), the mark's ink
-  glm::vec4 ab;          //!< its ends in the billboard's plane (world units: x right, y up)
-  glm::vec4 shape;       //!< half width (world units), shape, seed, pixels per world unit at the foot
-  glm::vec4 extra;       //!< how far it is drawn towards the eye (world units), unused ×3
+// shaders/elements_expand.comp's and elements.vert's blocks (std430).
+struct GpuInstance {
+  glm::vec4 position_size;  //!< uploaded coordinates; height (trees) or size factor (dots)
+  glm::vec4 lean_seed;      //!< lean, seed in [0, 1), mirrored, template index
 };
-static_assert(sizeof(GpuMark) == 64);
+struct GpuMark {
+  glm::vec4 ab;     //!< ends, in units of the element's height
+  glm::vec4 shape;  //!< width, ink, shape, levels
+};
+constexpr std::size_t kFrameInstanceBytes = 32, kEntryBytes = 16;
+static_assert(sizeof(GpuInstance) == 32 && sizeof(GpuMark) == 32);
 
-constexpr int kVariants = 16;           // grown brushwork per tree kind
-constexpr double kLeastFarDabPx = 2.5;  // a far tree's dab is at least this wide (pixels at 1024 high)
+constexpr int kVariants = 16;                   // grown brushwork per tree kind
+constexpr double kLeastFarDabPx = 2.5;          // a far tree's dab is at least this wide (pixels at 1024 high)
+constexpr std::size_t kMostEntries = 1u << 21;  // marks a frame (32 MiB of entries)
+
+// Marks in the order the expansion reads them: far only, middle only, middle and near, near
+// only (a dot's one mark, at every level, counts as far).
+int group(std::uint8_t levels) {
+  if (levels == elements::kFar || levels == (elements::kFar | elements::kMiddle | elements::kNear)) return 0;
+  if (levels == elements::kMiddle) return 1;
+  if (levels == (elements::kMiddle | elements::kNear)) return 2;
+  SHANSHUI_CHECK(levels == elements::kNear);
+  return 3;
+}
 
 class ElementsPass final : public RenderPass {
  public:
-  explicit ElementsPass(const PassSetup& setup) : scene_(setup.scene), vao_(VertexArray::create()) {
+  explicit ElementsPass(const PassSetup& setup)
+      : scene_(setup.scene), vao_(VertexArray::create()), indirect_(Buffer::create()) {
+    // The brushwork: 16 variants of each tree kind, then the dot.
+    std::vector<GpuMark> marks;
+    std::vector<glm::ivec4> groups;
+    std::size_t largest = 0;
+    auto add = [&](std::vector<elements::Mark> grown) {
+      std::stable_sort(grown.begin(), grown.end(), [](const elements::Mark& x, const elements::Mark& y) {
+        return group(x.levels) < group(y.levels);
+      });
+      // Where each group starts: the first mark of that group or a later one (the end if none).
+      glm::ivec4 start(static_cast<int>(marks.size() + grown.size()));
+      for (std::size_t k = grown.size(); k-- > 0;)
+        for (int gi = 0; gi <= group(grown[k].levels); ++gi) start[gi] = static_cast<int>(marks.size() + k);
+      for (const elements::Mark& m : grown)
+        marks.push_back({glm::vec4(m.a, m.b), glm::vec4(m.width, m.ink, static_cast<float>(m.shape), m.levels)});
+      groups.push_back(start);
+      groups.emplace_back(static_cast<int>(marks.size()), 0, 0, 0);
+      largest = std::max(largest, grown.size());
+    };
     for (int k = 0; k < elements::kTreeKinds; ++k)
       for (int v = 0; v < kVariants; ++v)
-        templates_[static_cast<std::size_t>(k * kVariants + v)] = elements::growBrushwork(
-            static_cast<elements::Kind>(k), 0x5eedu * 977u + static_cast<std::uint32_t>(k * 131 + v));
-    dot_ = elements::growBrushwork(elements::Kind::MossDot, 0);
-    // Elements of a moving object move with it: then the layer is drawn every frame.
-    for (std::size_t i = 0; i < setup.scene.objects.size(); ++i)
-      if (setup.scene.objects[i].hasElements() && setup.scene.objects[i].animated()) every_frame_ = true;
+        add(elements::growBrushwork(static_cast<elements::Kind>(k),
+                                    0x5eedu * 977u + static_cast<std::uint32_t>(k * 131 + v)));
+    dot_template_ = static_cast<std::uint32_t>(groups.size() / 2);
+    add(elements::growBrushwork(elements::Kind::MossDot, 0));
+    marks_ = upload(marks);
+    templates_ = upload(groups);
+    // The elements, each object's in a run.
+    std::vector<GpuInstance> instances;
+    for (std::size_t i = 0; i < setup.objects.size(); ++i) {
+      const SceneObjectGpu& g = setup.objects[i];
+      if (!g.elements || g.elements->instances.empty()) continue;
+      runs_.push_back({i, instances.size(), g.elements->instances.size()});
+      const glm::dvec3 centre = g.model_bounds.centre();
+      for (const elements::Instance& e : g.elements->instances) {
+        const bool dot = e.kind == elements::Kind::MossDot;
+        const std::uint32_t t =
+            dot ? dot_template_ : static_cast<std::uint32_t>(static_cast<int>(e.kind) * kVariants + e.seed % kVariants);
+        instances.push_back({glm::vec4(glm::vec3(glm::dvec3(e.position) - centre), e.size),
+                             glm::vec4(e.lean, static_cast<float>(e.seed & 0xffffu) / 65536.0f,
+                                       e.mirrored ? 1.0f : 0.0f, static_cast<float>(t))});
+      }
+      // Elements of a moving object move with it: then the layer is drawn every frame.
+      if (setup.scene.objects[i].animated()) every_frame_ = true;
+    }
+    count_ = instances.size();
+    instances_ = upload(instances);
+    frame_instances_ = Buffer::create();
+    glNamedBufferStorage(frame_instances_.id(),
+                         static_cast<GLsizeiptr>(std::max<std::size_t>(count_, 1) * kFrameInstanceBytes), nullptr, 0);
+    capacity_ = std::clamp<std::size_t>(count_ * largest, 1, kMostEntries);
+    entries_ = Buffer::create();
+    glNamedBufferStorage(entries_.id(), static_cast<GLsizeiptr>(capacity_ * kEntryBytes), nullptr, 0);
+    glNamedBufferStorage(indirect_.id(), 4 * sizeof(GLuint), nullptr, GL_DYNAMIC_STORAGE_BIT);
     buildPrograms();
   }
 
   std::string name() const override { return "elements"; }
-  void buildPrograms() override { program_ = Program({"elements.vert", "elements.frag"}); }
+  void buildPrograms() override {
+    Program expand({"elements_expand.comp"});
+    draw_ = Program({"elements.vert", "elements.frag"});
+    expand_ = std::move(expand);
+  }
   std::vector<std::string> variants() const override { return {""}; }
   void setScene(const scene::Scene& s) override {
     scene_ = s;
@@ -73,32 +141,35 @@ class ElementsPass final : public RenderPass {
     const bool animated = images.static_gbuffer != nullptr;
     if (!every_frame_ && animated && in.static_key == key_) return;  // the cached static layer
     if (in.timer) in.timer->begin("elements");
-    const std::size_t count = expand(in);
     glDisable(GL_SCISSOR_TEST);  // the layer is whole: a region redraw keeps it as it is
+    expand(in);
     const Texture2D& depth = animated && !every_frame_ ? images.static_gbuffer->depth() : *images.attachable_depth;
     glNamedFramebufferTexture(target_.id(), GL_DEPTH_ATTACHMENT, depth.id(), 0);
     target_.bind();
     const float clear[4] = {0.0f, 0.0f, 0.0f, 0.0f};
     glClearNamedFramebufferfv(target_.id(), GL_COLOR, 0, clear);
-    if (count > 0) {
-      glEnable(GL_DEPTH_TEST);
-      glDepthMask(GL_FALSE);
-      glDepthFunc(GL_LESS);
-      glEnable(GL_BLEND);
-      glBlendEquation(GL_MAX);
-      glBlendFunc(GL_ONE, GL_ONE);
-      glBindVertexArray(vao_.id());
-      glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, marks_.id());
-      program_.use();
-      program_.set("u_view_projection", in.viewProjection());
-      program_.set("u_eye", glm::vec3(in.camera.eye()));
-      program_.set("u_right", right(in));
-      glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(6 * count));
-      glDisable(GL_BLEND);
-      glBlendEquation(GL_FUNC_ADD);
-      glDisable(GL_DEPTH_TEST);
-      glDepthMask(GL_TRUE);
-    }
+    glEnable(GL_DEPTH_TEST);
+    glDepthMask(GL_FALSE);
+    glDepthFunc(GL_LESS);
+    glEnable(GL_BLEND);
+    glBlendEquation(GL_MAX);
+    glBlendFunc(GL_ONE, GL_ONE);
+    glBindVertexArray(vao_.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, marks_.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, frame_instances_.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, entries_.id());
+    glBindBuffer(GL_DRAW_INDIRECT_BUFFER, indirect_.id());
+    draw_.use();
+    draw_.set("u_view_projection", in.viewProjection());
+    draw_.set("u_eye", glm::vec3(in.camera.eye()));
+    draw_.set("u_right", right(in));
+    draw_.set("u_capacity", static_cast<unsigned>(capacity_));
+    glDrawArraysIndirect(GL_TRIANGLES, nullptr);
+    glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
+    glDisable(GL_BLEND);
+    glBlendEquation(GL_FUNC_ADD);
+    glDisable(GL_DEPTH_TEST);
+    glDepthMask(GL_TRUE);
     glNamedFramebufferTexture(target_.id(), GL_DEPTH_ATTACHMENT, 0, 0);
     if (in.region) {
       glEnable(GL_SCISSOR_TEST);
@@ -108,10 +179,21 @@ class ElementsPass final : public RenderPass {
     if (in.timer) in.timer->end();
     SHANSHUI_GL_CHECK("elements pass");
     key_ = in.static_key;
-    marks_drawn_ = count;
   }
 
  private:
+  struct Run {
+    std::size_t object, first, count;
+  };
+
+  template <typename T>
+  static Buffer upload(const std::vector<T>& v) {
+    Buffer b = Buffer::create();
+    glNamedBufferStorage(b.id(), static_cast<GLsizeiptr>(std::max<std::size_t>(v.size(), 1) * sizeof(T)),
+                         v.empty() ? nullptr : v.data(), 0);
+    return b;
+  }
+
   // The camera's right, level: billboards stand upright whatever the camera's pitch.
   static glm::vec3 right(const FrameInputs& in) {
     const glm::mat4 v = in.camera.view();
@@ -120,92 +202,67 @@ class ElementsPass final : public RenderPass {
     return glm::vec3(glm::normalize(r));
   }
 
-  // Every element in view, as marks in marks_; returns how many.
-  std::size_t expand(const FrameInputs& in) {
-    std::vector<GpuMark> out;
-    const glm::dmat4 vp = glm::dmat4(in.viewProjection());
-    const double pixels_at_1 = 0.5 * in.height / std::tan(glm::radians(in.camera.fov_y_deg) * 0.5);
+  // Every element in view, as entries for the indirect draw.
+  void expand(const FrameInputs& in) {
+    const GLuint reset[4] = {0, 1, 0, 0};
+    glNamedBufferSubData(indirect_.id(), 0, sizeof reset, reset);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, instances_.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, templates_.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, frame_instances_.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, entries_.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, indirect_.id());
+    expand_.use();
     const double per_1024 = in.height / 1024.0;
     const glm::dvec2 fade = fadeRange(in);
-    for (std::size_t i = 0; i < in.objects.size(); ++i) {
-      const SceneObjectGpu& g = in.objects[i];
-      if (!g.elements) continue;
-      const scene::Object& o = scene_.objects[i];
-      const glm::dmat4 model = in.modelAt(i);
+    expand_.set("u_view_projection", in.viewProjection());
+    expand_.set("u_eye", glm::vec3(in.camera.eye()));
+    expand_.set("u_near", static_cast<float>(in.camera.near_plane));
+    expand_.set("u_pixels_at_1",
+                static_cast<float>(0.5 * in.height / std::tan(glm::radians(in.camera.fov_y_deg) * 0.5)));
+    expand_.set("u_per_1024", static_cast<float>(per_1024));
+    expand_.set("u_height_px", static_cast<float>(in.height));
+    expand_.set("u_capacity", static_cast<unsigned>(capacity_));
+    expand_.set("u_least_far_px", static_cast<float>(kLeastFarDabPx));
+    expand_.set("u_dot_template", dot_template_);
+    expand_.set("u_fade", static_cast<float>(scene_.output.fade));
+    expand_.set("u_fade_range", glm::vec2(fade));
+    const scene::Mist& mist = scene_.mist;
+    const double z0 = in.world_bounds.min.z, extent = std::max(in.world_bounds.size().z, 1e-9);
+    expand_.set("u_mist", mist.enabled() ? glm::vec3(static_cast<float>(mist.density),
+                                                     static_cast<float>(z0 + mist.height * extent),
+                                                     static_cast<float>(std::max(mist.softness * extent, 1e-9)))
+                                         : glm::vec3(0.0f));
+    for (const Run& r : runs_) {
+      const scene::Object& o = scene_.objects[r.object];
+      const glm::dmat4 model = in.modelAt(r.object);
       const glm::dmat4 to_model = glm::inverse(model);
-      const double scale = std::cbrt(std::abs(glm::determinant(glm::dmat3(model))));
-      const glm::dvec3 centre = g.model_bounds.centre();
-      for (const elements::Instance& e : g.elements->instances) {
-        const glm::dvec4 world4 = model * glm::dvec4(glm::dvec3(e.position) - centre, 1.0);
-        const glm::dvec3 world(world4);
-        const glm::dvec4 clip = vp * glm::dvec4(world, 1.0);
-        if (clip.w <= in.camera.near_plane) continue;
-        const double ppu = pixels_at_1 / clip.w;  // pixels per world unit at the foot
-        const bool dot = e.kind == elements::Kind::MossDot;
-        const double height = dot ? o.dots.size_px * per_1024 * e.size / ppu : e.size * scale;
-        // In view, with room for the element above its foot.
-        const double reach = 2.0 * height * ppu / in.height + 0.05;
-        const glm::dvec2 ndc = glm::dvec2(clip) / clip.w;
-        if (std::abs(ndc.x) > 1.0 + reach || ndc.y > 1.0 + 0.05 || ndc.y < -1.0 - reach) continue;
-        const double here = presence(in, i, to_model, world, fade);
-        if (here < 0.004) continue;
-        const double bias = std::min(dot ? 2.0 * height : 0.5 * height, 0.25 * clip.w);
-        const float seed = static_cast<float>(e.seed & 0xffffu) / 65536.0f;
-        auto emit = [&](const elements::Mark& m, double size, double ink) {
-          glm::dvec2 a(m.a), b(m.b);
-          if (e.mirrored) {
-            a.x = -a.x;
-            b.x = -b.x;
-          }
-          const double c = std::cos(e.lean), s = std::sin(e.lean);
-          auto turn = [&](glm::dvec2 p) { return size * glm::dvec2(c * p.x + s * p.y, -s * p.x + c * p.y); };
-          a = turn(a);
-          b = turn(b);
-          out.push_back({glm::vec4(glm::vec3(world), static_cast<float>(ink)), glm::vec4(a.x, a.y, b.x, b.y),
-                         glm::vec4(static_cast<float>(0.5 * size * m.width), static_cast<float>(m.shape), seed,
-                                   static_cast<float>(ppu)),
-                         glm::vec4(static_cast<float>(bias), 0.0f, 0.0f, 0.0f)});
-        };
-        if (dot) {
-          for (const elements::Mark& m : dot_) emit(m, height, o.dots.ink * here);
-          continue;
-        }
-        const double px_1024 = height * ppu / per_1024;
-        const std::array<float, 3> w = elements::levelWeights(px_1024);
-        // A far tree stays a dab a painter can see: its far marks grow to the least width.
-        const double far_size = height * std::max(1.0, kLeastFarDabPx / std::max(0.3 * px_1024, 1e-9));
-        const auto& marks = templates_[static_cast<std::size_t>(static_cast<int>(e.kind) * kVariants +
-                                                                static_cast<int>(e.seed % kVariants))];
-        for (const elements::Mark& m : marks) {
-          const double weight = ((m.levels & elements::kFar) ? w[0] : 0.0f) +
-                                ((m.levels & elements::kMiddle) ? w[1] : 0.0f) +
-                                ((m.levels & elements::kNear) ? w[2] : 0.0f);
-          if (weight <= 0.0) continue;
-          const bool far_only = m.levels == elements::kFar;
-          emit(m, far_only ? far_size : height, std::min(1.0, m.ink * o.trees.ink * weight * here));
-        }
-      }
+      expand_.set("u_model", glm::mat4(model));
+      expand_.set("u_scale", static_cast<float>(std::cbrt(std::abs(glm::determinant(glm::dmat3(model))))));
+      expand_.set("u_first", static_cast<unsigned>(r.first));
+      expand_.set("u_count", static_cast<unsigned>(r.count));
+      expand_.set("u_tree_ink", static_cast<float>(o.trees.ink));
+      expand_.set("u_dot_ink", static_cast<float>(o.dots.ink));
+      expand_.set("u_dot_px", static_cast<float>(o.dots.size_px));
+      const glm::dvec3 half = 0.5 * in.objects[r.object].model_bounds.size();
+      expand_.set("u_to_model_x", glm::vec4(glm::row(to_model, 0)));
+      expand_.set("u_to_model_y", glm::vec4(glm::row(to_model, 1)));
+      expand_.set("u_half_extent", glm::vec2(half));
+      expand_.set("u_border_width",
+                  o.dissolvesBorder() ? static_cast<float>(o.border.width * std::min(half.x, half.y)) : 0.0f);
+      expand_.set("u_border_roughness", static_cast<float>(o.border.roughness));
+      glDispatchCompute(static_cast<GLuint>((r.count + 63) / 64), 1, 1);
     }
-    const std::size_t bytes = std::max<std::size_t>(out.size(), 1) * sizeof(GpuMark);
-    if (bytes > capacity_) {
-      marks_ = Buffer::create();
-      capacity_ = std::max(bytes, 2 * capacity_);
-      glNamedBufferStorage(marks_.id(), static_cast<GLsizeiptr>(capacity_), nullptr, GL_DYNAMIC_STORAGE_BIT);
-    }
-    if (!out.empty())
-      glNamedBufferSubData(marks_.id(), 0, static_cast<GLsizeiptr>(out.size() * sizeof(GpuMark)), out.data());
-    return out.size();
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
   }
 
   scene::Scene scene_;
-  std::array<std::vector<elements::Mark>, elements::kTreeKinds * kVariants> templates_;
-  std::vector<elements::Mark> dot_;
+  std::vector<Run> runs_;
+  std::size_t count_ = 0, capacity_ = 1;
+  std::uint32_t dot_template_ = 0;
   bool every_frame_ = false;
-  Program program_;
+  Program expand_, draw_;
   VertexArray vao_;
-  Buffer marks_;
-  std::size_t capacity_ = 0;
-  std::size_t marks_drawn_ = 0;
+  Buffer marks_, templates_, instances_, frame_instances_, entries_, indirect_;
   Framebuffer target_;
   std::string key_;
 };

@@ -324,7 +324,7 @@ void describe(V& v, elements::TreeOptions& t) {
   });
   v.number({"open", "density on open slopes relative to ridges, hollows and valley floors", kRebuild}, t.open, kUnit);
   v.number({"grove", "mean trees per grove; 1 scatters them one by one", kRebuild}, t.grove, {1, 1000});
-  v.number({"grove_radius", "spread of a grove; 0: four mean tree heights", kRebuild, "model units"}, t.grove_radius,
+  v.number({"grove_radius", "spread of a grove; 0: six mean tree heights", kRebuild, "model units"}, t.grove_radius,
            {0, 1e6});
   v.numbers({"kinds", "shares of pine, leafy (dot leaves), bare (branches) and distant (a few vertical dots) trees",
              kRebuild},

@@ -35,14 +35,14 @@ struct Instance {
 //! trees fully; the site's suitability (siteSuitability) scales it.
 struct TreeOptions {
   bool enabled = false;
-  double density = 2.0;                   //!< trees per hectare on the best sites, [0, 10000]
-  double size = 18.0;                     //!< mean tree height, model units (metres on a DEM), (0, 1e6]
-  double size_spread = 0.3;               //!< log-normal sigma of the height, [0, 2]
-  double max_slope_deg = 38.0;            //!< no tree on steeper ground, [0, 90]
-  std::array<double, 2> band{0.0, 0.65};  //!< height band, fractions of the object's relief, [0, 1]
+  double density = 1.5;                  //!< trees per hectare on the best sites, [0, 10000]
+  double size = 18.0;                    //!< mean tree height, model units (metres on a DEM), (0, 1e6]
+  double size_spread = 0.3;              //!< log-normal sigma of the height, [0, 2]
+  double max_slope_deg = 38.0;           //!< no tree on steeper ground, [0, 90]
+  std::array<double, 2> band{0.0, 0.5};  //!< height band, fractions of the object's relief, [0, 1]
   double open = 0.15;         //!< density on open slopes relative to ridges, hollows and valley floors, [0, 1]
-  double grove = 10.0;        //!< mean trees per grove (1: no groves), [1, 1000]
-  double grove_radius = 0.0;  //!< spread of a grove, model units; 0: 4 mean tree heights, [0, 1e6]
+  double grove = 18.0;        //!< mean trees per grove (1: no groves), [1, 1000]
+  double grove_radius = 0.0;  //!< spread of a grove, model units; 0: 6 mean tree heights, [0, 1e6]
   std::array<double, kTreeKinds> kinds{1.0, 1.0, 0.35, 1.0};  //!< shares of pine, leafy, bare, distant
   std::uint64_t seed = 0;                                     //!< 0: the scene's seed
   double ink = 1.0;  //!< drawing: scales the ink of every mark as grown, [0, 1]
@@ -52,12 +52,12 @@ struct TreeOptions {
 //! and at the feet of trees.
 struct DotOptions {
   bool enabled = false;
-  double density = 1.0;    //!< clusters per hectare on the best sites, [0, 10000]
-  double cluster = 4.0;    //!< mean dots per cluster, [1, 100]
+  double density = 0.4;    //!< clusters per hectare on the best sites, [0, 10000]
+  double cluster = 5.0;    //!< mean dots per cluster, [1, 100]
   double spread = 0.0;     //!< cluster radius, model units; 0: 0.4 % of the object's larger side
   double at_trees = 0.25;  //!< share of trees with dots at their feet, [0, 1]
   std::uint64_t seed = 0;  //!< 0: the scene's seed
-  double size_px = 3.0;    //!< drawing: a dot's size, pixels at 1024 high, [0.5, 64]
+  double size_px = 3.5;    //!< drawing: a dot's size, pixels at 1024 high, [0.5, 64]
   double ink = 1.0;        //!< drawing: a dot's ink, [0, 1]
 };
 
