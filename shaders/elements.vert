@@ -1,11 +1,12 @@
 #version 450 core
-// The elements' marks (libs/render/src/elements_pass.cpp): six vertices an entry that
-// elements_expand.comp appended, each a quad around the template mark's segment a → b (round
+// The elements' marks (libs/render/src/elements_pass.cpp): one instance of a four-vertex strip
+// per entry that elements_expand.comp appended, each a quad around the template mark's segment a → b (round
 // caps and a pixel of room for the edge's smoothing) on an upright billboard through the
 // element's foot that faces the camera.
 struct FrameInstance {
   vec4 anchor_ppu;  // foot (world), pixels per world unit there
-  vec4 look;        // distance drawn towards the eye, seed, mirrored, lean
+  vec4 look;        // distance drawn towards the eye, seed, cosine and sine of 2π seed
+  vec4 turn;        // where the template's x and y axes go: mirrored, then leant
 };
 struct Entry {
   uint instance;
@@ -36,13 +37,14 @@ flat out float v_ink;
 flat out int v_shape;
 flat out float v_seed;
 flat out float v_pixel;  // one pixel, in half widths
+flat out vec2 v_turn;
 
 // A mark narrower than this many pixels is drawn at it with its ink thinned to match: no
 // sub-pixel marks that flicker, and the same ink on the paper.
 const float kLeastHalfWidthPx = 0.6;
 
 void main() {
-  uint k = uint(gl_VertexID) / 6u;
+  uint k = uint(gl_InstanceID);
   if (k >= u_capacity) {
     gl_Position = vec4(2.0, 2.0, 2.0, 1.0);  // outside the view: nothing drawn
     return;
@@ -50,18 +52,10 @@ void main() {
   Entry e = entries[k];
   FrameInstance f = frame_instances[e.instance];
   Mark m = marks[e.mark];
-  const vec2 corners[6] = vec2[6](vec2(0, 0), vec2(1, 0), vec2(1, 1), vec2(0, 0), vec2(1, 1), vec2(0, 1));
-  vec2 c = corners[gl_VertexID % 6];
+  vec2 c = vec2(gl_VertexID & 1, gl_VertexID >> 1);  // a strip of four corners
   // The template's mark, mirrored, leant and scaled to the element.
-  vec2 a = m.ab.xy, b = m.ab.zw;
-  if (f.look.z > 0.5) {
-    a.x = -a.x;
-    b.x = -b.x;
-  }
-  float cl = cos(f.look.w), sl = sin(f.look.w);
-  mat2 turn = mat2(cl, -sl, sl, cl);  // columns: where x and y go (clockwise for a positive lean)
-  a = e.size * (turn * a);
-  b = e.size * (turn * b);
+  mat2 turn = mat2(f.turn.xy, f.turn.zw);
+  vec2 a = e.size * (turn * m.ab.xy), b = e.size * (turn * m.ab.zw);
   float per_unit = f.anchor_ppu.w, ink = min(e.ink * m.shape.y, 1.0);
   float half_width = 0.5 * e.size * m.shape.x;
   float px = half_width * per_unit;
@@ -88,4 +82,5 @@ void main() {
   v_shape = int(m.shape.z + 0.5);
   v_seed = f.look.y;
   v_pixel = 1.0 / (half_width * per_unit);
+  v_turn = f.look.zw;
 }

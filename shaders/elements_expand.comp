@@ -4,7 +4,7 @@
 // levels of detail by its height on screen (elements::levelWeights), finds the ink the
 // distance fade, the mist and the border leave at its foot (atmosphere.cpp's presence(), the
 // noise at its mean), and appends one entry per mark of the active levels for
-// elements.vert to draw; the count goes into the indirect draw's vertex count.
+// elements.vert to draw; the count goes into the indirect draw's instance count.
 layout(local_size_x = 64) in;
 
 struct Instance {
@@ -13,7 +13,8 @@ struct Instance {
 };
 struct FrameInstance {
   vec4 anchor_ppu;  // foot (world), pixels per world unit there
-  vec4 look;        // distance drawn towards the eye, seed, mirrored, lean
+  vec4 look;        // distance drawn towards the eye, seed, cosine and sine of 2π seed
+  vec4 turn;        // where the template's x and y axes go: mirrored, then leant
 };
 struct Entry {
   uint instance;  // into frame_instances
@@ -36,7 +37,7 @@ layout(std430, binding = 4) writeonly buffer Entries {
   Entry entries[];
 };
 layout(std430, binding = 5) buffer Indirect {
-  uint vertex_count, instance_count, first_vertex, base_instance;
+  uint vertex_count, instance_count, first_vertex, base_instance;  // a strip of 4, one instance a mark
 };
 
 uniform mat4 u_model;  // uploaded coordinates to world
@@ -74,46 +75,72 @@ float presence(vec3 world) {
   return clamp(f, 0.0, 1.0);
 }
 
-void main() {
-  uint i = gl_GlobalInvocationID.x;
-  if (i >= u_count) return;
+// The work group's marks are appended with one global atomic: each element takes its place
+// within the group from a shared counter first.
+shared uint group_count, group_base;
+
+// How many marks element i draws (0 when it is out of view), and what they need.
+int marks(uint i, out vec3 world, out float ppu, out float height, out float ink, out vec3 w, out float far_size,
+          out int lo, out uint t, out bool dot, out float bias) {
+  if (i >= u_count) return 0;
   Instance e = instances[i];
-  vec3 world = (u_model * vec4(e.position_size.xyz, 1.0)).xyz;
+  world = (u_model * vec4(e.position_size.xyz, 1.0)).xyz;
   vec4 clip = u_view_projection * vec4(world, 1.0);
-  if (clip.w <= u_near) return;
-  float ppu = u_pixels_at_1 / clip.w;
-  uint t = uint(e.lean_seed.w + 0.5);
-  bool dot = t == u_dot_template;
-  float height = dot ? u_dot_px * u_per_1024 * e.position_size.w / ppu : e.position_size.w * u_scale;
+  if (clip.w <= u_near) return 0;
+  ppu = u_pixels_at_1 / clip.w;
+  t = uint(e.lean_seed.w + 0.5);
+  dot = t == u_dot_template;
+  height = dot ? u_dot_px * u_per_1024 * e.position_size.w / ppu : e.position_size.w * u_scale;
   // In view, with room for the element above its foot.
   float reach = 2.0 * height * ppu / u_height_px + 0.05;
   vec2 ndc = clip.xy / clip.w;
-  if (abs(ndc.x) > 1.0 + reach || ndc.y > 1.05 || ndc.y < -1.0 - reach) return;
+  if (abs(ndc.x) > 1.0 + reach || ndc.y > 1.05 || ndc.y < -1.0 - reach) return 0;
   float here = presence(world);
-  if (here < 0.004) return;
-
-  float ink = dot ? u_dot_ink * here : u_tree_ink * here;
+  if (here < 0.004) return 0;
+  ink = dot ? u_dot_ink * here : u_tree_ink * here;
   float px = height * ppu / u_per_1024;
-  float middle_in = dot ? 0.0 : smoothstep(8.0, 14.0, px), near_in = smoothstep(28.0, 44.0, px);
-  vec3 w = vec3(1.0 - middle_in, middle_in * (1.0 - near_in), middle_in * near_in);
+  float middle_in = dot ? 0.0 : smoothstep(8.0, 14.0, px), near_in = smoothstep(40.0, 64.0, px);
+  w = vec3(1.0 - middle_in, middle_in * (1.0 - near_in), middle_in * near_in);
   // A far tree stays a dab a painter can see: its far marks grow to the least width.
-  float far_size = height * max(1.0, u_least_far_px / max(0.3 * px, 1e-9));
+  far_size = height * max(1.0, u_least_far_px / max(0.3 * px, 1e-9));
+  bias = min(dot ? 2.0 * height : 0.5 * height, 0.25 * clip.w);
   ivec4 g = group_start[2 * t];
   int end = group_start[2 * t + 1].x;
   // The active levels are adjacent, so their marks are one run of the groups.
-  int lo = w.x > 0.0 ? g.x : (w.y > 0.0 ? g.y : g.z);
+  lo = w.x > 0.0 ? g.x : (w.y > 0.0 ? g.y : g.z);
   int hi = w.z > 0.0 ? end : (w.y > 0.0 ? g.w : g.y);
   if (dot) {
     lo = g.x;
     hi = end;
   }
-  int count = hi - lo;
-  if (count <= 0) return;
+  return max(hi - lo, 0);
+}
+
+void main() {
+  uint i = gl_GlobalInvocationID.x;
+  if (gl_LocalInvocationIndex == 0u) group_count = 0u;
+  barrier();
+  vec3 world, w;
+  float ppu, height, ink, far_size, bias;
+  int lo;
+  uint t;
+  bool dot;
+  int count = marks(i, world, ppu, height, ink, w, far_size, lo, t, dot, bias);
+  uint local = count > 0 ? atomicAdd(group_count, uint(count)) : 0u;
+  barrier();
+  if (gl_LocalInvocationIndex == 0u && group_count > 0u) group_base = atomicAdd(instance_count, group_count);
+  barrier();
+  if (count == 0) return;
+  Instance e = instances[i];
   uint slot = u_first + i;
   frame_instances[slot].anchor_ppu = vec4(world, ppu);
-  frame_instances[slot].look =
-      vec4(min(dot ? 2.0 * height : 0.5 * height, 0.25 * clip.w), e.lean_seed.y, e.lean_seed.z, e.lean_seed.x);
-  uint base = atomicAdd(vertex_count, 6u * uint(count)) / 6u;
+  float seed_angle = 6.2831853 * e.lean_seed.y;
+  frame_instances[slot].look = vec4(bias, e.lean_seed.y, cos(seed_angle), sin(seed_angle));
+  // Columns: where x and y go, clockwise for a positive lean; x negated first when mirrored.
+  float cl = cos(e.lean_seed.x), sl = sin(e.lean_seed.x), mirror = e.lean_seed.z > 0.5 ? -1.0 : 1.0;
+  frame_instances[slot].turn = vec4(mirror * vec2(cl, -sl), sl, cl);
+  ivec4 g = group_start[2 * t];
+  uint base = group_base + local;
   for (int k = 0; k < count && base + uint(k) < u_capacity; ++k) {
     int m = lo + k;
     // Which levels the mark belongs to: its group.

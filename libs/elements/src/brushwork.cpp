@@ -47,13 +47,13 @@ glm::vec2 trunk(Grower& g, glm::vec2 top, float bow, float width, int segments, 
 // A cluster of needles: short strokes radiating from `centre`, spread into a flat fan that
 // opens upwards, as the manuals draw a pine's needle wheel.
 void needleFan(Grower& g, glm::vec2 centre, float size) {
-  const int needles = g.count(13, 19);
+  const int needles = g.count(9, 13);
   for (int k = 0; k < needles; ++k) {
     const float a =
         kPi * (-0.15f + 1.3f * (static_cast<float>(k) + g.uniform(0.0f, 0.7f)) / static_cast<float>(needles));
     const float len = size * g.uniform(0.8f, 1.15f);
     const glm::vec2 tip = centre + len * glm::vec2(std::cos(a), 0.55f * std::sin(a));
-    g.add(centre, tip, 0.15f * size, g.uniform(0.82f, 1.0f), Shape::Leaf, kNear);
+    g.add(centre, tip, 0.18f * size, g.uniform(0.82f, 1.0f), Shape::Leaf, kNear);
   }
 }
 
@@ -71,12 +71,12 @@ void pine(Grower& g) {
     const float reach = (0.3f - 0.2f * f) * g.uniform(0.8f, 1.15f);
     const glm::vec2 tip = on_trunk + glm::vec2(side * reach, g.uniform(-0.01f, 0.04f));
     g.add(on_trunk, tip, 0.018f, 0.9f, Shape::Branch, kNear);
-    // Two or three needle fans along the branch, the largest at its tip.
-    const int fans = 3;
+    // Two needle fans along the branch, the larger at its tip.
+    const int fans = 2;
     for (int k = 0; k < fans; ++k) {
-      const float along = 1.0f - 0.35f * static_cast<float>(k);
+      const float along = 1.0f - 0.45f * static_cast<float>(k);
       needleFan(g, on_trunk + along * (tip - on_trunk) + glm::vec2(0.0f, 0.01f),
-                (0.1f - 0.02f * static_cast<float>(k)) * (1.0f - 0.3f * f));
+                (0.11f - 0.02f * static_cast<float>(k)) * (1.0f - 0.3f * f));
     }
     // In the middle distance a tier is one flat stroke.
     const glm::vec2 mid = on_trunk + 0.7f * (tip - on_trunk) + glm::vec2(0.0f, 0.02f);
@@ -102,12 +102,12 @@ void leafy(Grower& g) {
     g.add(split, centre, 0.02f, 0.9f, Shape::Branch, kNear);
     // Dot leaves (点叶): small horizontal dabs, dense at the clump's heart, of one ink.
     const float ink = g.uniform(0.6f, 0.95f);
-    const int leaves = g.count(18, 28);
+    const int leaves = g.count(12, 18);
     for (int k = 0; k < leaves; ++k) {
       const float rr = 0.11f * std::sqrt(g.uniform()), b = 2.0f * kPi * g.uniform();
       const glm::vec2 p = centre + rr * glm::vec2(std::cos(b), 0.75f * std::sin(b));
       const glm::vec2 d(g.uniform(0.008f, 0.016f), g.uniform(-0.006f, 0.006f));
-      g.add(p - d, p + d, g.uniform(0.026f, 0.038f), ink * g.uniform(0.85f, 1.05f), Shape::Dab, kNear);
+      g.add(p - d, p + d, g.uniform(0.032f, 0.045f), ink * g.uniform(0.85f, 1.05f), Shape::Dab, kNear);
     }
     g.add(centre - glm::vec2(0.04f, 0.0f), centre + glm::vec2(0.04f, 0.0f), 0.16f, 0.75f, Shape::Dab, kMiddle);
   }
@@ -179,7 +179,7 @@ std::vector<Mark> growBrushwork(Kind kind, std::uint32_t seed) {
 
 std::array<float, 3> levelWeights(double px) {
   const float p = static_cast<float>(px);
-  const float middle_in = smooth(8.0f, 14.0f, p), near_in = smooth(28.0f, 44.0f, p);
+  const float middle_in = smooth(8.0f, 14.0f, p), near_in = smooth(40.0f, 64.0f, p);
   return {1.0f - middle_in, middle_in * (1.0f - near_in), middle_in * near_in};
 }
 

@@ -42,7 +42,7 @@ struct GpuMark {
   glm::vec4 ab;     //!< ends, in units of the element's height
   glm::vec4 shape;  //!< width, ink, shape, levels
 };
-constexpr std::size_t kFrameInstanceBytes = 32, kEntryBytes = 16;
+constexpr std::size_t kFrameInstanceBytes = 48, kEntryBytes = 16;
 static_assert(sizeof(GpuInstance) == 32 && sizeof(GpuMark) == 32);
 
 constexpr int kVariants = 16;                   // grown brushwork per tree kind
@@ -115,7 +115,8 @@ class ElementsPass final : public RenderPass {
     capacity_ = std::clamp<std::size_t>(count_ * largest, 1, kMostEntries);
     entries_ = Buffer::create();
     glNamedBufferStorage(entries_.id(), static_cast<GLsizeiptr>(capacity_ * kEntryBytes), nullptr, 0);
-    glNamedBufferStorage(indirect_.id(), 4 * sizeof(GLuint), nullptr, GL_DYNAMIC_STORAGE_BIT);
+    const GLuint draw[4] = {4, 0, 0, 0};  // a strip of four corners, one instance a mark (counted each frame)
+    glNamedBufferStorage(indirect_.id(), sizeof draw, draw, 0);
     buildPrograms();
   }
 
@@ -164,7 +165,7 @@ class ElementsPass final : public RenderPass {
     draw_.set("u_eye", glm::vec3(in.camera.eye()));
     draw_.set("u_right", right(in));
     draw_.set("u_capacity", static_cast<unsigned>(capacity_));
-    glDrawArraysIndirect(GL_TRIANGLES, nullptr);
+    glDrawArraysIndirect(GL_TRIANGLE_STRIP, nullptr);
     glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
     glDisable(GL_BLEND);
     glBlendEquation(GL_FUNC_ADD);
@@ -204,8 +205,10 @@ class ElementsPass final : public RenderPass {
 
   // Every element in view, as entries for the indirect draw.
   void expand(const FrameInputs& in) {
-    const GLuint reset[4] = {0, 1, 0, 0};
-    glNamedBufferSubData(indirect_.id(), 0, sizeof reset, reset);
+    // The instance count back to 0 on the GPU (an upload could wait for the last frame's draw).
+    const GLuint zero = 0;
+    glClearNamedBufferSubData(indirect_.id(), GL_R32UI, sizeof zero, sizeof zero, GL_RED_INTEGER, GL_UNSIGNED_INT,
+                              &zero);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, instances_.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, templates_.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, frame_instances_.id());
