@@ -1,7 +1,8 @@
 #version 450 core
 // One brush mark of an element (libs/elements/brushwork.h's shapes): its ink where the
 // brush covers the pixel, with a broken edge (dabs) or a bristle's streaks (strokes), and
-// the nearness of the mark, 1 − depth; the pass keeps the largest of each (GL_MAX).
+// with NEARNESS (animated scenes) the nearness of the mark, 1 − depth; the pass keeps the
+// largest of each (GL_MAX).
 in vec2 v_local;
 flat in float v_length;
 flat in float v_ink;
@@ -9,7 +10,11 @@ flat in int v_shape;
 flat in float v_seed;
 flat in float v_pixel;
 flat in vec2 v_turn;  // cosine and sine of the dab's turn, from the seed
-layout(location = 0) out vec2 o_ink;
+#ifdef NEARNESS
+layout(location = 0) out vec2 o_ink;  // ink, nearness
+#else
+layout(location = 0) out float o_ink;
+#endif
 
 float hash(vec2 p) {
   return fract(sin(dot(p, vec2(127.1, 311.7))) * 43758.5453);
@@ -44,5 +49,9 @@ void main() {
   float streak = hash(vec2(floor((t * 0.5 + 0.5) * 5.0), floor(v_seed * 4096.0)));
   float ink = v_ink * cover * (0.8 + 0.2 * streak);
   if (ink <= 0.0) discard;
+#ifdef NEARNESS
   o_ink = vec2(ink, 1.0 - gl_FragCoord.z);
+#else
+  o_ink = ink;
+#endif
 }

@@ -25,15 +25,22 @@ layout(r32ui, binding = 3) readonly uniform uimage2D u_stroke_ink;
 layout(rgba16, binding = 4) readonly uniform image2D u_presence_noise;
 #endif
 #ifdef ELEMENTS
-// Trees and moss dots (elements_pass.cpp): their ink, and the nearness (1 − depth) of what
-// drew it, to hide them behind what moved in front of their cached layer.
-layout(rg32f, binding = 6) readonly uniform image2D u_elements;
+// Trees and moss dots (elements_pass.cpp): their ink; with ELEMENT_NEARNESS (animated
+// scenes) also the nearness (1 − depth) of what drew it, to hide them behind what moved in
+// front of their cached layer.
 uniform vec3 u_element_colour;
-
+#ifdef ELEMENT_NEARNESS
+layout(rg32f, binding = 6) readonly uniform image2D u_elements;
 float elementInk(ivec2 p, float depth) {
   vec2 e = imageLoad(u_elements, p).rg;
   return e.g >= 1.0 - depth ? e.r : 0.0;
 }
+#else
+layout(r8, binding = 6) readonly uniform image2D u_elements;
+float elementInk(ivec2 p, float depth) {
+  return imageLoad(u_elements, p).r;
+}
+#endif
 #endif
 #ifdef CANVAS
 // The paper: unit-variance grain, and its marks (fibres, spots, mottle) as a brightness change.

@@ -12,10 +12,11 @@
 // One indirect draw then stands each mark on an upright billboard through the element's foot
 // facing the camera (shaders/elements.vert), depth-tested against the G-buffer and nudged
 // towards the eye along each vertex's own ray, which keeps its place on screen, so the
-// ground it stands on does not hide its foot. The layer keeps the largest ink and the
-// nearness of what drew it: with animated objects it is drawn against the static objects'
-// depth only when the static layer is, and the ink pass hides what an animated object
-// covers by comparing nearness with its depth. Nothing per element runs on the CPU.
+// ground it stands on does not hide its foot. The layer (R8) keeps the largest ink. With
+// animated objects it also keeps the nearness of what drew it (RG32F, NEARNESS): it is then
+// drawn against the static objects' depth only when the static layer is, and the ink pass
+// hides what an animated object covers by comparing nearness with its depth. Nothing per
+// element runs on the CPU.
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -62,7 +63,10 @@ int group(std::uint8_t levels) {
 class ElementsPass final : public RenderPass {
  public:
   explicit ElementsPass(const PassSetup& setup)
-      : scene_(setup.scene), vao_(VertexArray::create()), indirect_(Buffer::create()) {
+      : scene_(setup.scene),
+        nearness_(elementsKeepNearness(setup.scene)),
+        vao_(VertexArray::create()),
+        indirect_(Buffer::create()) {
     // The brushwork: 16 variants of each tree kind, then the dot.
     std::vector<GpuMark> marks;
     std::vector<glm::ivec4> groups;
@@ -123,29 +127,33 @@ class ElementsPass final : public RenderPass {
   std::string name() const override { return "elements"; }
   void buildPrograms() override {
     Program expand({"elements_expand.comp"});
-    draw_ = Program({"elements.vert", "elements.frag"});
+    draw_ = Program({"elements.vert", "elements.frag"}, defines());
     expand_ = std::move(expand);
   }
-  std::vector<std::string> variants() const override { return {""}; }
+  std::vector<std::string> variants() const override { return {joined(defines())}; }
   void setScene(const scene::Scene& s) override {
     scene_ = s;
     key_.clear();
   }
   void resize(int width, int height) override {
-    target_ = Framebuffer(width, height, {GL_RG32F}, false);
+    target_ = Framebuffer(width, height, {nearness_ ? GLenum(GL_RG32F) : GLenum(GL_R8)}, false);
+    attached_ = 0;
     key_.clear();
   }
   const Framebuffer* target() const override { return &target_; }
 
   void run(const FrameInputs& in, FrameImages& images) override {
     images.elements = &target_.colour(0);
-    const bool animated = images.static_gbuffer != nullptr;
-    if (!every_frame_ && animated && in.static_key == key_) return;  // the cached static layer
+    const bool cached = nearness_ && !every_frame_ && images.static_gbuffer != nullptr;
+    if (cached && in.static_key == key_) return;  // the cached static layer
     if (in.timer) in.timer->begin("elements");
     glDisable(GL_SCISSOR_TEST);  // the layer is whole: a region redraw keeps it as it is
     expand(in);
-    const Texture2D& depth = animated && !every_frame_ ? images.static_gbuffer->depth() : *images.attachable_depth;
-    glNamedFramebufferTexture(target_.id(), GL_DEPTH_ATTACHMENT, depth.id(), 0);
+    const Texture2D& depth = cached ? images.static_gbuffer->depth() : *images.attachable_depth;
+    if (depth.id() != attached_) {  // a new attachment makes the driver check the framebuffer again
+      glNamedFramebufferTexture(target_.id(), GL_DEPTH_ATTACHMENT, depth.id(), 0);
+      attached_ = depth.id();
+    }
     target_.bind();
     const float clear[4] = {0.0f, 0.0f, 0.0f, 0.0f};
     glClearNamedFramebufferfv(target_.id(), GL_COLOR, 0, clear);
@@ -171,7 +179,6 @@ class ElementsPass final : public RenderPass {
     glBlendEquation(GL_FUNC_ADD);
     glDisable(GL_DEPTH_TEST);
     glDepthMask(GL_TRUE);
-    glNamedFramebufferTexture(target_.id(), GL_DEPTH_ATTACHMENT, 0, 0);
     if (in.region) {
       glEnable(GL_SCISSOR_TEST);
       const glm::ivec4& r = *in.region;
@@ -183,6 +190,11 @@ class ElementsPass final : public RenderPass {
   }
 
  private:
+  std::vector<std::string> defines() const {
+    if (nearness_) return {"NEARNESS"};
+    return {};
+  }
+
   struct Run {
     std::size_t object, first, count;
   };
@@ -263,6 +275,8 @@ class ElementsPass final : public RenderPass {
   std::size_t count_ = 0, capacity_ = 1;
   std::uint32_t dot_template_ = 0;
   bool every_frame_ = false;
+  bool nearness_ = false;  //!< the layer keeps nearness (animated scenes)
+  GLuint attached_ = 0;    //!< the depth texture attached to target_
   Program expand_, draw_;
   VertexArray vao_;
   Buffer marks_, templates_, instances_, frame_instances_, entries_, indirect_;
@@ -271,6 +285,14 @@ class ElementsPass final : public RenderPass {
 };
 
 }  // namespace
+
+bool elementsKeepNearness(const scene::Scene& s) {
+  return s.usesElements() && s.hasAnimation();
+}
+
+std::string elementsStructure(const scene::Scene& s) {
+  return elementsKeepNearness(s) ? "NEARNESS" : "";
+}
 
 std::unique_ptr<RenderPass> makeElementsPass(const PassSetup& setup) {
   return std::make_unique<ElementsPass>(setup);

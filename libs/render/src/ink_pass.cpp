@@ -56,7 +56,7 @@ std::vector<std::string> inkDefines(const scene::Scene& s, bool debug_outputs) {
   if (wrinkledHere(s)) d.emplace_back("WRINKLE_SLOPE");
   if (grainHere(s)) d.emplace_back("CANVAS");
   if (s.usesPigment() || s.usesShadow()) d.emplace_back("PIGMENT");
-  if (s.usesElements()) d.emplace_back("ELEMENTS");
+  if (s.usesElements()) d.emplace_back(elementsKeepNearness(s) ? "ELEMENTS ELEMENT_NEARNESS" : "ELEMENTS");
   addSurfaceDefines(s, d);
   if (debug_outputs) d.emplace_back("DEBUG_OUTPUTS");
   return d;
@@ -191,7 +191,9 @@ class InkPass final : public RenderPass {
     if (in.timer) in.timer->begin("ink");
     target_.bind();
     if (grainHere(in.scene)) glBindImageTexture(2, images.canvas->id(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_RG16F);
-    if (images.elements) glBindImageTexture(6, images.elements->id(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_RG32F);
+    if (images.elements)
+      glBindImageTexture(6, images.elements->id(), 0, GL_FALSE, 0, GL_READ_ONLY,
+                         elementsKeepNearness(in.scene) ? GL_RG32F : GL_R8);
     for (const Program* ink : {&program_, &*paper_}) {
       ink->use();
       if (images.elements) ink->set("u_element_colour", elementColour(in.scene));

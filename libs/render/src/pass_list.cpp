@@ -45,7 +45,7 @@ const std::vector<PassEntry>& passList() {
   static const std::vector<PassEntry> list = {
       {"gbuffer", always, gbufferStructure, makeGbufferPass},
       {"canvas", hasCanvas, canvasStructure, makeCanvasPass},
-      {"elements", growsElements, nothing, makeElementsPass},
+      {"elements", growsElements, elementsStructure, makeElementsPass},
       {"ink", always, inkStructure, makeInkPass},
       {"strokes", brushStrokes, strokesStructure, makeStrokesPass},
       {"pigment", pigmented, nothing, makePigmentPass},

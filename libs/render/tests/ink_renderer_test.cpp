@@ -807,9 +807,9 @@ TEST_F(Variants, EveryCombinationTheSceneKeysCanProduceCompiles) {
   auto wrinkle = std::make_shared<const image::Image>(8, 8, 1);
   std::set<std::string> seen;
   int built = 0, compiled = 0;
-  for (int bits = 0; bits < 1 << 12; ++bits) {
+  for (int bits = 0; bits < 1 << 13; ++bits) {
     const bool lines = bits & 1, screen = bits & 2, shading = bits & 4, wrinkled = bits & 8, diffusion = bits & 16,
-               two = bits & 32;
+               two = bits & 32, elements = bits & 4096;
     const int canvas = (bits >> 6) & 3;
     const bool silk_static = bits & 256, mist = bits & 512, border = bits & 1024, splat = bits & 2048;
     if (screen && !lines) continue;
@@ -820,12 +820,14 @@ TEST_F(Variants, EveryCombinationTheSceneKeysCanProduceCompiles) {
                    {"shading", {{"enabled", shading}}}};
     if (wrinkled) object["wrinkle"] = {{"texture", "w.png"}, {"uv", "planar"}};
     if (border) object["border"] = {{"mode", "dissolve"}};
+    if (elements) object["dots"] = {{"enabled", true}};
     json j = {{"objects", json::array({object})},
               {"canvas",
                {{"type", std::array{"none", "rice_paper", "silk", "static"}[canvas]},
                 {"static_pattern", silk_static ? "silk" : "rice_paper"},
                 {"method", splat ? "splat" : "tiles"}}}};
-    if (two) j["objects"].push_back({{"mesh", "memory.obj"}});
+    // With elements, a second object spins: the elements' layer keeps its nearness.
+    if (two) j["objects"].push_back({{"mesh", "memory.obj"}, {"spin", elements ? 10.0 : 0.0}});
     if (diffusion) j["diffusion"] = {{"ring_steps", 2}, {"iterations", 1}};
     if (mist) j["mist"] = {{"density", 0.5}};
     const scene::Scene s = scene::parseScene(j, "variants", ".");

@@ -74,7 +74,8 @@ struct FrameImages {
   const Texture2D* canvas = nullptr;   //!< paper: unit-variance grain, marks (RG16F)
   const Texture2D* picture = nullptr;  //!< the picture so far (RGBA8)
   const Texture2D* shadow = nullptr;   //!< 0 lit .. 1 in shadow (R8), when the shadow pass ran
-  //! The elements' ink (r) and nearness, 1 − window depth (g), RG32F, when the elements pass ran.
+  //! The elements' ink (r; R8) and, with animated objects, nearness, 1 − window depth (g;
+  //! RG32F), when the elements pass ran.
   const Texture2D* elements = nullptr;
 };
 
@@ -125,6 +126,10 @@ std::string gbufferStructure(const scene::Scene&);
 std::unique_ptr<RenderPass> makeCanvasPass(const PassSetup&);
 std::string canvasStructure(const scene::Scene&);
 std::unique_ptr<RenderPass> makeElementsPass(const PassSetup&);
+std::string elementsStructure(const scene::Scene&);
+//! Whether the elements' layer keeps the nearness of its ink (RG32F; else R8, ink only): with
+//! animated objects, which may pass in front of its cached static layer.
+bool elementsKeepNearness(const scene::Scene& s);
 std::unique_ptr<RenderPass> makeInkPass(const PassSetup&);
 std::string inkStructure(const scene::Scene&);
 //! Whether object i's slope wrinkles are computed in the ink pass (planar UVs are a function
