@@ -56,7 +56,8 @@ std::vector<std::string> inkDefines(const scene::Scene& s, bool debug_outputs) {
   if (wrinkledHere(s)) d.emplace_back("WRINKLE_SLOPE");
   if (grainHere(s)) d.emplace_back("CANVAS");
   if (s.usesPigment() || s.usesShadow()) d.emplace_back("PIGMENT");
-  if (s.usesElements()) d.emplace_back(elementsKeepNearness(s) ? "ELEMENTS ELEMENT_NEARNESS" : "ELEMENTS");
+  if (s.usesElements()) d.emplace_back("ELEMENTS");
+  if (s.usesElements() && elementsKeepNearness(s)) d.emplace_back("ELEMENT_NEARNESS");
   addSurfaceDefines(s, d);
   if (debug_outputs) d.emplace_back("DEBUG_OUTPUTS");
   return d;

@@ -213,5 +213,41 @@ TEST_F(Elements, TheSameSeedPaintsTheSamePicture) {
   EXPECT_NE(a.pixels, c.pixels);
 }
 
+TEST_F(Elements, SomethingMovingInFrontHidesTheCachedLayer) {
+  // A dot on a plane, and a box that moves over it: at t = 0 the box is 150 away, at t = 1 it
+  // stands on the dot. The camera stays, so the elements' layer is not drawn again (the
+  // static layer is cached); the ink pass must hide the dot by the layer's nearness.
+  json j = {{"output", {{"fade", 0.0}, {"width", kWidth}, {"height", kHeight}}}, {"objects", json::array()}};
+  for (const char* name : {"plane", "box"})
+    j["objects"].push_back({{"mesh", name},
+                            {"up", "z"},
+                            {"recentre", false},
+                            {"border", {{"mode", "keep"}}},
+                            {"lines", {{"enabled", false}}},
+                            {"shading", {{"enabled", false}}}});
+  j["objects"][0]["dots"] = {{"enabled", true}, {"size", 24.0}};
+  j["objects"][1]["transform"] = {{"scale", {30.0, 30.0, 30.0}}, {"translate", {-165.0, -15.0, 0.0}}};
+  j["objects"][1]["velocity"] = {150.0, 0.0, 0.0};
+  const scene::Scene s = scene::parseScene(j, "test", ".");
+  std::vector<scene::LoadedObject> loaded = withElements(s, plane(), {dotAt({0, 0, 0})});
+  loaded.push_back(
+      {std::make_shared<const scene::ObjectAsset>(scene::prepareAsset(mesh::unitCube(), s.objects[1])), nullptr});
+  InkRenderer r(s, loaded);
+  EXPECT_NE(r.variants().at("ink").front().find("ELEMENT_NEARNESS"), std::string::npos);
+  const scene::CameraKey key{-60.0, 35.0, 1.0};
+  const OrbitCamera cam = r.camera(key, static_cast<double>(kWidth) / kHeight);
+  const glm::dvec2 at = projected(cam, {0.0, 0.0, 0.0});
+  auto inkAtDot = [&](const image::Image& picture) {
+    double darkest = 1.0;
+    for (int y = static_cast<int>(at.y) - 1; y <= static_cast<int>(at.y) + 1; ++y)
+      for (int x = static_cast<int>(at.x) - 1; x <= static_cast<int>(at.x) + 1; ++x)
+        darkest = std::min(darkest, static_cast<double>(picture.at(x, y, 1)));
+    return 1.0 - darkest;
+  };
+  EXPECT_GT(inkAtDot(r.renderImage(key, nullptr, 0.0)), 0.5) << "the dot before the box arrives";
+  const image::Image covered = r.renderImage(key, nullptr, 1.0);
+  EXPECT_LT(inkAtDot(covered), 0.1) << "the dot under the box";
+}
+
 }  // namespace
 }  // namespace shanshui::render
