@@ -356,6 +356,19 @@ TEST(Stability, RendererOnStiffScenesAndParameters) {
        "motion_blur.interval=10 --set motion_blur.paint=0 --set motion_blur.water=0"},
       {"motion blur: the land flying off at 1e9 units/s",
        "motion_blur.enabled=true --set objects.0.velocity=[1e9,0,0] --set motion_blur.interval=1e-4"},
+      {"trees of 1e-6 m, one grove of 1000, slope limit 0",
+       "objects.0.trees.enabled=true --set objects.0.trees.size=1e-6 --set objects.0.trees.grove=1000 --set "
+       "objects.0.trees.max_slope=0"},
+      {"trees 1e6 m high, spread 2, every kind",
+       "objects.0.trees.enabled=true --set objects.0.trees.size=1e6 --set "
+       "objects.0.trees.size_spread=2 --set objects.0.trees.kinds=[1000,1000,1000,1000]"},
+      {"trees in a band of zero width at the top, no kind",
+       "objects.0.trees.enabled=true --set "
+       "objects.0.trees.band=[0.999999,1] --set objects.0.trees.kinds=[0,0,0,0]"},
+      {"moss dots 64 px, clusters of 100 at every tree",
+       "objects.0.dots.enabled=true --set objects.0.dots.size=64 --set "
+       "objects.0.dots.cluster=30 --set objects.0.trees.enabled=true --set "
+       "objects.0.dots.at_trees=1"},
   };
   for (const Set& s : sets) {
     runCase("render", s.name, r + quote(dem) + small + " --set " + s.sets, out, "", imageIsFinite(64, 48));
@@ -368,6 +381,9 @@ TEST(Stability, RendererOnStiffScenesAndParameters) {
           out, "objects.0.pigment.on_black", imageIsFinite(64, 48));
   runCase("render", "canvas impulses NaN", r + quote(dem) + small + " --set canvas.impulses=nan", out,
           "canvas.impulses", imageIsFinite(64, 48));
+  runCase("render", "trees at 10000 per hectare",
+          r + quote(dem) + small + " --set objects.0.trees.enabled=true --set objects.0.trees.density=10000", out,
+          "objects.0.trees.density", imageIsFinite(64, 48));
 }
 
 // Library stages: `stage` runs the case and returns a description of its finite result
