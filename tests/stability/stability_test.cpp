@@ -365,7 +365,7 @@ TEST(Stability, RendererOnStiffScenesAndParameters) {
       {"trees in a band of zero width at the top, no kind",
        "objects.0.trees.enabled=true --set "
        "objects.0.trees.band=[0.999999,1] --set objects.0.trees.kinds=[0,0,0,0]"},
-      {"moss dots 64 px, clusters of 100 at every tree",
+      {"moss dots 64 px, clusters of 30, dots at every tree",
        "objects.0.dots.enabled=true --set objects.0.dots.size=64 --set "
        "objects.0.dots.cluster=30 --set objects.0.trees.enabled=true --set "
        "objects.0.dots.at_trees=1"},
