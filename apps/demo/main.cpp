@@ -241,6 +241,19 @@ int main(int argc, char** argv) {
       results.push_back(runner.run(st));
       stages.push_back(st);
     }
+    // Trees and moss dots close up (issue 44): the grove on the project's own hill.
+    {
+      const fs::path scene = s / "scenes/grove.json";
+      if (!fs::exists(scene)) throw shanshui::makeError(scene.string(), ": not found");
+      Stage st{"grove",
+               "shanshui-render",
+               {scene.string(), "-o", (o / "grove.png").string(), "--stats", (o / "grove_stats.json").string()},
+               {scene, s / "terrain/hill.asc", s / "textures/rain_strokes_wrinkle.png"},
+               {o / "grove.png", o / "grove_stats.json"}};
+      if (quick) st.args.insert(st.args.end(), {"--set", "output.height=120", "--set", "output.width=160"});
+      results.push_back(runner.run(st));
+      stages.push_back(st);
+    }
     // Seed 002's brush strokes (willow leaf) on the level distance.
     {
       const fs::path scene = s / "scenes/level_distance.json";
@@ -404,6 +417,10 @@ int main(int argc, char** argv) {
     if (!reference.empty()) {
       md << " ![reference](assets/reference" << fs::path(reference).extension().string() << ")";
     }
+    md << "\n\nTrees and moss dots grown on the terrain and drawn as brushwork (every sample has them; "
+          "`samples/scenes/grove.json` shows them close, on a hill of the project's own): pines with needle fans, "
+          "leafy trees of dot leaves, bare branches, distant trees as a few dots, in groves on ridges, in hollows "
+          "and on valley floors, with clusters of moss dots:\n\n![grove](grove.png)";
     md << "\n\nThe level distance with seed 002's brush strokes along its silhouettes and creases "
           "(`objects.N.strokes.style: liuye`, willow leaf: thin, thick, thin):\n\n"
           "![level strokes](level_strokes.png)\n\nOn a mesh (the sample boat): its feature lines, and liuye brush "
@@ -426,8 +443,9 @@ int main(int argc, char** argv) {
        << "| picture | paper share | dark share | dark width px | far / near ink | longest straight | marks / MP | "
           "size spread |\n"
        << "|---|---|---|---|---|---|---|---|\n";
-    for (const std::string& name : {std::string("mountain"), std::string("high"), std::string("deep"),
-                                    std::string("level"), std::string("level_strokes"), std::string("light_colour")}) {
+    for (const std::string& name :
+         {std::string("mountain"), std::string("high"), std::string("deep"), std::string("level"),
+          std::string("level_strokes"), std::string("light_colour"), std::string("grove")}) {
       const fs::path f = o / (name + "_stats.json");
       const json st = fs::exists(f) ? json::parse(readFile(f), nullptr, false) : json();
       md << "| " << name;
