@@ -99,7 +99,7 @@ int marks(uint i, out vec3 world, out float ppu, out float height, out float ink
   if (here < 0.004) return 0;
   ink = dot ? u_dot_ink * here : u_tree_ink * here;
   float px = height * ppu / u_per_1024;
-  float middle_in = dot ? 0.0 : smoothstep(8.0, 14.0, px), near_in = smoothstep(40.0, 64.0, px);
+  float middle_in = dot ? 0.0 : smoothstep(8.0, 14.0, px), near_in = smoothstep(56.0, 88.0, px);
   w = vec3(1.0 - middle_in, middle_in * (1.0 - near_in), middle_in * near_in);
   // A far tree stays a dab a painter can see: its far marks grow to the least width.
   far_size = height * max(1.0, u_least_far_px / max(0.3 * px, 1e-9));

@@ -216,7 +216,9 @@ Site Terrain::site(double x, double y) const {
 std::vector<Instance> placeElements(const mesh::Mesh& m, const TreeOptions& trees, const DotOptions& dots,
                                     std::uint64_t scene_seed, const std::string& where) {
   std::vector<Instance> out;
-  const bool want_trees = trees.enabled && trees.density > 0.0;
+  double shares = 0.0;
+  for (double k : trees.kinds) shares += k;
+  const bool want_trees = trees.enabled && trees.density > 0.0 && shares > 0.0;  // no kind: no tree
   const bool want_dots = dots.enabled && (dots.density > 0.0 || (want_trees && dots.at_trees > 0.0));
   if (!(want_trees || want_dots) || m.triangles.empty()) return out;
   const Terrain terrain(m);

@@ -194,6 +194,9 @@ TEST(Placement, TooManyElementsIsAnErrorNamingTheKey) {
 TEST(Placement, NothingAskedNothingPlaced) {
   EXPECT_TRUE(placeElements(flat(), {}, {}, 1).empty());
   EXPECT_TRUE(placeElements(mesh::Mesh{}, trees(5.0), {}, 1).empty());
+  TreeOptions none = trees(5.0);
+  none.kinds = {0.0, 0.0, 0.0, 0.0};
+  EXPECT_TRUE(placeElements(flat(), none, {}, 1).empty()) << "no kind of tree asked for";
 }
 
 TEST(Brushwork, LevelWeightsSumToOneAndChangeContinuously) {

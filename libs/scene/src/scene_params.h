@@ -326,7 +326,8 @@ void describe(V& v, elements::TreeOptions& t) {
   v.number({"grove", "mean trees per grove; 1 scatters them one by one", kRebuild}, t.grove, {1, 1000});
   v.number({"grove_radius", "spread of a grove; 0: six mean tree heights", kRebuild, "model units"}, t.grove_radius,
            {0, 1e6});
-  v.numbers({"kinds", "shares of pine, leafy (dot leaves), bare (branches) and distant (a few vertical dots) trees",
+  v.numbers({"kinds",
+             "shares of pine, leafy (dot leaves), bare (branches) and distant (a few vertical dots) trees; all 0: none",
              kRebuild},
             t.kinds, {0, 1000});
   v.integer({"seed", "placement and growth; 0: the scene's seed", kRebuild}, t.seed, {0, 1LL << 53});

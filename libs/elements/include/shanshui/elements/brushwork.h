@@ -40,7 +40,7 @@ std::vector<Mark> growBrushwork(Kind kind, std::uint32_t seed);
 
 //! Weights of the far, middle and near levels for an element `px` pixels high in a picture
 //! 1024 pixels high: the far dab alone below 8 px, fading into the middle strokes up to
-//! 14 px, which fade into the full brushwork from 40 to 64 px (where a needle is about a
+//! 14 px, which fade into the full brushwork from 56 to 88 px (where a needle is about a
 //! pixel wide). They sum to 1 and change continuously with px.
 std::array<float, 3> levelWeights(double px);
 
