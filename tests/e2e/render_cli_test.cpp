@@ -34,6 +34,32 @@ std::set<std::string> passNames(const json& frame) {
   return names;
 }
 
+// --benchmark on llvmpipe: frames back to back, per-pass GPU medians (the elements pass
+// among them: the sample grows trees), no picture written.
+TEST(RenderCli, BenchmarkTimesEveryPassOverFramesBackToBack) {
+  test::TempDir dir;
+  const auto r = run(bin("shanshui-render") + " " + sampleScene() + " --benchmark 3 --size 96x64 --stats " +
+                     quote(dir / "b.json") + " --set objects.0.max_vertices=5000");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("elements"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("fps"), std::string::npos) << r.output;
+  const json b = readJson(dir / "b.json");
+  EXPECT_EQ(b["frames"], 3);
+  EXPECT_EQ(b["size"], json({96, 64}));
+  for (const char* pass : {"gbuffer", "canvas", "elements", "ink"}) {
+    ASSERT_TRUE(b["pass_gpu_ms"].contains(pass)) << pass;
+    EXPECT_GT(b["pass_gpu_ms"][pass]["median"].get<double>(), 0.0) << pass;
+    EXPECT_GE(b["pass_gpu_ms"][pass]["p90"].get<double>(), b["pass_gpu_ms"][pass]["median"].get<double>()) << pass;
+  }
+  EXPECT_GE(b["frame_wall_ms"]["median"].get<double>(), b["passes_gpu_ms"]["median"].get<double>() * 0.5);
+  EXPECT_GT(b["elements"][0]["count"].get<int>(), 0);
+  EXPECT_LT(b["elements"][0]["place_seconds"].get<double>(), 5.0);
+  EXPECT_FALSE(std::filesystem::exists(dir / "b.png"));
+  const auto bad = run(bin("shanshui-render") + " " + sampleScene() + " --benchmark -2");
+  EXPECT_NE(bad.exit_code, 0);
+  EXPECT_NE(bad.output.find("--benchmark"), std::string::npos) << bad.output;
+}
+
 TEST(RenderCli, StatsListThePassesBuiltAndTheirGpuTimePerFrame) {
   test::TempDir dir;
   const auto r =
