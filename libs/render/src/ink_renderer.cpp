@@ -313,8 +313,11 @@ const Framebuffer& InkRenderer::render(const OrbitCamera& camera, int width, int
   if (scene_.hasAnimation()) key += "|t=" + std::to_string(time);
   if (key == last_key_) {
     if (stats)
-      *stats = FrameStats{
-          true, std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count(), {}, 0.0};
+      *stats = FrameStats{true,
+                          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count(),
+                          {},
+                          0.0,
+                          {}};
     return *last_output_;
   }
   const FrameInputs in{scene_,
@@ -348,9 +351,14 @@ const Framebuffer& InkRenderer::render(const OrbitCamera& camera, int width, int
     glScissor(region->x, region->y, region->z - region->x, region->w - region->y);
   }
   FrameImages images;
+  std::vector<PassSubmit> submit;
   for (Built& b : passes_) {
     const Texture2D* before = images.picture;
+    const auto pass_start = std::chrono::steady_clock::now();
     b.pass->run(scoped, images);
+    submit.push_back(
+        {b.entry->name,
+         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - pass_start).count()});
     if (images.picture != before) last_output_ = b.pass->target();
   }
   glDisable(GL_SCISSOR_TEST);
@@ -360,6 +368,7 @@ const Framebuffer& InkRenderer::render(const OrbitCamera& camera, int width, int
   last_inverse_view_projection_ = glm::inverse(glm::dmat4(camera.projection(aspect)) * glm::dmat4(camera.view()));
 
   FrameStats out;
+  out.submit = std::move(submit);
   out.redrawn = region ? static_cast<double>(region->z - region->x) * (region->w - region->y) / (width * height) : 1.0;
   if (timing)
     out.passes = timer_.collect();

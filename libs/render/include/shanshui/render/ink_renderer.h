@@ -22,12 +22,19 @@
 
 namespace shanshui::render {
 
+//! CPU wall time of one pass's run(): its submission, and any wait of the CPU on the GPU in it.
+struct PassSubmit {
+  std::string name;
+  double cpu_ms = 0.0;
+};
+
 //! What one call of InkRenderer::render did.
 struct FrameStats {
-  bool cached = false;           //!< nothing changed: the previous image was presented
-  double frame_ms = 0.0;         //!< CPU wall time of the call (including the wait when timing)
-  std::vector<PassTime> passes;  //!< passes that ran, in order, with GPU milliseconds
-  double redrawn = 1.0;          //!< share of the picture the passes drew (less when only animated objects changed)
+  bool cached = false;             //!< nothing changed: the previous image was presented
+  double frame_ms = 0.0;           //!< CPU wall time of the call (including the wait when timing)
+  std::vector<PassTime> passes;    //!< passes that ran, in order, with GPU milliseconds
+  double redrawn = 1.0;            //!< share of the picture the passes drew (less when only animated objects changed)
+  std::vector<PassSubmit> submit;  //!< each built pass's run(), in list order; empty when cached
 };
 
 //! The camera of a scene for one view: orbit parameters from the scene (or a path key),
