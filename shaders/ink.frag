@@ -8,8 +8,8 @@
 // here, once per pixel, not in the G-buffer pass), SINGLE_OBJECT (parameters without
 // indexing), CANVAS (the paper grain, when no diffusion pass comes after), PIGMENT (the
 // presence the atmosphere leaves, in alpha, for the pigment pass), ELEMENTS (the trees' and
-// moss dots' ink over the rest), DEBUG_OUTPUTS (line weight, tone and wrinkle luma as extra
-// targets, for tests). PAPER builds the background's
+// moss dots' ink over the rest; ELEMENT_NEARNESS with animated objects), DEBUG_OUTPUTS (line
+// weight, tone and wrinkle luma as extra targets, for tests). PAPER builds the background's
 // program, which the pass draws apart by the depth test.
 #include "ink_objects.glsl"
 #ifdef SHADING

@@ -362,6 +362,10 @@ TEST(Stability, RendererOnStiffScenesAndParameters) {
       {"trees 1e6 m high, spread 2, every kind",
        "objects.0.trees.enabled=true --set objects.0.trees.size=1e6 --set "
        "objects.0.trees.size_spread=2 --set objects.0.trees.kinds=[1000,1000,1000,1000]"},
+      {"groves and dot clusters a million metres wide",
+       "objects.0.trees.enabled=true --set objects.0.trees.grove_radius=1e6 "
+       "--set objects.0.trees.grove=1 --set objects.0.dots.enabled=true --set "
+       "objects.0.dots.spread=1e6"},
       {"trees in a band of zero width at the top, no kind",
        "objects.0.trees.enabled=true --set "
        "objects.0.trees.band=[0.999999,1] --set objects.0.trees.kinds=[0,0,0,0]"},

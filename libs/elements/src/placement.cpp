@@ -236,8 +236,12 @@ std::vector<Instance> placeElements(const mesh::Mesh& m, const TreeOptions& tree
 
   if (want_trees) {
     Random r(streamValue(trees.seed ? trees.seed : scene_seed, 0x7e55ull));
-    const double sigma = trees.grove_radius > 0.0 ? trees.grove_radius : 6.0 * trees.size;
-    const double reach = 3.0 * sigma;
+    // A grove spreads at most over the object; centres fall at most half its size beyond it
+    // (a grove wider than that is a scatter, and the centres to sample stay within 4x its
+    // area, however wide a grove the keys ask for).
+    const double side = std::max(std::max(b.size().x, b.size().y), 1e-9);
+    const double sigma = std::min(trees.grove_radius > 0.0 ? trees.grove_radius : 6.0 * trees.size, side);
+    const double reach = std::min(3.0 * sigma, 0.5 * side);
     const double w = b.size().x + 2 * reach, h = b.size().y + 2 * reach;
     const int groves = r.poisson(trees.density / 1e4 * w * h / trees.grove);
     for (int g = 0; g < groves; ++g) {
@@ -267,7 +271,8 @@ std::vector<Instance> placeElements(const mesh::Mesh& m, const TreeOptions& tree
 
   if (want_dots) {
     Random r(streamValue(dots.seed ? dots.seed : scene_seed, 0xd075ull));
-    const double sigma = dots.spread > 0.0 ? dots.spread : 0.004 * std::max(b.size().x, b.size().y);
+    const double side = std::max(std::max(b.size().x, b.size().y), 1e-9);
+    const double sigma = std::min(dots.spread > 0.0 ? dots.spread : 0.004 * side, side);
     auto addDot = [&](double x, double y) {
       glm::dvec3 p;
       double slope = 0.0;
@@ -290,7 +295,7 @@ std::vector<Instance> placeElements(const mesh::Mesh& m, const TreeOptions& tree
         addDot(t.position.x + t.size * r.uniform(-0.5, 0.5), t.position.y + t.size * r.uniform(-0.5, 0.5));
     }
     // Clusters along ridges and rock edges.
-    const double reach = 3.0 * sigma;
+    const double reach = std::min(3.0 * sigma, 0.5 * side);
     const double w = b.size().x + 2 * reach, h = b.size().y + 2 * reach;
     const int clusters = dots.density > 0.0 ? r.poisson(dots.density / 1e4 * w * h) : 0;
     for (int c = 0; c < clusters; ++c) {

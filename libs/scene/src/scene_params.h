@@ -324,8 +324,9 @@ void describe(V& v, elements::TreeOptions& t) {
   });
   v.number({"open", "density on open slopes relative to ridges, hollows and valley floors", kRebuild}, t.open, kUnit);
   v.number({"grove", "mean trees per grove; 1 scatters them one by one", kRebuild}, t.grove, {1, 1000});
-  v.number({"grove_radius", "spread of a grove; 0: six mean tree heights", kRebuild, "model units"}, t.grove_radius,
-           {0, 1e6});
+  v.number({"grove_radius", "spread of a grove; 0: six mean tree heights; at most the object's larger side", kRebuild,
+            "model units"},
+           t.grove_radius, {0, 1e6});
   v.numbers({"kinds",
              "shares of pine, leafy (dot leaves), bare (branches) and distant (a few vertical dots) trees; all 0: none",
              kRebuild},
@@ -343,8 +344,9 @@ void describe(V& v, elements::DotOptions& d) {
       {"density", "clusters per hectare of horizontal area where the site suits them best", kRebuild, "per hectare"},
       d.density, {0, 10000});
   v.number({"cluster", "mean dots per cluster", kRebuild}, d.cluster, {1, 100});
-  v.number({"spread", "a cluster's radius; 0: 0.4 % of the object's larger side", kRebuild, "model units"}, d.spread,
-           {0, 1e6});
+  v.number({"spread", "a cluster's radius; 0: 0.4 % of the object's larger side; at most that side", kRebuild,
+            "model units"},
+           d.spread, {0, 1e6});
   v.number({"at_trees", "share of trees with one to three dots at their feet", kRebuild}, d.at_trees, kUnit);
   v.integer({"seed", "placement; 0: the scene's seed", kRebuild}, d.seed, {0, 1LL << 53});
   v.number({"size", "a dot's size", Effect::Uniform, "pixels at 1024 high"}, d.size_px, {0.5, 64});
