@@ -52,6 +52,7 @@ uniform uint u_first;         // this object's first element in frame_instances
 uniform uint u_count;
 uniform uint u_capacity;      // entries
 uniform float u_tree_ink, u_dot_ink, u_dot_px;
+uniform vec4 u_level_bands;    // elements::kLevelBands: far → middle, middle → near (pixels at 1024)
 uniform float u_least_far_px;  // a far tree's dab is at least this wide (pixels at 1024)
 uniform uint u_dot_template;
 // Atmosphere and border.
@@ -99,7 +100,8 @@ int marks(uint i, out vec3 world, out float ppu, out float height, out float ink
   if (here < 0.004) return 0;
   ink = dot ? u_dot_ink * here : u_tree_ink * here;
   float px = height * ppu / u_per_1024;
-  float middle_in = dot ? 0.0 : smoothstep(8.0, 14.0, px), near_in = smoothstep(56.0, 88.0, px);
+  float middle_in = dot ? 0.0 : smoothstep(u_level_bands.x, u_level_bands.y, px);
+  float near_in = smoothstep(u_level_bands.z, u_level_bands.w, px);
   w = vec3(1.0 - middle_in, middle_in * (1.0 - near_in), middle_in * near_in);
   // A far tree stays a dab a painter can see: its far marks grow to the least width.
   far_size = height * max(1.0, u_least_far_px / max(0.3 * px, 1e-9));

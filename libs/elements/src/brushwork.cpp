@@ -179,7 +179,8 @@ std::vector<Mark> growBrushwork(Kind kind, std::uint32_t seed) {
 
 std::array<float, 3> levelWeights(double px) {
   const float p = static_cast<float>(px);
-  const float middle_in = smooth(8.0f, 14.0f, p), near_in = smooth(56.0f, 88.0f, p);
+  const float middle_in = smooth(kLevelBands[0], kLevelBands[1], p),
+              near_in = smooth(kLevelBands[2], kLevelBands[3], p);
   return {1.0f - middle_in, middle_in * (1.0f - near_in), middle_in * near_in};
 }
 

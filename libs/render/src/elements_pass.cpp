@@ -238,6 +238,8 @@ class ElementsPass final : public RenderPass {
     expand_.set("u_height_px", static_cast<float>(in.height));
     expand_.set("u_capacity", static_cast<unsigned>(capacity_));
     expand_.set("u_least_far_px", static_cast<float>(kLeastFarDabPx));
+    expand_.set("u_level_bands", glm::vec4(elements::kLevelBands[0], elements::kLevelBands[1], elements::kLevelBands[2],
+                                           elements::kLevelBands[3]));
     expand_.set("u_dot_template", dot_template_);
     expand_.set("u_fade", static_cast<float>(scene_.output.fade));
     expand_.set("u_fade_range", glm::vec2(fade));

@@ -38,6 +38,10 @@ struct Mark {
 //! one dab of unit width at the origin.
 std::vector<Mark> growBrushwork(Kind kind, std::uint32_t seed);
 
+//! Heights on screen (pixels at 1024 high) over which the levels cross-fade: far into middle,
+//! middle into near. The renderer's expansion shader takes them as a uniform.
+inline constexpr std::array<float, 4> kLevelBands{8.0f, 14.0f, 56.0f, 88.0f};
+
 //! Weights of the far, middle and near levels for an element `px` pixels high in a picture
 //! 1024 pixels high: the far dab alone below 8 px, fading into the middle strokes up to
 //! 14 px, which fade into the full brushwork from 56 to 88 px (where a needle is about a
