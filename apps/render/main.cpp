@@ -67,17 +67,22 @@ std::filesystem::path framePath(const std::string& pattern, int index, int count
   return p.parent_path() / (p.stem().string() + suffix + p.extension().string());
 }
 
-// --benchmark: frames back to back with the camera turning (no frame is a cache hit), timed
-// per pass on the GPU, nothing read back or encoded between them; the first two seconds warm
-// the GPU up and are not counted. Each frame still waits for its timer queries.
-void runBenchmark(const std::string& input, std::vector<std::string> sets, const std::string& size, int count,
-                  const std::string& stats_path) {
+// The scene (or lone mesh or DEM) with the --set overrides and, when given, --size WxH.
+scene::Scene loadSized(const std::string& input, std::vector<std::string> sets, const std::string& size) {
   if (size.size()) {
     const Size2 s = parseSize(size, "--size");
     sets.push_back("output.width=" + std::to_string(s.width));
     sets.push_back("output.height=" + std::to_string(s.height));
   }
-  const scene::Scene sc = scene::loadSceneInput(input, sets);
+  return scene::loadSceneInput(input, sets);
+}
+
+// --benchmark: frames back to back with the camera turning (no frame is a cache hit), timed
+// per pass on the GPU, nothing read back or encoded between them; the first two seconds warm
+// the GPU up and are not counted. Each frame still waits for its timer queries.
+void runBenchmark(const std::string& input, std::vector<std::string> sets, const std::string& size, int count,
+                  const std::string& stats_path) {
+  const scene::Scene sc = loadSized(input, std::move(sets), size);
   OutputSet outputs({input});
   if (!stats_path.empty()) outputs.declare(stats_path, "--stats", {".json"});
   scene::AssetCache cache;
@@ -204,12 +209,7 @@ int main(int argc, char** argv) {
     if (frames < 1 || frames > 100000) throw makeError("--frames: ", frames, " is out of range; expected [1, 100000]");
     if (!std::isfinite(orbit)) throw makeError("--orbit: must be finite");
     if (!(fps > 0 && fps <= 1e4)) throw makeError("--fps: ", fps, " is out of range; expected (0, 10000]");
-    if (size.size()) {
-      const Size2 s = parseSize(size, "--size");
-      sets.push_back("output.width=" + std::to_string(s.width));
-      sets.push_back("output.height=" + std::to_string(s.height));
-    }
-    const scene::Scene sc = scene::loadSceneInput(input, sets);
+    const scene::Scene sc = loadSized(input, sets, size);
     OutputSet outputs({input});
     for (int i = 0; i < frames; ++i)
       outputs.declare(framePath(output, i, frames), "-o", image::writableImageExtensions());
