@@ -222,8 +222,9 @@ Scene loadSceneInput(const std::filesystem::path& path, const std::vector<std::s
   }
   // The sample scene's style: strokes, light tones that leave lit slopes white, strong aerial
   // perspective, rice paper; a DEM is a piece of land seen from above into its ranges with
-  // mist in its valleys and trees and moss dots of their real size (its heights are metres),
-  // a mesh an object filling the frame.
+  // mist in its valleys, a mesh an object filling the frame. No trees: at their real size they
+  // suit DEMs of a few kilometres, and on a coast 300 km wide the default density would ask
+  // for millions (objects.0.trees.enabled=true adds them).
   json object = {{mesh ? "mesh" : "dem", path.string()},
                  {"name", path.stem().string()},
                  {"lines", {{"width", 3.5}}},
@@ -234,8 +235,6 @@ Scene loadSceneInput(const std::filesystem::path& path, const std::vector<std::s
   } else {
     j["camera"] = {{"preset", "deep"}};
     j["mist"] = {{"density", 0.75}, {"height", 0.12}, {"softness", 0.35}};
-    j["objects"][0]["trees"] = {{"enabled", true}};
-    j["objects"][0]["dots"] = {{"enabled", true}};
   }
   for (const std::string& o : overrides) applyOverride(j, o);
   return parseScene(j, path.filename().string(), ".");
