@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "bench_args.h"
+#include "bench_data.h"
 #include "shanshui/core/error.h"
 #include "shanshui/mesh/mesh_io.h"
 #include "shanshui/mesh/repair.h"
@@ -124,7 +125,7 @@ int main(int argc, char** argv) {
   fs::create_directories(out);
   std::vector<Input> inputs;
   inputs.push_back({kDevelopable, developableRidge(quick ? 40 : 120)});
-  const fs::path source = SHANSHUI_SOURCE_DIR, data = SHANSHUI_DATA_DIR;
+  const fs::path source = SHANSHUI_SOURCE_DIR, data = bench::dataDir();
   for (const fs::path& f : {source / "samples/terrain/mount_st_helens.dem",
                             data / "terrain/jacksboro_fault_dem_u16.png", data / "terrain/bc_coast_topobathy.asc"}) {
     if (fs::exists(f)) inputs.push_back({f.filename().string(), demMesh(f, maxVertices)});

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "bench_args.h"
+#include "bench_data.h"
 #include "shanshui/core/error.h"
 #include "shanshui/image/image_io.h"
 #include "shanshui/texsynth/quilt_metrics.h"
@@ -42,14 +43,7 @@ int main(int argc, char** argv) {
   const fs::path out = args.out;
   const bool quick = args.quick;
   const int size = args.integer("--size", quick ? 128 : 256), block = args.integer("--block", 32);
-  const fs::path dir = fs::path(SHANSHUI_DATA_DIR) / "textures";
-  if (!fs::is_directory(dir)) {
-    std::fprintf(stderr, "bench_quilt_tradeoff: no textures in %s\n", dir.c_str());
-    return 1;
-  }
-  std::vector<fs::path> files;
-  for (const auto& e : fs::directory_iterator(dir)) files.push_back(e.path());
-  std::sort(files.begin(), files.end());
+  std::vector<fs::path> files = bench::textureScans();
   if (quick && files.size() > 3) files.resize(3);
   fs::create_directories(out);
 

@@ -7,6 +7,7 @@
 
 #include <benchmark/benchmark.h>
 
+#include "bench_data.h"
 #include "shanshui/image/convert.h"
 #include "shanshui/image/image_io.h"
 #include "shanshui/texsynth/enhance.h"
@@ -19,7 +20,7 @@ using namespace shanshui;
 // efros_t1.png (192×192, bricks) as grey; a seeded noise image if the data is absent.
 const image::Image& greySample() {
   static const image::Image sample = [] {
-    const std::filesystem::path f = std::filesystem::path(SHANSHUI_DATA_DIR) / "textures/efros_t1.png";
+    const std::filesystem::path f = shanshui::bench::dataDir() / "textures/efros_t1.png";
     if (std::filesystem::exists(f)) return image::toGrey(image::loadImage(f));
     image::Image img(192, 192, 1);
     std::mt19937 rng(1);

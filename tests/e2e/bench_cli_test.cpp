@@ -141,6 +141,20 @@ TEST(BenchCli, AFailingProgramIsReportedAndTheOthersStillRun) {
   EXPECT_TRUE(fs::exists(dir / "ink_tradeoff_curvature_per_pixel.png")) << "the other program's plot";
 }
 
+// The stages that read real data run on the repository's own samples when nothing is beside
+// it (a bare clone); the run is the one `make bench` does, but quick.
+TEST(BenchCli, DataStagesNeedNothingBesideTheRepository) {
+  const test::TempDir dir;
+  fs::create_directories(dir / "empty");
+  const auto r = test::run("SHANSHUI_DATA_DIR=" + test::quote(dir / "empty") + " " +
+                           test::quote(test::binDir() / "shanshui-bench") +
+                           " --stage quilt --stage param --quick --out " + test::quote(dir / "out"));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(readText(dir / "out/quilt_tradeoff.csv").find("rain_strokes_scan.png"), std::string::npos);
+  EXPECT_NE(readText(dir / "out/param_tradeoff.csv").find("mount_st_helens.dem"), std::string::npos);
+  EXPECT_EQ(readText(dir / "out/README.md").find("failed"), std::string::npos);
+}
+
 TEST(BenchCli, RefusesAnUnknownStageAndWritesNothing) {
   const test::TempDir dir;
   const auto r = test::run(test::quote(test::binDir() / "shanshui-bench") + " --stage spline --out " +

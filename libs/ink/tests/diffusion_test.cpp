@@ -206,8 +206,7 @@ TEST(Diffusion, ExtremeParametersAndImagesStayFiniteNonNegativeAndConserved) {
 }
 
 TEST(Diffusion, RealScansKeepTheInvariants) {
-  const auto scans = test::sharedTextures();
-  if (scans.empty()) GTEST_SKIP() << "no texture scans under " << test::sharedData() / "textures";
+  const auto scans = test::textureScans();
   const double paper[3] = {1.0, 1.0, 1.0};
   int tested = 0;
   for (const auto& path : scans) {

@@ -15,9 +15,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-#define REQUIRE_TEXTURES(files) \
-  if ((files).empty()) GTEST_SKIP() << "no textures in " << test::sharedData() / "textures"
-
 cv::Mat maskOf(int b, int left, int top, int right, int bottom) {
   cv::Mat m = cv::Mat::zeros(b, b, CV_8U);
   if (left) m.colRange(0, left).setTo(1);
@@ -51,8 +48,7 @@ std::vector<int> candidateSet(const cv::Mat& e, long long values) {
 }
 
 TEST(OverlapSearch, FftEqualsExhaustiveOnEveryTextureAndMaskShape) {
-  const auto files = test::sharedTextures();
-  REQUIRE_TEXTURES(files);
+  const auto files = test::textureScans();
   const int b = 24;
   for (const fs::path& f : files) {
     SCOPED_TRACE(f.filename().string());
@@ -125,8 +121,7 @@ void expectEveryPixelFromTheSample(const image::Image& sample, const QuiltResult
 }
 
 TEST(Quilt, EveryTextureEverySeamGivesPixelsFromTheSampleAndBeatsRandomPlacement) {
-  const auto files = test::sharedTextures();
-  REQUIRE_TEXTURES(files);
+  const auto files = test::textureScans();
   for (const fs::path& f : files) {
     const image::Image sample = image::loadImage(f);
     QuiltOptions o;
@@ -223,8 +218,7 @@ TEST(Quilt, FftAndExhaustiveSearchesGiveTheSameTexture) {
 }
 
 TEST(Quilt, TileableOutputWrapsWithoutASeam) {
-  const auto files = test::sharedTextures();
-  REQUIRE_TEXTURES(files);
+  const auto files = test::textureScans();
   for (const fs::path& f : files) {
     SCOPED_TRACE(f.filename().string());
     const image::Image sample = image::loadImage(f);
