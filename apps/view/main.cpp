@@ -16,6 +16,7 @@
 #include <epoxy/gl.h>
 #include <nlohmann/json.hpp>
 
+#include "scene_panel.h"
 #include "shanshui/core/parse.h"
 #include "shanshui/image/image_io.h"
 #include "shanshui/render/gl_context.h"
@@ -43,114 +44,6 @@ image::Image readBackBuffer(int width, int height) {
                 &img.pixels[static_cast<std::size_t>(y) * row]);
   }
   return img;
-}
-
-// "objects.2.lines.curve_factor" -> "objects.*.lines.curve_factor", the schema's spelling.
-std::string schemaPath(const std::string& path) {
-  std::string out, part;
-  std::string prev;
-  auto flush = [&] {
-    const bool index = !part.empty() && part.find_first_not_of("0123456789") == std::string::npos;
-    out += (out.empty() ? "" : ".") + ((index && (prev == "objects" || prev == "path")) ? std::string("*") : part);
-    prev = part;
-    part.clear();
-  };
-  for (char c : path) {
-    if (c == '.')
-      flush();
-    else
-      part += c;
-  }
-  flush();
-  return out;
-}
-
-const scene::SchemaEntry* findSchema(const std::string& path) {
-  const std::string p = schemaPath(path);
-  for (const auto& e : scene::sceneSchema()) {
-    if (e.path == p) return &e;
-  }
-  return nullptr;
-}
-
-// A widget per scene key, built from the scene's JSON and the parameter description's
-// schema (kind, range, meaning as a tooltip), so every parameter the file accepts can be
-// edited live. Returns true when something changed.
-bool editJson(json& node, const std::string& path, const std::string& label) {
-  const scene::SchemaEntry* e = findSchema(path);
-  const char* id = label.c_str();
-  bool changed = false;
-  if (node.is_object()) {
-    const bool top = path.empty();
-    if (top || ImGui::TreeNodeEx(id, path.find('.') == std::string::npos ? ImGuiTreeNodeFlags_DefaultOpen : 0)) {
-      for (auto& [key, value] : node.items()) {
-        changed |= editJson(value, path.empty() ? key : path + "." + key, key);
-      }
-      if (!top) ImGui::TreePop();
-    }
-    return changed;
-  }
-  if (node.is_array() && !node.empty() && node[0].is_object()) {
-    if (ImGui::TreeNodeEx(id, ImGuiTreeNodeFlags_DefaultOpen)) {
-      for (std::size_t i = 0; i < node.size(); ++i) {
-        const std::string name = node[i].contains("name") ? node[i]["name"].get<std::string>() : std::to_string(i);
-        changed |= editJson(node[i], path + "." + std::to_string(i), name + "##" + std::to_string(i));
-      }
-      ImGui::TreePop();
-    }
-    return changed;
-  }
-  const float lo = e ? static_cast<float>(e->min) : 0.0f, hi = e ? static_cast<float>(e->max) : 0.0f;
-  const bool bounded = e && hi - lo < 1e5f;
-  const float speed = bounded ? (hi - lo) / 500.0f : 0.05f;
-  if (node.is_boolean()) {
-    bool v = node.get<bool>();
-    if (ImGui::Checkbox(id, &v)) node = v, changed = true;
-  } else if (e && e->kind == "choice") {
-    const std::string current = node.get<std::string>();
-    if (ImGui::BeginCombo(id, current.c_str())) {
-      for (const auto& c : e->choices) {
-        if (ImGui::Selectable(c.c_str(), c == current)) node = c, changed = true;
-      }
-      ImGui::EndCombo();
-    }
-  } else if (node.is_string()) {
-    char buf[1024];
-    std::snprintf(buf, sizeof buf, "%s", node.get<std::string>().c_str());
-    if (ImGui::InputText(id, buf, sizeof buf, ImGuiInputTextFlags_EnterReturnsTrue))
-      node = std::string(buf), changed = true;
-  } else if (node.is_number_integer() || (e && e->kind == "integer")) {
-    // 64-bit: the seed goes up to 2^53.
-    long long v = node.get<long long>();
-    const long long vlo = e ? static_cast<long long>(e->min) : 0, vhi = e ? static_cast<long long>(e->max) : 0;
-    if (ImGui::DragScalar(id, ImGuiDataType_S64, &v, std::max(1.0f, speed), e ? &vlo : nullptr, e ? &vhi : nullptr)) {
-      node = v, changed = true;
-    }
-  } else if (node.is_number()) {
-    float v = node.get<float>();
-    if (ImGui::DragFloat(id, &v, speed, bounded ? lo : 0.0f, bounded ? hi : 0.0f, "%.4g")) node = v, changed = true;
-  } else if (node.is_array() && node.size() <= 5 &&
-             std::all_of(node.begin(), node.end(), [](const json& x) { return x.is_number(); })) {
-    float v[5] = {};
-    for (std::size_t i = 0; i < node.size(); ++i) v[i] = node[i].get<float>();
-    const int n = static_cast<int>(node.size());
-    bool edited = e && e->kind == "color"
-                      ? ImGui::ColorEdit3(id, v)
-                      : ImGui::DragScalarN(id, ImGuiDataType_Float, v, n, speed, bounded ? &lo : nullptr,
-                                           bounded ? &hi : nullptr, "%.3g");
-    if (edited) {
-      for (std::size_t i = 0; i < node.size(); ++i) node[i] = v[i];
-      changed = true;
-    }
-  } else if (node.is_null() && e) {
-    ImGui::TextDisabled("%s: auto", id);
-  }
-  if (e && ImGui::IsItemHovered()) {
-    ImGui::SetTooltip("%s%s%s\nrange %s%s", e->doc.c_str(), e->unit.empty() ? "" : ", ", e->unit.c_str(),
-                      e->range_text.c_str(),
-                      e->effect == scene::Effect::Rebuild ? "; a change rebuilds the renderer" : "");
-  }
-  return changed;
 }
 
 struct ViewState {
@@ -354,7 +247,7 @@ int main(int argc, char** argv) {
           if (!status.empty()) ImGui::TextWrapped("%s", status.c_str());
           if (!scene_error.empty()) ImGui::TextColored(ImVec4(1, 0.3f, 0.2f, 1), "%s", scene_error.c_str());
           ImGui::Separator();
-          if (editJson(edited, "", "scene")) {
+          if (view::editScene(edited)) {
             try {
               scene::Scene next = scene::parseScene(edited, "panel", sc.base_dir);
               const bool camera_changed = scene::toJson(next)["camera"] != scene::toJson(sc)["camera"];
