@@ -23,7 +23,8 @@ inline std::vector<std::filesystem::path> textureScans() {
     for (const auto& e : std::filesystem::directory_iterator(dir)) files.push_back(e.path());
   }
   std::sort(files.begin(), files.end());
-  if (files.empty()) files.push_back(std::filesystem::path(SHANSHUI_SOURCE_DIR) / "samples/textures/rain_strokes_scan.png");
+  if (files.empty())
+    files.push_back(std::filesystem::path(SHANSHUI_SOURCE_DIR) / "samples/textures/rain_strokes_scan.png");
   return files;
 }
 

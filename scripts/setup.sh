@@ -11,6 +11,7 @@ packages=(
   libglm-dev libglfw3-dev libepoxy-dev libegl-dev libgl-dev
   libegl-mesa0 libgl1-mesa-dri libglx-mesa0
   libimgui-dev libcli11-dev nlohmann-json3-dev libtinyobjloader-dev
+  libgdal-dev gdal-bin libassimp-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   xvfb xauth
   clang-format git

@@ -84,10 +84,9 @@ class Panel {
     std::size_t remove = node.size();
     for (std::size_t i = 0; i < node.size(); ++i) {
       ImGui::PushID(static_cast<int>(i));
-      const std::string name =
-          node[i].is_object() && node[i].contains("name") && node[i]["name"].is_string()
-              ? node[i]["name"].get<std::string>()
-              : std::to_string(i);
+      const std::string name = node[i].is_object() && node[i].contains("name") && node[i]["name"].is_string()
+                                   ? node[i]["name"].get<std::string>()
+                                   : std::to_string(i);
       changed |= edit(node[i], path + "." + std::to_string(i), name + "##entry");
       if (ImGui::SmallButton("remove")) remove = i;
       ImGui::PopID();
@@ -140,8 +139,7 @@ class Panel {
       // 64-bit: the seed goes up to 2^53.
       long long v = node.get<long long>();
       const long long vlo = e ? static_cast<long long>(e->min) : 0, vhi = e ? static_cast<long long>(e->max) : 0;
-      if (ImGui::DragScalar(id, ImGuiDataType_S64, &v, std::max(1.0f, speed), e ? &vlo : nullptr,
-                            e ? &vhi : nullptr)) {
+      if (ImGui::DragScalar(id, ImGuiDataType_S64, &v, std::max(1.0f, speed), e ? &vlo : nullptr, e ? &vhi : nullptr)) {
         node = v, changed = true;
       }
       record(path, width, true);
@@ -176,7 +174,8 @@ class Panel {
 
   void tooltip(const scene::SchemaEntry& e) {
     ImGui::SetTooltip("%s%s%s\nrange %s%s", e.doc.c_str(), e.unit.empty() ? "" : ", ", e.unit.c_str(),
-                      e.range_text.c_str(), e.effect == scene::Effect::Rebuild ? "; a change rebuilds the renderer" : "");
+                      e.range_text.c_str(),
+                      e.effect == scene::Effect::Rebuild ? "; a change rebuilds the renderer" : "");
   }
 
   void record(const std::string& path, float width, bool editable) {

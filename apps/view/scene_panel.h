@@ -18,7 +18,7 @@ struct PanelWidget {
 };
 
 struct PanelOptions {
-  bool open_all = false;                //!< open every group (the tests' way to see every key)
+  bool open_all = false;                      //!< open every group (the tests' way to see every key)
   std::vector<PanelWidget>* drawn = nullptr;  //!< when set, each key's widget is appended
 };
 

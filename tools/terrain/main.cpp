@@ -10,10 +10,14 @@ int main(int argc, char** argv) {
   using namespace shanshui;
   CLI::App app{
       "Turns a DEM or height map into a triangle mesh (x east, y north, z up, metres).\n"
-      "Inputs: 8/16-bit PNG or TIFF height maps, USGS ASCII DEM (.dem), ESRI ASCII grid (.asc).",
+      "Inputs: every raster GDAL reads (GeoTIFF of any sample type, COG, BigTIFF, SRTM .hgt, VRT, .img, ...;\n"
+      "cell size, units and no-data from the georeference), PNG or TIFF height maps without one (the cell size\n"
+      "it used is printed), USGS ASCII DEM (.dem), ESRI ASCII grid (.asc).",
       "shanshui-terrain"};
   app.footer(
-      "Example:\n  shanshui-terrain samples/terrain/mount_st_helens.dem -o out/st_helens.obj --max-vertices 100000");
+      "Examples:\n  shanshui-terrain samples/terrain/mount_st_helens.dem -o out/st_helens.obj --max-vertices 100000\n"
+      "  shanshui-terrain samples/terrain/hill_utm.tif -o hill.obj\n"
+      "  shanshui-terrain N46E007.hgt -o alps.ply --max-vertices 250000 --fill-nodata");
   std::string input, output;
   terrain::HeightfieldOptions field;
   terrain::TerrainMeshOptions meshOptions;
@@ -28,6 +32,8 @@ int main(int argc, char** argv) {
                  "raise the step until the grid has at most K vertices (0: no limit)")
       ->check(tools::integerIn(0, 2000000000))
       ->default_val(0);
+  app.add_flag("--fill-nodata", field.fill_nodata,
+               "fill no-data samples (voids, the sea) by interpolation instead of leaving holes");
   return tools::runBatchableTool(app, argc, argv, [&] {
     if (field.cell_size < 0 || (app.count("--cell-size") && field.cell_size == 0)) {
       throw makeError("--cell-size: ", field.cell_size, " is out of range; expected (0, 1e6] metres");
@@ -35,6 +41,8 @@ int main(int argc, char** argv) {
     terrain::validate(meshOptions);
     OutputSet outputs({input});
     outputs.declare(output, "-o", {".obj", ".ply", ".off"});
+    // A large raster is read decimated to the vertex budget (GDAL formats) instead of whole.
+    field.max_samples = meshOptions.max_vertices;
     const terrain::Heightfield h = terrain::loadHeightfield(input, field);
     const auto [lo, hi] = h.elevationRange();
     std::fprintf(stderr, "%s; cells %.3f x %.3f m; elevations %.1f to %.1f m; %zu of %zu samples valid\n",

@@ -1,7 +1,5 @@
 #include "shanshui/image/image_io.h"
 
-#include <dlfcn.h>
-
 #include <algorithm>
 #include <array>
 #include <cctype>
@@ -12,6 +10,7 @@
 #include "codecs.h"
 #include "shanshui/core/atomic_output.h"
 #include "shanshui/core/error.h"
+#include "shanshui/core/module.h"
 
 namespace shanshui::image {
 namespace fs = std::filesystem;
@@ -76,35 +75,21 @@ struct LoadedModule {
 // Looks for the module in $SHANSHUI_IMAGE_MODULE (a file), next to the running program,
 // then in the build tree it was built in.
 LoadedModule loadModule() {
-  std::vector<fs::path> candidates;
-  if (const char* env = std::getenv("SHANSHUI_IMAGE_MODULE"); env != nullptr && *env != '\0') {
-    candidates.emplace_back(env);
-  }
-  std::error_code ec;
-  const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
-  if (!ec) candidates.push_back(exe.parent_path() / kModuleName);
 #ifdef SHANSHUI_IMAGE_MODULE_DIR
-  candidates.push_back(fs::path(SHANSHUI_IMAGE_MODULE_DIR) / kModuleName);
+  const std::string build_dir = SHANSHUI_IMAGE_MODULE_DIR;
+#else
+  const std::string build_dir;
 #endif
   LoadedModule result;
-  for (const fs::path& candidate : candidates) {
-    if (!fs::exists(candidate, ec)) continue;
-    void* handle = ::dlopen(candidate.c_str(), RTLD_NOW | RTLD_LOCAL);
-    if (handle == nullptr) {
-      result.error = ::dlerror();
-      continue;
-    }
-    using Entry = const OiioCodec* (*)();
-    auto entry = reinterpret_cast<Entry>(::dlsym(handle, "shanshui_oiio_codec"));
-    const OiioCodec* codec = entry ? entry() : nullptr;
-    if (codec == nullptr || codec->abi_version != kOiioCodecAbi) {
-      result.error = candidate.string() + " is not this build's codec module";
-      continue;
-    }
-    result.codec = codec;
+  using Entry = const OiioCodec* (*)();
+  auto entry = reinterpret_cast<Entry>(
+      loadModuleEntry(kModuleName, "SHANSHUI_IMAGE_MODULE", build_dir, "shanshui_oiio_codec", result.error));
+  const OiioCodec* codec = entry ? entry() : nullptr;
+  if (entry && (codec == nullptr || codec->abi_version != kOiioCodecAbi)) {
+    result.error = std::string(kModuleName) + " is not this build's codec module";
     return result;
   }
-  if (result.error.empty()) result.error = "not found next to the program";
+  result.codec = codec;
   return result;
 }
 

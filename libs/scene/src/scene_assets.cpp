@@ -109,9 +109,10 @@ LoadedObject AssetCache::get(const Scene& scene, std::size_t index) {
   const int curvature = o.lines.enabled ? static_cast<int>(o.lines.curvature) : -1;
   const std::filesystem::path source = scene.resolve(o.mesh.empty() ? o.dem : o.mesh);
   const std::string key = source.string() + "|" + std::to_string(o.z_scale) + "|" + std::to_string(o.max_vertices) +
-                          "|" + std::to_string(o.cell_size) + "|" + std::to_string(static_cast<int>(o.up)) + "|" +
-                          std::to_string(o.recentre) + "|" + std::to_string(object_curvature) +
-                          std::to_string(curvature) + "|" + std::to_string(o.lines.smoothing) + "|" +
+                          "|" + std::to_string(o.cell_size) + "|" + std::to_string(o.fill_nodata) + "|" +
+                          std::to_string(static_cast<int>(o.up)) + "|" + std::to_string(o.recentre) + "|" +
+                          std::to_string(object_curvature) + std::to_string(curvature) + "|" +
+                          std::to_string(o.lines.smoothing) + "|" +
                           (wrinkled ? (o.wrinkle.uv == UvSource::Mesh ? "uv-mesh" : "uv-planar") : "no-uv");
   std::shared_ptr<const ObjectAsset>& slot = meshes_[key];
   std::shared_ptr<const image::Image> wrinkle;
@@ -139,6 +140,8 @@ LoadedObject AssetCache::get(const Scene& scene, std::size_t index) {
         terrain::HeightfieldOptions hopt;
         hopt.cell_size = o.cell_size;
         hopt.image_relief_ratio = kImageReliefRatio;
+        hopt.max_samples = o.max_vertices;
+        hopt.fill_nodata = o.fill_nodata;
         asset->mesh =
             terrain::heightfieldToMesh(terrain::loadHeightfield(source, hopt), topt, nullptr, source.string());
       } else {

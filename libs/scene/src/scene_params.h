@@ -358,7 +358,10 @@ void describe(V& v, Object& o) {
   v.text({"name", "shown in the viewer; empty: `objects.N`"}, o.name, Text::Plain);
   v.text({"mesh", "`.obj`, `.ply`, `.off`, repaired on load like `shanshui-repair`; give `mesh` or `dem`", kRebuild},
          o.mesh, Text::File);
-  v.text({"dem", "heightfield (`.dem`, `.asc`, `.png`, `.tif`) meshed on load like `shanshui-terrain`", kRebuild},
+  v.text({"dem",
+          "heightfield meshed on load like `shanshui-terrain`: any raster GDAL reads (GeoTIFF, `.hgt`, VRT, ...), "
+          "a PNG or TIFF height map, `.dem` (USGS ASCII) or `.asc` (ESRI ASCII)",
+          kRebuild},
          o.dem, Text::File);
   v.check("", [&]() -> std::string {
     if (o.mesh.empty() && o.dem.empty()) return "needs a 'mesh' or a 'dem' file";
@@ -368,6 +371,11 @@ void describe(V& v, Object& o) {
   v.number({"z_scale", "dem only: vertical exaggeration", kRebuild}, o.z_scale, {0, 1000, true});
   v.integer({"max_vertices", "dem only: the grid is decimated to at most this many vertices", kRebuild}, o.max_vertices,
             {4, 100000000});
+  v.boolean({"fill_nodata",
+             "dem only: fill no-data samples (voids, the sea) by interpolation from their edges; false leaves them "
+             "out of the mesh as holes",
+             kRebuild},
+            o.fill_nodata);
   v.number({"cell_size",
             "dem only: metres between samples; 0: from the file's header, and an image (PNG, TIFF: no header) "
             "gets cells that make its larger side 8 times its relief",

@@ -33,12 +33,14 @@ bool parseNumber(const std::string& t, double& v) {
 bool looksGeographic(const fs::path& path, double xll, double yll, double cell, int rows, std::string& why) {
   fs::path prj = path;
   prj.replace_extension(".prj");
-  std::ifstream p(prj);
-  if (p) {
-    const std::string text((std::istreambuf_iterator<char>(p)), std::istreambuf_iterator<char>());
-    const bool projected = text.find("PROJCS") != std::string::npos;
+  std::error_code ec;
+  if (fs::exists(fs::symlink_status(prj, ec))) {
+    // A sidecar is an input like any other: a regular file of sensible size, or an error
+    // naming it (a FIFO would block, a link to /dev/zero would never end).
+    const std::string text = readFileBounded(prj, std::uintmax_t{1} << 20);
+    const bool projected = text.find("PROJCS") != std::string::npos || text.find("PROJCRS") != std::string::npos;
     why = prj.filename().string() + (projected ? " says projected" : " says geographic");
-    return !projected && text.find("GEOGCS") != std::string::npos;
+    return !projected && (text.find("GEOGCS") != std::string::npos || text.find("GEOGCRS") != std::string::npos);
   }
   const bool geographic = cell < 0.5 && xll >= -360 && xll <= 360 && yll >= -90 && yll + rows * cell <= 90.0001;
   why = "no .prj; corner (" + std::to_string(xll) + ", " + std::to_string(yll) + ") and cell size " +
@@ -132,6 +134,7 @@ Heightfield loadEsriAscii(const fs::path& path, const HeightfieldOptions& option
 
   std::string why;
   const double yllCorner = centre ? yll - 0.5 * cellY : yll;
+  const double westCentre = centre ? xll : xll + 0.5 * cellX;  // the west column's sample
   if (options.cell_size > 0) {
     h.cell_x = h.cell_y = options.cell_size;
     h.origin_x = 0;
@@ -147,7 +150,7 @@ Heightfield loadEsriAscii(const fs::path& path, const HeightfieldOptions& option
     }
     h.cell_x = cellX * metresPerDegreeLongitude(latMid);
     h.cell_y = cellY * metresPerDegreeLatitude(latMid);
-    h.origin_x = xll * metresPerDegreeLongitude(latMid);
+    h.origin_x = westCentre * metresPerDegreeLongitude(latMid);
     h.origin_y = (yllCorner + (rows - 0.5) * cellY) * metresPerDegreeLatitude(latMid);
     char note[256];
     std::snprintf(note, sizeof note,
@@ -158,7 +161,7 @@ Heightfield loadEsriAscii(const fs::path& path, const HeightfieldOptions& option
   } else {
     h.cell_x = cellX;
     h.cell_y = cellY;
-    h.origin_x = xll;
+    h.origin_x = westCentre;
     h.origin_y = yllCorner + (rows - 0.5) * cellY;
   }
   h.source = path.filename().string() + ": ESRI ASCII grid, " + std::to_string(cols) + " x " + std::to_string(rows);

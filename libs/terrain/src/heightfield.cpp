@@ -92,12 +92,10 @@ Heightfield loadHeightfield(const fs::path& path, const HeightfieldOptions& opti
     h = loadUsgsDem(path, options);
   else if (ext == ".asc")
     h = loadEsriAscii(path, options);
-  else if (ext == ".png" || ext == ".tif" || ext == ".tiff")
-    h = loadHeightmapImage(path, options);
-  else {
-    throw makeError(path.string(), ": unknown terrain format '", ext, "' (expected .png, .tif, .tiff, .dem or .asc)");
-  }
+  else
+    h = loadGdalRaster(path, options);
   if (h.validCount() == 0) throw makeError(path.string(), ": no valid elevations (every sample is NODATA)");
+  if (options.fill_nodata) fillNoData(h);
   return h;
 }
 

@@ -1,3 +1,5 @@
+#include <sys/stat.h>
+
 #include <fstream>
 
 #include "mesh_checks.h"
@@ -116,6 +118,25 @@ TEST(EsriAscii, TooTallGeographicGridIsRefused) {
   EXPECT_EQ(loadHeightfield(dir / "tall.asc", o).cell_x, 100.0);
 }
 
+// The .prj beside an ESRI grid is read like any input: a FIFO, a directory or an endless
+// device is an error naming it, never a hang (issue 48).
+TEST(EsriAscii, PrjSidecarIsCheckedLikeAnInput) {
+  test::TempDir dir;
+  const std::string grid = "ncols 2\nnrows 2\nxllcorner 10\nyllcorner 20\ncellsize 0.001\n1 2\n3 4\n";
+  std::ofstream(dir / "fifo.asc") << grid;
+  ASSERT_EQ(::mkfifo((dir / "fifo.prj").c_str(), 0600), 0);
+  std::ofstream(dir / "folder.asc") << grid;
+  std::filesystem::create_directory(dir / "folder.prj");
+  std::ofstream(dir / "zero.asc") << grid;
+  std::filesystem::create_symlink("/dev/zero", dir / "zero.prj");
+  test::expectErrorNaming([&] { loadHeightfield(dir / "fifo.asc"); }, "fifo.prj", "not a regular file");
+  test::expectErrorNaming([&] { loadHeightfield(dir / "folder.asc"); }, "folder.prj", "is a directory");
+  test::expectErrorNaming([&] { loadHeightfield(dir / "zero.asc"); }, "zero.prj", "not a regular file");
+  std::ofstream(dir / "utm.asc") << grid;
+  std::ofstream(dir / "utm.prj") << "PROJCS[\"WGS 84 / UTM zone 10N\"]";
+  EXPECT_DOUBLE_EQ(loadHeightfield(dir / "utm.asc").cell_x, 0.001) << "projected: the cell size as it is";
+}
+
 TEST(Terrain, BadInputIsNamedClearly) {
   test::TempDir dir;
   std::ofstream(dir / "nodata.asc") << "ncols 2\nnrows 2\nxllcorner 0\nyllcorner 0\ncellsize 10\n"
@@ -129,6 +150,7 @@ TEST(Terrain, BadInputIsNamedClearly) {
     std::ofstream(dir / "header.dem", std::ios::binary).write(bytes.data(), 600);
   }
   std::ofstream(dir / "text.dem") << std::string(2048, 'x');
+  std::ofstream(dir / "notes.txt") << "not a height map\n";
   image::saveImage(image::Image(4, 4, 3, 0.5f), dir / "rgb.png");
   const std::pair<const char*, const char*> cases[] = {{"nodata.asc", "no valid elevations"},
                                                        {"short.asc", "expected 6 values"},
@@ -138,7 +160,8 @@ TEST(Terrain, BadInputIsNamedClearly) {
                                                        {"text.dem", "not a number"},
                                                        {"rgb.png", "3 channels"},
                                                        {"missing.dem", "no such file"},
-                                                       {"dem.xyz", "unknown terrain format"}};
+                                                       {"notes.txt", "not a raster GDAL can read"},
+                                                       {"missing.tif", "no such file"}};
   for (const auto& [file, what] : cases) {
     test::expectErrorNaming([&] { loadHeightfield(dir / file); }, file, what);
   }

@@ -1,4 +1,5 @@
-// Regular elevation grids from heightmap images, USGS ASCII DEM and ESRI ASCII grids.
+// Regular elevation grids from every raster GDAL reads (GeoTIFF, COG, BigTIFF, .hgt, VRT,
+// PNG/TIFF height maps, ...), USGS ASCII DEM and ESRI ASCII grids.
 #pragma once
 
 #include <cmath>
@@ -12,6 +13,9 @@ namespace shanshui::terrain {
 
 //! Largest DEM or ASCII grid file read (1 GiB): a bigger one, or an endless device, is refused.
 constexpr std::uintmax_t kMaxDemBytes = std::uintmax_t{1} << 30;
+
+//! Most samples held in memory (2 GiB of doubles): a larger grid must be read decimated.
+constexpr std::size_t kMaxGridSamples = std::size_t{1} << 28;
 
 inline constexpr double kNoData = std::numeric_limits<double>::quiet_NaN();
 
@@ -46,13 +50,35 @@ struct HeightfieldOptions {
   //! Largest east-west scale error accepted when a geographic grid (degrees) is converted
   //! to metres with one standard parallel at its centre; above it the grid is refused.
   double max_geographic_scale_error = 0.05;
+  //! Rasters read through GDAL with more samples than this are read decimated by a whole
+  //! factor (block averages; GDAL uses the file's overviews where it has them), so that a
+  //! 10k x 10k GeoTIFF costs what its mesh needs. 0: no decimation (up to kMaxGridSamples).
+  std::size_t max_samples = 0;
+  //! No-data samples (voids, the sea) filled by interpolation from the valid ones around
+  //! them instead of being left out of the mesh as holes.
+  bool fill_nodata = false;
 };
 
-//! Loads by extension: .png/.tif/.tiff (single channel; integer values are taken raw, so
-//! a 16-bit PNG of metres gives metres), .dem (USGS ASCII DEM), .asc (ESRI ASCII grid).
-//! Throws Error naming the file for unreadable, truncated or NODATA-only input.
+//! Loads .dem (USGS ASCII DEM) and .asc (ESRI ASCII grid) with shanshui's own readers and
+//! every other raster through GDAL (loadGdalRaster). Throws Error naming the file for
+//! unreadable, truncated or NODATA-only input.
 Heightfield loadHeightfield(const std::filesystem::path& path, const HeightfieldOptions& options = {});
 
+//! Any raster GDAL opens; band 1 is the height. Georeferenced grids take their cell size
+//! and origin from the geotransform, in metres: projected units converted, geographic grids
+//! (a geographic CRS, or no CRS with degree-like corners) projected at the centre latitude
+//! and refused above max_geographic_scale_error. Heights are scaled by the band's scale and
+//! offset and converted from its vertical unit (band unit type, or a compound CRS's
+//! vertical unit). No-data values, masks (alpha) and non-finite samples become NaN. Images
+//! without georeference keep the image rule (cell_size, image_relief_ratio or 1 m) and say
+//! so in `notes`, with the range of heights they took as metres.
+Heightfield loadGdalRaster(const std::filesystem::path& path, const HeightfieldOptions& options);
+
+//! Fills the NaN samples of `h` by inverse-distance interpolation from the valid samples
+//! around them (GDAL's GDALFillNodata) and says so in its notes; returns how many.
+std::size_t fillNoData(Heightfield& h);
+
+//! The OpenImageIO height map reader that GDAL replaced for images; kept as the tests' oracle.
 Heightfield loadHeightmapImage(const std::filesystem::path& path, const HeightfieldOptions& options);
 Heightfield loadUsgsDem(const std::filesystem::path& path, const HeightfieldOptions& options);
 Heightfield loadEsriAscii(const std::filesystem::path& path, const HeightfieldOptions& options);
