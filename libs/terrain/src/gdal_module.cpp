@@ -1,6 +1,8 @@
 // The GDAL module: band 1 of any raster GDAL opens, and GDAL's no-data fill. Built as a
 // module so that programs load GDAL's ~110 shared libraries only when they read a raster
 // through it (~85 ms at every start otherwise). Errors go back as messages.
+#include "gdal_module.h"
+
 #include <gdal_alg.h>
 #include <gdal_priv.h>
 #include <ogr_spatialref.h>
@@ -10,8 +12,6 @@
 #include <memory>
 #include <mutex>
 #include <new>
-
-#include "gdal_module.h"
 
 namespace {
 
@@ -94,8 +94,8 @@ std::string readRaster(const std::string& path, std::size_t max_samples, std::si
   GDALRasterIOExtraArg extra;
   INIT_RASTERIO_EXTRA_ARG(extra);
   extra.eResampleAlg = r.factor > 1 ? GRIORA_Average : GRIORA_NearestNeighbour;
-  if (band->RasterIO(GF_Read, 0, 0, r.source_columns, r.source_rows, r.z.data(), r.columns, r.rows, GDT_Float64, 0,
-                     0, &extra) != CE_None) {
+  if (band->RasterIO(GF_Read, 0, 0, r.source_columns, r.source_rows, r.z.data(), r.columns, r.rows, GDT_Float64, 0, 0,
+                     &extra) != CE_None) {
     return "cannot read its samples (" + QuietGdal::message("read error") + "; truncated?)";
   }
   // No-data: the band's value, its mask (alpha, internal masks) and non-finite samples.
@@ -117,7 +117,8 @@ std::string readRaster(const std::string& path, std::size_t max_samples, std::si
   r.offset = hasOffset ? offset : 0.0;
   for (std::size_t i = 0; i < r.z.size(); ++i) {
     double& z = r.z[i];
-    const bool isNoData = r.has_no_data_value && (z == r.no_data_value || (std::isnan(r.no_data_value) && std::isnan(z)));
+    const bool isNoData =
+        r.has_no_data_value && (z == r.no_data_value || (std::isnan(r.no_data_value) && std::isnan(z)));
     if (!std::isfinite(z) || isNoData || (!mask.empty() && mask[i] == 0)) {
       z = std::nan("");
       ++r.no_data;

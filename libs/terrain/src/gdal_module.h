@@ -11,22 +11,22 @@ namespace shanshui::terrain::detail {
 
 //! Band 1 of a raster as GDAL reads it, possibly decimated.
 struct GdalRaster {
-  std::string driver, type;     //!< GDAL's driver and sample type names
+  std::string driver, type;  //!< GDAL's driver and sample type names
   int source_columns = 0, source_rows = 0;
-  int columns = 0, rows = 0;    //!< as read (source / factor, rounded up)
-  int factor = 1;               //!< whole decimation factor (block averages)
+  int columns = 0, rows = 0;  //!< as read (source / factor, rounded up)
+  int factor = 1;             //!< whole decimation factor (block averages)
   int bands = 0, colour_bands = 0;
-  std::vector<double> z;        //!< rows * columns, row 0 first as stored; NaN = no-data or masked
-  std::size_t no_data = 0;      //!< samples made NaN
+  std::vector<double> z;    //!< rows * columns, row 0 first as stored; NaN = no-data or masked
+  std::size_t no_data = 0;  //!< samples made NaN
   bool has_no_data_value = false;
   double no_data_value = 0.0;
   double scale = 1.0, offset = 0.0;  //!< applied to z already
-  std::string z_unit;           //!< band unit type, or the compound CRS's vertical unit name
-  double z_unit_metres = 0.0;   //!< metres per z_unit from the CRS; 0: unknown (the name decides)
+  std::string z_unit;                //!< band unit type, or the compound CRS's vertical unit name
+  double z_unit_metres = 0.0;        //!< metres per z_unit from the CRS; 0: unknown (the name decides)
   bool georeferenced = false;
   double geotransform[6] = {0, 1, 0, 0, 0, 1};
   enum class Crs { None, Geographic, Projected, Other } crs = Crs::None;
-  double crs_unit = 1.0;        //!< degrees (geographic) or metres (projected) per georeference unit
+  double crs_unit = 1.0;  //!< degrees (geographic) or metres (projected) per georeference unit
 };
 
 struct GdalReader {

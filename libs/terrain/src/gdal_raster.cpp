@@ -122,8 +122,9 @@ Heightfield loadGdalRaster(const fs::path& path, const HeightfieldOptions& optio
     double cell = 1.0;
     if (options.image_relief_ratio > 0 && hi > lo && cells > 0) {
       cell = options.image_relief_ratio * (hi - lo) / cells;
-      h.notes.push_back("no georeference: using " + number("%.4g", cell) + " m per pixel, which makes the larger side " +
-                        number("%g", options.image_relief_ratio) + " times the relief (give --cell-size)");
+      h.notes.push_back("no georeference: using " + number("%.4g", cell) +
+                        " m per pixel, which makes the larger side " + number("%g", options.image_relief_ratio) +
+                        " times the relief (give --cell-size)");
     } else {
       h.notes.push_back("no georeference: using 1 m per pixel (give --cell-size)");
     }
@@ -158,9 +159,9 @@ Heightfield loadGdalRaster(const fs::path& path, const HeightfieldOptions& optio
       my = metresPerDegreeLatitude(latMid) * r.crs_unit;
       h.notes.push_back("cells of " + number("%.6g", stepX * r.crs_unit) + " x " +
                         number("%.6g", std::abs(stepY) * r.crs_unit) + " degrees (" + why + ") converted to " +
-                        number("%.2f", stepX * mx) + " x " + number("%.2f", std::abs(stepY) * my) +
-                        " m at latitude " + number("%.4f", latMid) + "; east-west scale error up to " +
-                        number("%.2f", error * 100) + " % at the north and south edges");
+                        number("%.2f", stepX * mx) + " x " + number("%.2f", std::abs(stepY) * my) + " m at latitude " +
+                        number("%.4f", latMid) + "; east-west scale error up to " + number("%.2f", error * 100) +
+                        " % at the north and south edges");
     } else if (r.crs == GdalRaster::Crs::Projected && r.crs_unit != 1.0) {
       h.notes.push_back("grid units of " + number("%g", r.crs_unit) + " m converted to metres");
     } else if (r.crs != GdalRaster::Crs::Projected) {

@@ -25,10 +25,10 @@ struct Raster {
   int columns = 64, rows = 48;
   GDALDataType type = GDT_Float32;
   double geotransform[6] = {500000, 30, 0, 4100000, 0, -30};  // UTM metres, 30 m cells
-  int epsg = 32610;                                          // WGS 84 / UTM 10N; 0: none
+  int epsg = 32610;                                           // WGS 84 / UTM 10N; 0: none
   bool georeferenced = true;
   std::optional<double> no_data;
-  std::string unit;            //!< the band's unit type
+  std::string unit;  //!< the band's unit type
   std::string driver = "GTiff";
   std::vector<std::string> creation;  //!< creation options
 };
@@ -53,8 +53,8 @@ void writeRaster(const fs::path& path, const Raster& spec, const Height& z) {
   std::vector<double> values(static_cast<std::size_t>(spec.columns) * spec.rows);
   for (int r = 0; r < spec.rows; ++r)
     for (int c = 0; c < spec.columns; ++c) values[static_cast<std::size_t>(r) * spec.columns + c] = z(c, r);
-  ASSERT_EQ(band->RasterIO(GF_Write, 0, 0, spec.columns, spec.rows, values.data(), spec.columns, spec.rows,
-                           GDT_Float64, 0, 0),
+  ASSERT_EQ(band->RasterIO(GF_Write, 0, 0, spec.columns, spec.rows, values.data(), spec.columns, spec.rows, GDT_Float64,
+                           0, 0),
             CE_None);
   if (spec.no_data) band->SetNoDataValue(*spec.no_data);
   if (!spec.unit.empty()) band->SetUnitType(spec.unit.c_str());
@@ -63,8 +63,8 @@ void writeRaster(const fs::path& path, const Raster& spec, const Height& z) {
   options.push_back(nullptr);
   GDALDriver* driver = GetGDALDriverManager()->GetDriverByName(spec.driver.c_str());
   ASSERT_TRUE(driver) << spec.driver;
-  GDALDataset* out = driver->CreateCopy(path.c_str(), ds.get(), FALSE, const_cast<char**>(options.data()), nullptr,
-                                        nullptr);
+  GDALDataset* out =
+      driver->CreateCopy(path.c_str(), ds.get(), FALSE, const_cast<char**>(options.data()), nullptr, nullptr);
   ASSERT_TRUE(out) << CPLGetLastErrorMsg();
   GDALClose(out);
 }
