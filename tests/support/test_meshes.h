@@ -7,6 +7,7 @@ namespace shanshui::test {
 
 using mesh::heightGrid;
 using mesh::torus;
+using mesh::unitCube;
 using mesh::uvSphere;
 
 }  // namespace shanshui::test

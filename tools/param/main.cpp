@@ -49,7 +49,9 @@ int main(int argc, char** argv) {
   double texelSize = 0.0;
   bool normalize = false;
   param::ParamOptions options;
-  app.add_option("input", input, "mesh (.obj, .ply, .off)")->required();
+  app.add_option("input", input,
+                 "mesh (.obj, .ply, .off, .gltf, .glb, .fbx, .dae, .3ds, .stl, or any format Assimp reads)")
+      ->required();
   app.add_option("-o,--output", output, "mesh with UVs (.obj keeps them; .ply/.off do not)")->required();
   app.add_option("--method", methodName, "auto|xy|mvc|dcm|tutte|lscm|arap|authalic|charts")->default_val("auto");
   app.add_option("--budget", options.budget_seconds, "auto: seconds to spend trying methods (the first always runs)")

@@ -21,7 +21,9 @@ int main(int argc, char** argv) {
   std::string input, output, reportPath, components = "keep-largest";
   mesh::RepairOptions options;
   bool noFill = false;
-  app.add_option("input", input, "mesh to repair (.obj, .ply, .off)")->required();
+  app.add_option("input", input,
+                 "mesh to repair (.obj, .ply, .off, .gltf, .glb, .fbx, .dae, .3ds, .stl, or any format Assimp reads)")
+      ->required();
   app.add_option("-o,--output", output, "repaired mesh (.obj, .ply, .off)")->required();
   app.add_option("--components", components, "extra connected components")
       ->check(CLI::IsMember({"keep-largest", "fail", "keep-all"}))
@@ -57,6 +59,7 @@ int main(int argc, char** argv) {
       outputs.stage(reportPath, tools::jsonText(j));
     }
     outputs.commit();
+    for (const auto& n : soup.notes) std::fprintf(stderr, "note: %s\n", n.c_str());
     for (const auto& w : report.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
     std::fprintf(stderr, "%s: %s\n", input.c_str(), report.summary().c_str());
   });

@@ -351,7 +351,7 @@ PolygonSoup readPolygonSoup(const fs::path& path) {
   else if (ext == ".ply")
     soup = readPly(path);
   else
-    throw makeError(path.string(), ": unknown mesh format '", ext, "' (expected .obj, .ply or .off)");
+    soup = readAssimp(path);
   // Finite but huge coordinates overflow the geometry (a cross product of 1e308 is inf):
   // refused here with the value, rather than later as "NaN or infinite".
   for (std::size_t v = 0; v < soup.positions.size(); ++v) {

@@ -95,6 +95,7 @@ TEST(MeshIo, BadInputNamesTheFileAndTheProblem) {
   std::ofstream(dir / "badindex.off") << "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n";
   std::ofstream(dir / "garbage.off") << "OFF\n3 1 0\n0 0 zero\n";
   std::ofstream(dir / "empty.obj").close();
+  std::ofstream(dir / "notes.xyz") << "not a mesh\n";
   // tinyobjloader reads these as 0; the reader must refuse them.
   std::ofstream(dir / "nan.obj") << "v 0 0 0\nv 1 0 0\nv nan 1 0\nf 1 2 3\n";
   std::ofstream(dir / "inf.obj") << "# c\nv 0 0 0\nv 1 inf 0\nv 0 1 0\nf 1 2 3\n";
@@ -109,7 +110,7 @@ TEST(MeshIo, BadInputNamesTheFileAndTheProblem) {
                                                        {"badindex.off", "vertex 7"},
                                                        {"garbage.off", "'zero'"},
                                                        {"empty.obj", "empty file"},
-                                                       {"mesh.stl", "unknown mesh format"}};
+                                                       {"notes.xyz", "not a mesh Assimp can read"}};
   for (const auto& [file, what] : cases) {
     test::expectErrorNaming([&] { readPolygonSoup(dir / file); }, file, what);
   }

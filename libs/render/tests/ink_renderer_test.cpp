@@ -87,6 +87,32 @@ TEST_F(Ink, SphereCurvatureIsOneOnEverySphereForBothEstimators) {
   }
 }
 
+// A cube renders with six flat faces (normals split at its creases, crease_angle 40 by
+// default), as a modelling tool shows it; with crease_angle 180 the same cube is shaded
+// smooth, its normals bending across every face.
+TEST_F(Ink, ACubeShowsFlatFacesWithNormalsSplitAtItsCreases) {
+  auto flatShare = [](double crease) {
+    const scene::Scene s = sceneWith({{"crease_angle", crease}, {"lines", {{"enabled", false}}}});
+    InkRenderer r(s, prepare(s, test::unitCube()));
+    const OrbitCamera cam = sceneCamera(s, r.worldBounds(), 1.0, {35, 25, 1.0});
+    r.render(cam, 192, 192);
+    const image::Image nc = r.normalsAndCurvature(), pos = r.worldPositions();
+    int object = 0, flat = 0;
+    for (int y = 0; y < nc.height; ++y) {
+      for (int x = 0; x < nc.width; ++x) {
+        if (pos.at(x, y, 3) < 0.5f) continue;
+        const glm::vec3 n = glm::normalize(glm::vec3(nc.at(x, y, 0), nc.at(x, y, 1), nc.at(x, y, 2)));
+        ++object;
+        flat += std::max({std::abs(n.x), std::abs(n.y), std::abs(n.z)}) > 0.999f;  // an axis: a face's normal
+      }
+    }
+    EXPECT_GT(object, 5000);
+    return static_cast<double>(flat) / std::max(object, 1);
+  };
+  EXPECT_GT(flatShare(40.0), 0.99);
+  EXPECT_LT(flatShare(180.0), 0.2);
+}
+
 TEST_F(Ink, TonesFollowEquationsTwoAndThreeFromTheNormals) {
   // No lines, no erosion, no noise: t_dw = clamp(t_d + 1 − 1) = t_d, and the tone is the
   // Gaussian-smoothed ladder of t_d, which the test recomputes from the G-buffer normal with

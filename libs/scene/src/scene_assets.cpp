@@ -65,7 +65,7 @@ void makeZUp(mesh::Mesh& m, UpAxis up) {
 
 }  // namespace
 
-ObjectAsset prepareAsset(mesh::Mesh m, const Object& o, const std::string& where) {
+ObjectAsset prepareAsset(mesh::Mesh m, const Object& o, const std::string& where, bool file_normals) {
   ObjectAsset asset;
   const bool wrinkled = !o.wrinkle.texture.empty() && o.shading.enabled;
   makeZUp(m, upAxis(o, m));
@@ -89,6 +89,14 @@ ObjectAsset prepareAsset(mesh::Mesh m, const Object& o, const std::string& where
       }
     }
   }
+  if (o.dem.empty() && !file_normals && o.crease_angle < 180.0) {
+    const std::vector<std::uint32_t> origin = mesh::splitAtCreases(m, o.crease_angle);
+    if (!asset.curvature.empty() && origin.size() != asset.curvature.size()) {
+      std::vector<float> split(origin.size());
+      for (std::size_t i = 0; i < origin.size(); ++i) split[i] = asset.curvature[origin[i]];
+      asset.curvature = std::move(split);
+    }
+  }
   asset.bounds = mesh::bounds(m);
   asset.mesh = std::move(m);
   return asset;
@@ -110,9 +118,9 @@ LoadedObject AssetCache::get(const Scene& scene, std::size_t index) {
   const std::filesystem::path source = scene.resolve(o.mesh.empty() ? o.dem : o.mesh);
   const std::string key = source.string() + "|" + std::to_string(o.z_scale) + "|" + std::to_string(o.max_vertices) +
                           "|" + std::to_string(o.cell_size) + "|" + std::to_string(o.fill_nodata) + "|" +
-                          std::to_string(static_cast<int>(o.up)) + "|" + std::to_string(o.recentre) + "|" +
-                          std::to_string(object_curvature) + std::to_string(curvature) + "|" +
-                          std::to_string(o.lines.smoothing) + "|" +
+                          std::to_string(o.crease_angle) + "|" + std::to_string(static_cast<int>(o.up)) + "|" +
+                          std::to_string(o.recentre) + "|" + std::to_string(object_curvature) +
+                          std::to_string(curvature) + "|" + std::to_string(o.lines.smoothing) + "|" +
                           (wrinkled ? (o.wrinkle.uv == UvSource::Mesh ? "uv-mesh" : "uv-planar") : "no-uv");
   std::shared_ptr<const ObjectAsset>& slot = meshes_[key];
   std::shared_ptr<const image::Image> wrinkle;
@@ -132,6 +140,7 @@ LoadedObject AssetCache::get(const Scene& scene, std::size_t index) {
   if (!slot) {
     const auto start = std::chrono::steady_clock::now();
     auto asset = std::make_shared<ObjectAsset>();
+    bool file_normals = false;
     try {
       if (!o.dem.empty()) {
         terrain::TerrainMeshOptions topt;
@@ -149,14 +158,17 @@ LoadedObject AssetCache::get(const Scene& scene, std::size_t index) {
         // needs a single disc.
         mesh::RepairOptions ropt;
         ropt.components = mesh::ComponentPolicy::KeepAll;
-        asset->mesh = mesh::repairMesh(mesh::readPolygonSoup(source), ropt, nullptr, source.string());
+        const mesh::PolygonSoup soup = mesh::readPolygonSoup(source);
+        asset->mesh = mesh::repairMesh(soup, ropt, nullptr, source.string());
+        // The file's normals survive repair only where it kept the file's vertices.
+        file_normals = !soup.normals.empty() && asset->mesh.normals == soup.normals;
       }
     } catch (const Error& e) {
       meshes_.erase(key);
       throw makeError(where(index, o.dem.empty() ? "mesh" : "dem"), ": ", e.what());
     }
     try {
-      *asset = prepareAsset(std::move(asset->mesh), o, "objects." + std::to_string(index));
+      *asset = prepareAsset(std::move(asset->mesh), o, "objects." + std::to_string(index), file_normals);
     } catch (const Error&) {
       meshes_.erase(key);
       throw;

@@ -356,7 +356,10 @@ void describe(V& v, elements::DotOptions& d) {
 template <typename V>
 void describe(V& v, Object& o) {
   v.text({"name", "shown in the viewer; empty: `objects.N`"}, o.name, Text::Plain);
-  v.text({"mesh", "`.obj`, `.ply`, `.off`, repaired on load like `shanshui-repair`; give `mesh` or `dem`", kRebuild},
+  v.text({"mesh",
+          "`.obj`, `.ply`, `.off`, glTF (`.gltf`, `.glb`), FBX, COLLADA (`.dae`), 3DS, STL or any other format Assimp "
+          "reads, repaired on load like `shanshui-repair`; give `mesh` or `dem`",
+          kRebuild},
          o.mesh, Text::File);
   v.text({"dem",
           "heightfield meshed on load like `shanshui-terrain`: any raster GDAL reads (GeoTIFF, `.hgt`, VRT, ...), "
@@ -386,6 +389,12 @@ void describe(V& v, Object& o) {
             "(a piece of land) lies on that axis, any other is y-up (what most modelling tools write)",
             kRebuild},
            o.up, kUpAxes);
+  v.number({"crease_angle",
+            "mesh only: normals are smooth across edges whose faces meet at less than this angle and split across "
+            "sharper ones, as modelling tools do (a cube shows six flat faces); 180: smooth everywhere. A file's own "
+            "normals are kept where repair keeps its vertices",
+            kRebuild, "degrees"},
+           o.crease_angle, {0, 180});
   v.boolean(
       {"recentre", "move the mesh so its bounding-box centre is the model origin (keeps UTM-sized coordinates precise)",
        kRebuild},

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -15,6 +16,7 @@ struct PolygonSoup {
   std::vector<glm::vec3> normals;
   std::vector<glm::vec2> uvs;
   std::vector<std::vector<std::uint32_t>> faces;
+  std::vector<std::string> notes;  //!< conversions the reader applied (units, axes)
 };
 
 //! An indexed triangle mesh. Positions are double so that UTM-sized coordinates survive
@@ -62,5 +64,13 @@ ManifoldProblems manifoldProblems(const Mesh& m);
 
 //! Area-weighted per-vertex normals (unit length; +Z for a vertex whose faces have no area).
 std::vector<glm::vec3> vertexNormals(const Mesh& m);
+
+//! Normals as a modelling tool makes them: smooth across edges whose two faces meet at
+//! less than `crease_deg` degrees, split across sharper edges (and edges of three or more
+//! faces), so a cube shows six flat faces. Vertices on a crease are duplicated (positions
+//! and UVs copied); `m.normals` is rewritten, area-weighted within each smooth fan. 180:
+//! smooth everywhere, nothing split. Returns, for every vertex of the result, the vertex
+//! it was copied from, so that per-vertex data can follow.
+std::vector<std::uint32_t> splitAtCreases(Mesh& m, double crease_deg);
 
 }  // namespace shanshui::mesh

@@ -187,8 +187,8 @@ struct PathKey {
 
 struct Object {
   std::string name;
-  std::string mesh;      //!< .obj/.ply/.off relative to the scene file (exactly one of mesh, dem)
-  std::string dem;       //!< heightfield (any GDAL raster, .dem, .asc, height map), meshed on load
+  std::string mesh;  //!< any mesh file (OBJ, PLY, OFF, glTF, FBX, ...) relative to the scene file (one of mesh, dem)
+  std::string dem;   //!< heightfield (any GDAL raster, .dem, .asc, height map), meshed on load
   double z_scale = 1.0;  //!< dem only: vertical exaggeration
   //! dem only: metres between samples; 0 takes it from the file's header, and an image
   //! (which has none) gets cells that make its larger side kImageReliefRatio × its relief.
@@ -196,6 +196,8 @@ struct Object {
   UpAxis up = UpAxis::Auto;           //!< the model axis that is up in the world
   std::size_t max_vertices = 250000;  //!< dem only: grid decimation limit
   bool fill_nodata = false;           //!< dem only: fill no-data samples instead of leaving holes
+  //! mesh only: normals split across edges sharper than this (degrees); 180: smooth.
+  double crease_angle = 40.0;
   //! true: the mesh is moved so its bounding-box centre is the model origin.
   bool recentre = true;
   Transform transform;

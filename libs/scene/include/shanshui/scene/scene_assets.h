@@ -54,8 +54,10 @@ class AssetCache {
 
 //! Prepares a loaded mesh for object `o`: recentres it when asked, makes planar UVs or checks
 //! the mesh's own when the object is wrinkled (Error naming `where` otherwise), computes
-//! normals and, when the object draws lines, curvature and the feature size.
-ObjectAsset prepareAsset(mesh::Mesh m, const Object& o, const std::string& where = "object");
+//! normals and, when the object draws lines, curvature and the feature size. A mesh (not a
+//! DEM) whose normals are not the file's own (`file_normals`) gets them split at its
+//! creases (objects.N.crease_angle); curvature is measured before, on the welded mesh.
+ObjectAsset prepareAsset(mesh::Mesh m, const Object& o, const std::string& where = "object", bool file_normals = false);
 
 //! Planar UVs: x and y over the larger horizontal extent of the mesh, in [0, 1].
 void planarUvs(mesh::Mesh& m);
