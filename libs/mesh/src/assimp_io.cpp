@@ -4,11 +4,11 @@
 // applied here, 3DS (always Z up) turned here, COLLADA's <up_axis> and <unit> by Assimp
 // itself; glTF is Y-up metres by definition. STL declares neither: its axes are kept and
 // the scene's `up` decides.
+#include <cmath>
+
 #include <assimp/Importer.hpp>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
-
-#include <cmath>
 
 #include "shanshui/core/atomic_output.h"
 #include "shanshui/core/error.h"
@@ -49,8 +49,7 @@ void applyFbxAxesAndUnits(const aiScene* scene, PolygonSoup& soup) {
     if (turn.Determinant() < 0) {  // a left-handed declaration: mirror front to keep the winding
       turn.c1 = -turn.c1, turn.c2 = -turn.c2, turn.c3 = -turn.c3;
     }
-    soup.notes.push_back("FBX axes (up " + std::string(1, "XYZ"[up]) + (upSign > 0 ? "+" : "-") +
-                         ") turned to Y up");
+    soup.notes.push_back("FBX axes (up " + std::string(1, "XYZ"[up]) + (upSign > 0 ? "+" : "-") + ") turned to Y up");
   }
   if (std::isfinite(unitCm) && unitCm > 0 && unitCm != 100.0) {
     const auto s = static_cast<ai_real>(unitCm / 100.0);

@@ -1,13 +1,13 @@
 // Meshes an artist exports, through Assimp: a box of known size written by Assimp's own
 // exporters in every format it writes, read back through shanshui's reader and repair; the
 // axes and units files declare; and normals split at creases like a modelling tool's.
-#include <assimp/Exporter.hpp>
-#include <assimp/scene.h>
-
 #include <fstream>
 #include <memory>
 #include <regex>
 #include <sstream>
+
+#include <assimp/Exporter.hpp>
+#include <assimp/scene.h>
 
 #include "mesh_checks.h"
 #include "shanshui/core/error.h"
@@ -31,9 +31,9 @@ std::unique_ptr<aiScene> boxScene() {
   scene->mRootNode->mNumMeshes = 1;
   scene->mRootNode->mMeshes = new unsigned[1]{0};
   scene->mNumMaterials = 1;
-  scene->mMaterials = new aiMaterial*[1]{new aiMaterial()};
+  scene->mMaterials = new aiMaterial* [1] { new aiMaterial() };
   scene->mNumMeshes = 1;
-  scene->mMeshes = new aiMesh*[1]{new aiMesh()};
+  scene->mMeshes = new aiMesh* [1] { new aiMesh() };
   aiMesh* m = scene->mMeshes[0];
   m->mMaterialIndex = 0;
   m->mPrimitiveTypes = aiPrimitiveType_TRIANGLE;
@@ -79,8 +79,12 @@ TEST(AssimpIo, EveryFormatAssimpWritesRoundTripsAKnownBox) {
     const char* id;
     const char* file;
     double metres;
-  } formats[] = {{"gltf2", "box.gltf", 1.0}, {"glb2", "box.glb", 1.0},  {"collada", "box.dae", 1.0},
-                 {"stl", "box.stl", 1.0},    {"stlb", "box_b.stl", 1.0}, {"3ds", "box.3ds", 1.0},
+  } formats[] = {{"gltf2", "box.gltf", 1.0},
+                 {"glb2", "box.glb", 1.0},
+                 {"collada", "box.dae", 1.0},
+                 {"stl", "box.stl", 1.0},
+                 {"stlb", "box_b.stl", 1.0},
+                 {"3ds", "box.3ds", 1.0},
                  // Assimp writes FBX with UnitScaleFactor 1: one unit is a centimetre. (Its binary
                  // FBX writer makes files its own 5.2 reader refuses, so the text form is used.)
                  {"fbxa", "box.fbx", 0.01}};
@@ -115,10 +119,9 @@ TEST(AssimpIo, DeclaredUpAxisAndUnitsAreHonoured) {
   fbxText << std::ifstream(dir / "y.fbx").rdbuf();
   std::string fbx = fbxText.str();
   // A Z-up file (as 3ds Max and Blender write): up Z, front -Y, right X; units of metres.
-  const std::pair<const char*, const char*> settings[] = {{"UpAxis", "2"},       {"UpAxisSign", "1"},
-                                                          {"FrontAxis", "1"},    {"FrontAxisSign", "-1"},
-                                                          {"CoordAxis", "0"},    {"CoordAxisSign", "1"},
-                                                          {"UnitScaleFactor", "100"}};
+  const std::pair<const char*, const char*> settings[] = {
+      {"UpAxis", "2"},    {"UpAxisSign", "1"},    {"FrontAxis", "1"},        {"FrontAxisSign", "-1"},
+      {"CoordAxis", "0"}, {"CoordAxisSign", "1"}, {"UnitScaleFactor", "100"}};
   for (const auto& [name, value] : settings) {
     const std::regex line("(P: \"" + std::string(name) + "\", \"[^\"]*\", \"[^\"]*\", \"[^\"]*\",)\\s*[-0-9.e+]+");
     ASSERT_TRUE(std::regex_search(fbx, line)) << name;
