@@ -88,12 +88,17 @@ SeamCut cutOpen(const mesh::Mesh& m, const std::string& what) {
   // they are the fan from the face holding directed edge p->a, turning until the face
   // holding c->p.
   cut.mesh = m;
+  // Attributes are one per vertex or none: a list of another length (a mesh assembled by
+  // hand) is dropped rather than read past its end.
+  const bool normals = m.normals.size() == m.positions.size(), uvs = m.uvs.size() == m.positions.size();
+  if (!normals) cut.mesh.normals.clear();
+  if (!uvs) cut.mesh.uvs.clear();
   for (std::size_t i = 1; i + 1 < cut.seam.size(); ++i) {
     const std::uint32_t a = cut.seam[i - 1], p = cut.seam[i], c = cut.seam[i + 1];
     const auto copy = static_cast<std::uint32_t>(cut.mesh.positions.size());
     cut.mesh.positions.push_back(m.positions[p]);
-    if (!m.normals.empty()) cut.mesh.normals.push_back(m.normals[p]);
-    if (!m.uvs.empty()) cut.mesh.uvs.push_back(m.uvs[p]);
+    if (normals) cut.mesh.normals.push_back(m.normals[p]);
+    if (uvs) cut.mesh.uvs.push_back(m.uvs[p]);
     ++cut.duplicated;
     std::uint32_t f = faceOf.at(directed(p, a));
     for (std::size_t guard = 0; guard <= m.triangles.size(); ++guard) {

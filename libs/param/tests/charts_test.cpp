@@ -11,6 +11,7 @@
 #include "shanshui/mesh/mesh_io.h"
 #include "shanshui/mesh/repair.h"
 #include "shanshui/param/parameterize.h"
+#include "shanshui/param/seam_cut.h"
 #include "test_meshes.h"
 #include "test_support.h"
 
@@ -195,7 +196,13 @@ TEST(Charts, AnyTopologyIsCharted) {
   mesh::Mesh two = test::uvSphere(1.0, 10, 20);
   const mesh::Mesh ring = test::torus(3.0, 1.0, 24, 12);
   const auto n = static_cast<unsigned>(two.positions.size());
+  // A sphere and a torus in one mesh, their normals following (per vertex or none).
   two.positions.insert(two.positions.end(), ring.positions.begin(), ring.positions.end());
+  if (two.normals.size() == n && ring.normals.size() == ring.positions.size())
+    two.normals.insert(two.normals.end(), ring.normals.begin(), ring.normals.end());
+  else
+    two.normals.clear();
+  two.uvs.clear();
   for (glm::uvec3 t : ring.triangles) two.triangles.push_back(t + glm::uvec3(n));
   ParamReport r;
   out = parameterize(two, {}, &r, "two.obj");
@@ -208,6 +215,19 @@ TEST(Charts, AnyTopologyIsCharted) {
   out = parameterize(cgalMesh("anchor"), {}, &r, "anchor.off");  // genus 4
   EXPECT_EQ(r.method, Method::Charts);
   EXPECT_TRUE(measureDistortion(out).valid());
+}
+
+// A closed mesh whose normal list does not match its vertices (assembled by hand) is cut
+// open without reading past the list: the cut drops it (it was read past its end, found by
+// AddressSanitizer in Charts.AnyTopologyIsCharted).
+TEST(Charts, CuttingOpenKeepsAttributesPerVertexOrDropsThem) {
+  mesh::Mesh sphere = test::uvSphere(1.0, 10, 20);
+  sphere.normals.assign(sphere.positions.size() / 2, glm::vec3(0, 0, 1));
+  sphere.uvs.assign(sphere.positions.size(), glm::vec2(0.5f));
+  const SeamCut cut = cutOpen(sphere, "sphere");
+  EXPECT_GT(cut.duplicated, 0);
+  EXPECT_TRUE(cut.mesh.normals.empty());
+  EXPECT_EQ(cut.mesh.uvs.size(), cut.mesh.positions.size());
 }
 
 TEST(Charts, SameInputSameAtlas) {
