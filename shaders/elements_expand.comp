@@ -63,6 +63,7 @@ uniform vec4 u_to_model_x, u_to_model_y;
 uniform vec2 u_half_extent;
 uniform float u_border_width;  // 0: no border
 uniform float u_border_roughness;
+uniform float u_water_level;  // world z of the water's surface; the lowest float without water
 
 float presence(vec3 world) {
   float f = 1.0 - u_fade * smoothstep(u_fade_range.x, u_fade_range.y, distance(world, u_eye));
@@ -86,6 +87,7 @@ int marks(uint i, out vec3 world, out float ppu, out float height, out float ink
   if (i >= u_count) return 0;
   Instance e = instances[i];
   world = (u_model * vec4(e.position_size.xyz, 1.0)).xyz;
+  if (world.z < u_water_level) return 0;  // nothing grows under water
   vec4 clip = u_view_projection * vec4(world, 1.0);
   if (clip.w <= u_near) return 0;
   ppu = u_pixels_at_1 / clip.w;

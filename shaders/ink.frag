@@ -8,7 +8,8 @@
 // here, once per pixel, not in the G-buffer pass), SINGLE_OBJECT (parameters without
 // indexing), CANVAS (the paper grain, when no diffusion pass comes after), PIGMENT (the
 // presence the atmosphere leaves, in alpha, for the pigment pass), ELEMENTS (the trees' and
-// moss dots' ink over the rest; ELEMENT_NEARNESS with animated objects), DEBUG_OUTPUTS (line
+// moss dots' ink over the rest; ELEMENT_NEARNESS with animated objects), WATER (a water level:
+// the land below it hidden, paper with wave strokes, bank lines), DEBUG_OUTPUTS (line
 // weight, tone and wrinkle luma as extra targets, for tests). PAPER builds the background's
 // program, which the pass draws apart by the depth test.
 #include "ink_objects.glsl"
@@ -79,6 +80,10 @@ float planarSlopeWrinkle(ObjectParams o, ivec2 p, vec3 P, vec3 n) {
 #endif
 
 layout(location = 0) out vec4 o_colour;
+#ifdef WATER
+#include "ink_water.glsl"
+#endif
+
 #ifdef DEBUG_OUTPUTS
 layout(location = 1) out vec2 o_line;  // weight, col_i
 layout(location = 2) out vec2 o_tone;  // tone, wrinkle luma (1 without wrinkles)
@@ -137,6 +142,21 @@ void main() {
   ObjectParams o = objects[id - 1];
 #endif
   vec3 position = worldPosition(p, depth);
+#ifdef WATER
+  if (underWater(position)) {
+    // The land under the water is hidden: paper, the waves, and what stands in front.
+    // The atmosphere at the water's height above the land the pixel shows (its border too).
+    vec3 water = mix(u_paper, o.line_color, waveInk(p) * presence(o, vec3(position.xy, u_water.x)));
+#ifdef ELEMENTS
+    water = mix(water, u_element_colour, elementInk(p, depth));
+#endif
+    o_colour = onPaper(p, water);
+#ifdef PIGMENT
+    o_colour.a = 0.0;  // no wash on the water
+#endif
+    return;
+  }
+#endif
 #ifdef STROKES
   vec4 presence_noise = imageLoad(u_presence_noise, p);
   float here = presence_noise.r;
@@ -186,6 +206,9 @@ void main() {
 #endif
     col = clamp(col, 0.0, 1.0);
   }
+#endif
+#ifdef WATER
+  line_weight = max(line_weight, bankLine(p));
 #endif
 
   // Interior shading: diffuse term eroded by noise, or by the wrinkle texture where the

@@ -3,13 +3,7 @@
 // the triangle's screen derivatives) and the ink pass (planar UVs, from the tangent plane of
 // the rebuilt position; one evaluation per pixel instead of one per covered fragment).
 
-uint slopeHash(uvec2 p) {
-  uint h = p.x * 0x8da6b343u ^ p.y * 0xd8163841u;
-  h ^= h >> 15;
-  h *= 0x2c1b3c6du;
-  h ^= h >> 12;
-  return h;
-}
+#include "ink_hash.glsl"
 
 // The wrinkle texture at one octave: q are tile coordinates (one unit per tile), turned by
 // m about the three nearest points of a triangular lattice of half-tile spacing (each with
@@ -27,7 +21,7 @@ float wrinkleOctave(sampler2D tex, vec2 q, mat2 m, float lod) {
   for (int i = 0; i < 3; ++i) {
     vec2 step_ = i == 0 ? vec2(0.0) : (i == 1 ? i1 : vec2(1.0));
     vec2 x = x0 - step_ + dot(step_, vec2(G2));  // from this corner, in cells
-    uint h = slopeHash(uvec2(ivec2(base + step_) + 32768));
+    uint h = cellHash(uvec2(ivec2(base + step_) + 32768));
     vec2 offset = vec2(h & 0xffffu, h >> 16) / 65536.0;
     float r = max(0.5 - dot(x, x), 0.0);
     float weight = r * r;

@@ -254,6 +254,19 @@ int main(int argc, char** argv) {
       results.push_back(runner.run(st));
       stages.push_back(st);
     }
+    // Water (issue 45): the hill as an island in a lake, with the boat on it.
+    {
+      const fs::path scene = s / "scenes/lake.json";
+      if (!fs::exists(scene)) throw shanshui::makeError(scene.string(), ": not found");
+      Stage st{"lake",
+               "shanshui-render",
+               {scene.string(), "-o", (o / "lake.png").string(), "--stats", (o / "lake_stats.json").string()},
+               {scene, s / "terrain/hill.asc", s / "textures/rain_strokes_wrinkle.png", s / "meshes/fishing_boat.obj"},
+               {o / "lake.png", o / "lake_stats.json"}};
+      if (quick) st.args.insert(st.args.end(), {"--set", "output.height=120", "--set", "output.width=160"});
+      results.push_back(runner.run(st));
+      stages.push_back(st);
+    }
     // Seed 002's brush strokes (willow leaf) on the level distance.
     {
       const fs::path scene = s / "scenes/level_distance.json";
@@ -421,6 +434,9 @@ int main(int argc, char** argv) {
           "`samples/scenes/grove.json` shows them close, on a hill of the project's own): pines with needle fans, "
           "leafy trees of dot leaves, bare branches, distant trees as a few dots, in groves on ridges, in hollows "
           "and on valley floors, with clusters of moss dots:\n\n![grove](grove.png)";
+    md << "\n\nWater (`samples/scenes/lake.json`, `water.level`): the land below the level is hidden and left as "
+          "paper with a few horizontal wave strokes laid on the water, the shore drawn as a line, the boat on the "
+          "lake, nothing growing under it:\n\n![lake](lake.png)";
     md << "\n\nThe level distance with seed 002's brush strokes along its silhouettes and creases "
           "(`objects.N.strokes.style: liuye`, willow leaf: thin, thick, thin):\n\n"
           "![level strokes](level_strokes.png)\n\nOn a mesh (the sample boat): its feature lines, and liuye brush "
@@ -445,7 +461,7 @@ int main(int argc, char** argv) {
        << "|---|---|---|---|---|---|---|---|\n";
     for (const std::string& name :
          {std::string("mountain"), std::string("high"), std::string("deep"), std::string("level"),
-          std::string("level_strokes"), std::string("light_colour"), std::string("grove")}) {
+          std::string("level_strokes"), std::string("light_colour"), std::string("grove"), std::string("lake")}) {
       const fs::path f = o / (name + "_stats.json");
       const json st = fs::exists(f) ? json::parse(readFile(f), nullptr, false) : json();
       md << "| " << name;

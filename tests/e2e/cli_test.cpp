@@ -411,7 +411,7 @@ TEST(Cli, DemoRunsTheChainThenReusesWhatIsUpToDate) {
        {"textures/rain_strokes_scan.png", "textures/rain_strokes_wrinkle.png", "terrain/mount_st_helens.dem",
         "scenes/default.json", "scenes/high_distance.json", "scenes/deep_distance.json", "scenes/level_distance.json",
         "scenes/light_colour.json", "scenes/moving_boat.json", "meshes/fishing_boat.obj", "scenes/grove.json",
-        "terrain/hill.asc"}) {
+        "terrain/hill.asc", "scenes/lake.json"}) {
     std::filesystem::create_directories((samples / f).parent_path());
     std::filesystem::copy_file(test::sourceDir() / "samples" / f, samples / f);
   }
@@ -420,15 +420,13 @@ TEST(Cli, DemoRunsTheChainThenReusesWhatIsUpToDate) {
       "cd " + quote(dir.path()) + " && " + bin("shanshui-demo") + " --quick --frames 2 --samples samples --out out";
   auto r = run(demo);
   ASSERT_EQ(r.exit_code, 0) << r.output;
-  const std::map<std::string, std::string> all_ran = {{"enhance", "running"},        {"quilt", "running"},
-                                                      {"terrain", "running"},        {"param", "running"},
-                                                      {"still", "running"},          {"orbit", "running"},
-                                                      {"high_distance", "running"},  {"deep_distance", "running"},
-                                                      {"level_distance", "running"}, {"grove", "running"},
-                                                      {"level_strokes", "running"},  {"light_colour", "running"},
-                                                      {"moving_boat", "running"},    {"moving_boat_sharp", "running"},
-                                                      {"boat_lines", "running"},     {"boat_strokes", "running"},
-                                                      {"stability", "running"}};
+  const std::map<std::string, std::string> all_ran = {
+      {"enhance", "running"},       {"quilt", "running"},         {"terrain", "running"},
+      {"param", "running"},         {"still", "running"},         {"orbit", "running"},
+      {"high_distance", "running"}, {"deep_distance", "running"}, {"level_distance", "running"},
+      {"grove", "running"},         {"lake", "running"},          {"level_strokes", "running"},
+      {"light_colour", "running"},  {"moving_boat", "running"},   {"moving_boat_sharp", "running"},
+      {"boat_lines", "running"},    {"boat_strokes", "running"},  {"stability", "running"}};
   EXPECT_EQ(demoStages(r.output), all_ran);
   for (const char* f : {"report.md", "mountain.png", "orbit_0000.png", "orbit_0001.png", "assets/wrinkle.png",
                         "assets/st_helens_uv.obj", "assets/checker.png", "assets/scan.png"}) {
@@ -440,6 +438,8 @@ TEST(Cli, DemoRunsTheChainThenReusesWhatIsUpToDate) {
   EXPECT_NE(report.find("| deep | 0."), std::string::npos) << "the look statistics of each picture";
   EXPECT_NE(report.find("![grove](grove.png)"), std::string::npos);
   EXPECT_NE(report.find("| grove | 0."), std::string::npos) << "the grove's look, marks per megapixel among them";
+  EXPECT_NE(report.find("![lake](lake.png)"), std::string::npos);
+  EXPECT_NE(report.find("| lake | 0."), std::string::npos);
   EXPECT_NE(report.find("![level strokes](level_strokes.png)"), std::string::npos);
   EXPECT_NE(report.find("| level_strokes | 0."), std::string::npos);
   EXPECT_NE(report.find("![light colour](light_colour.png)"), std::string::npos);
@@ -476,6 +476,7 @@ TEST(Cli, DemoRunsTheChainThenReusesWhatIsUpToDate) {
                                                                       {"deep_distance", "reused"},
                                                                       {"level_distance", "reused"},
                                                                       {"grove", "reused"},
+                                                                      {"lake", "reused"},
                                                                       {"level_strokes", "reused"},
                                                                       {"light_colour", "reused"},
                                                                       {"moving_boat", "reused"},

@@ -1,6 +1,7 @@
 #include "atmosphere.h"
 
 #include <algorithm>
+#include <limits>
 
 namespace shanshui::render {
 
@@ -40,6 +41,18 @@ double presence(const FrameInputs& in, std::size_t object, const glm::dmat4& to_
     f *= smooth01(t - 0.5 * o.border.roughness);
   }
   return std::clamp(f, 0.0, 1.0);
+}
+
+float waterLevel(const FrameInputs& in) {
+  if (!in.scene.usesWater()) return std::numeric_limits<float>::lowest();
+  return static_cast<float>(in.world_bounds.min.z + in.scene.water.level * in.world_bounds.size().z);
+}
+
+glm::vec3 pictureHorizontal(const FrameInputs& in) {
+  const glm::mat4 v = in.camera.view();
+  glm::dvec3 r(v[0][0], v[1][0], 0.0);
+  if (glm::length(r) < 1e-9) r = {1.0, 0.0, 0.0};
+  return glm::vec3(glm::normalize(r));
 }
 
 }  // namespace shanshui::render

@@ -20,4 +20,12 @@ glm::dvec2 fadeRange(const FrameInputs& in);
 double presence(const FrameInputs& in, std::size_t object, const glm::dmat4& to_model, glm::dvec3 world,
                 glm::dvec2 fade_range);
 
+//! The picture's horizontal laid flat in the world: the camera's right vector in world x and
+//! y (z = 0), unit; +x when the camera looks straight down its right vector.
+glm::vec3 pictureHorizontal(const FrameInputs& in);
+
+//! The world z of the scene's water surface (water.level over the frame's world bounds, as
+//! the mist's heights are measured), or the lowest float when the scene has no water.
+float waterLevel(const FrameInputs& in);
+
 }  // namespace shanshui::render

@@ -171,7 +171,7 @@ class ElementsPass final : public RenderPass {
     draw_.use();
     draw_.set("u_view_projection", in.viewProjection());
     draw_.set("u_eye", glm::vec3(in.camera.eye()));
-    draw_.set("u_right", right(in));
+    draw_.set("u_right", pictureHorizontal(in));
     draw_.set("u_capacity", static_cast<unsigned>(capacity_));
     glDrawArraysIndirect(GL_TRIANGLE_STRIP, nullptr);
     glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
@@ -208,12 +208,6 @@ class ElementsPass final : public RenderPass {
   }
 
   // The camera's right, level: billboards stand upright whatever the camera's pitch.
-  static glm::vec3 right(const FrameInputs& in) {
-    const glm::mat4 v = in.camera.view();
-    glm::dvec3 r(v[0][0], v[1][0], 0.0);
-    if (glm::length(r) < 1e-9) r = {1.0, 0.0, 0.0};
-    return glm::vec3(glm::normalize(r));
-  }
 
   // Every element in view, as entries for the indirect draw.
   void expand(const FrameInputs& in) {
@@ -242,6 +236,7 @@ class ElementsPass final : public RenderPass {
                                            elements::kLevelBands[3]));
     expand_.set("u_dot_template", dot_template_);
     expand_.set("u_fade", static_cast<float>(scene_.output.fade));
+    expand_.set("u_water_level", waterLevel(in));
     expand_.set("u_fade_range", glm::vec2(fade));
     const scene::Mist& mist = scene_.mist;
     const double z0 = in.world_bounds.min.z, extent = std::max(in.world_bounds.size().z, 1e-9);

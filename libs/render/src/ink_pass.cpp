@@ -9,6 +9,7 @@
 
 #include <glm/gtc/matrix_access.hpp>
 
+#include "atmosphere.h"
 #include "shanshui/noise/value_noise.h"
 #include "shanshui/render/gl_check.h"
 #include "shanshui/render/ink_object_params.h"
@@ -58,6 +59,7 @@ std::vector<std::string> inkDefines(const scene::Scene& s, bool debug_outputs) {
   if (s.usesPigment() || s.usesShadow()) d.emplace_back("PIGMENT");
   if (s.usesElements()) d.emplace_back("ELEMENTS");
   if (s.usesElements() && elementsKeepNearness(s)) d.emplace_back("ELEMENT_NEARNESS");
+  if (s.usesWater()) d.emplace_back("WATER");
   addSurfaceDefines(s, d);
   if (debug_outputs) d.emplace_back("DEBUG_OUTPUTS");
   return d;
@@ -202,6 +204,7 @@ class InkPass final : public RenderPass {
       ink->set("u_light_dir", glm::vec3(glm::normalize(in.scene.light.direction)));
       ink->set("u_paper", glm::vec3(in.scene.output.paper));
       if (grainHere(in.scene)) ink->set("u_canvas_contrast", static_cast<float>(in.scene.canvas.contrast));
+      if (in.scene.usesWater()) setWaterUniforms(*ink, in);
       glDepthFunc(ink == &program_ ? GL_GREATER : GL_EQUAL);  // surfaces, then the background
       glDrawArrays(GL_TRIANGLES, 0, 3);
     }
@@ -245,6 +248,19 @@ class InkPass final : public RenderPass {
       const double size = std::max(std::max(in.world_bounds.size().x, in.world_bounds.size().y), 1e-9);
       p.set("u_mist_noise", static_cast<float>(2.0 / size));
     }
+  }
+
+  // The water's level and its waves' cells in world units, the picture's horizontal on it,
+  // and the bank line's width in pixels.
+  static void setWaterUniforms(const Program& p, const FrameInputs& in) {
+    const scene::Water& w = in.scene.water;
+    const double side = std::max({in.world_bounds.size().x, in.world_bounds.size().y, 1e-9});
+    p.set("u_water", glm::vec4(waterLevel(in), static_cast<float>(w.spacing * side), static_cast<float>(w.waves),
+                               static_cast<float>(w.ink)));
+    p.set("u_water_right", glm::vec2(pictureHorizontal(in)));
+    p.set("u_water_bank", static_cast<float>(w.bank * in.height / 1024.0));
+    p.set("u_pixel_angle",
+          static_cast<float>(2.0 * std::tan(glm::radians(in.camera.fov_y_deg) * 0.5) / std::max(in.height, 1)));
   }
 
   // The elements' ink colour: the line colour of the first object that grows them.

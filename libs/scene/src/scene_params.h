@@ -583,6 +583,23 @@ void describe(V& v, Mist& m) {
 }
 
 template <typename V>
+void describe(V& v, Water& w) {
+  v.boolean({"enabled",
+             "a water level: the land below it is hidden and left as paper with sparse horizontal wave strokes, "
+             "the banks drawn as a line; false: no water code",
+             kRebuild},
+            w.enabled);
+  v.number({"level", "the water's surface, fraction of the scene's vertical extent from its lowest point"}, w.level,
+           kUnit);
+  v.number({"waves", "share of the wave cells that hold a stroke; 0 leaves the water bare paper"}, w.waves, kUnit);
+  v.number({"spacing", "wave cell size, fraction of the scene's larger horizontal side"}, w.spacing, {0.001, 1});
+  v.number({"ink", "darkness of a wave stroke, fraction of the line colour"}, w.ink, kUnit);
+  v.number({"bank", "width of the bank line where land meets the water, pixels at a picture height of 1024; 0: none",
+            Effect::Uniform, "pixels"},
+           w.bank, {0, 16});
+}
+
+template <typename V>
 void describe(V& v, SubstrateParams& p) {
   v.boolean({"enabled",
              "the paper's relief acts on the dried paint (seed 000): dry brush, granulation, lighting, "
@@ -687,6 +704,7 @@ void describe(V& v, Scene& s) {
   v.group("canvas", s.canvas, Table::Own);
   v.group("diffusion", s.diffusion, Table::Own);
   v.group("mist", s.mist, Table::Own);
+  v.group("water", s.water, Table::Own);
   v.group("shadow", s.shadow, Table::Inline);
   v.group("substrate", s.substrate, Table::Own);
   v.group("edges", s.edges, Table::Own);

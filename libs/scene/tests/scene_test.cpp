@@ -255,8 +255,8 @@ TEST(Scene, RebuildKeysAreTheOnesThatChangeVariantsOrFiles) {
   }
   const std::set<std::string> expected = {
       "objects", "objects.*.mesh", "objects.*.dem", "objects.*.z_scale", "objects.*.max_vertices",
-      "objects.*.cell_size", "objects.*.up", "objects.*.recentre", "objects.*.lines.enabled",
-      "objects.*.lines.curvature", "objects.*.lines.smoothing", "objects.*.shading.enabled",
+      "objects.*.cell_size", "objects.*.fill_nodata", "objects.*.crease_angle", "objects.*.up", "objects.*.recentre",
+      "objects.*.lines.enabled", "objects.*.lines.curvature", "objects.*.lines.smoothing", "objects.*.shading.enabled",
       "objects.*.wrinkle.texture", "objects.*.wrinkle.uv", "objects.*.wrinkle.mapping",
       "objects.*.strokes.style",  // builds the strokes pass
       "objects.*.pigment.name",   // builds the pigment pass
@@ -272,6 +272,7 @@ TEST(Scene, RebuildKeysAreTheOnesThatChangeVariantsOrFiles) {
       "substrate.texture",    // a file
       "edges.enabled",        // builds the edges pass
       "motion_blur.enabled",  // velocity target, blur pass
+      "water.enabled",        // the water code in the ink pass
       "canvas.type", "canvas.static_pattern", "canvas.method"};
   EXPECT_EQ(rebuild, expected);
 }
@@ -462,7 +463,10 @@ TEST(SceneAssets, EveryComponentOfAMeshIsKeptForRendering) {
                                     "f 1 3 2\nf 1 2 4\nf 2 3 4\nf 3 1 4\n"
                                     "f 5 7 6\nf 5 6 8\nf 6 7 8\nf 7 5 8\n";
   AssetCache cache;
-  json j = {{"objects", json::array({{{"mesh", "two.obj"}, {"up", "z"}, {"lines", {{"enabled", false}}}}})}};
+  // Smooth normals (crease_angle 180): no vertex is split at the tetrahedra's sharp edges.
+  json j = {
+      {"objects",
+       json::array({{{"mesh", "two.obj"}, {"up", "z"}, {"crease_angle", 180}, {"lines", {{"enabled", false}}}}})}};
   const ObjectAsset& a = *cache.get(parseScene(j, "s.json", dir.path()), 0).geometry;
   EXPECT_EQ(a.mesh.positions.size(), 8u) << "the small lid is drawn too";
   EXPECT_EQ(a.mesh.triangles.size(), 8u);

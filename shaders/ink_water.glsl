@@ -1,0 +1,67 @@
+// Water (scene key `water`), for the ink pass: below the level the land is hidden and the
+// water is left as paper with sparse horizontal wave strokes, anchored on the water's
+// surface in the world (they move with the scene, not with the screen); where land meets
+// the water, a bank line. Needs ink_surface.glsl (u_depth, the camera, worldPosition).
+#include "ink_hash.glsl"
+
+uniform vec4 u_water;        // level (world z), wave cell (world units), share of cells with a stroke, ink
+uniform vec2 u_water_right;  // the picture's horizontal laid on the water: a unit vector in world xy
+uniform float u_water_bank;  // bank line width, pixels
+uniform float u_pixel_angle; // a pixel's width at distance 1, world units
+
+bool underWater(vec3 position) {
+  return position.z < u_water.x;
+}
+
+// The wave strokes' ink where this pixel's view ray meets the water, in [0, 1].
+float waveInk(ivec2 p) {
+  vec2 ndc = (vec2(p) + 0.5) / vec2(textureSize(u_depth, 0)) * 2.0 - 1.0;
+  vec4 a = u_inverse_view_projection * vec4(ndc, -1.0, 1.0), b = u_inverse_view_projection * vec4(ndc, 1.0, 1.0);
+  vec3 o = a.xyz / a.w, d = normalize(b.xyz / b.w - o);
+  float t = (u_water.x - o.z) / (abs(d.z) > 1e-6 ? d.z : -1e-6);
+  if (t <= 0.0 || u_water.z <= 0.0) return 0.0;
+  vec3 w = o + t * d;
+  // A pixel on the water, in cells: across (u) as it is, along the view foreshortened.
+  float pixel = t * u_pixel_angle / u_water.y, graze = max(abs(d.z), 0.02);
+  float cell_px = graze / pixel;  // a cell's height on the picture, pixels
+  float visible = smoothstep(2.0, 6.0, cell_px);  // far water goes bare before it turns to grey
+  if (visible <= 0.0) return 0.0;
+  vec2 away = vec2(-u_water_right.y, u_water_right.x);
+  vec2 q = vec2(dot(w.xy, u_water_right), dot(w.xy, away)) / u_water.y;
+  float half_thick = 0.5 * max(0.9 * u_water_bank, 1.6) * pixel / graze;  // cells along `away`
+  ivec2 c = ivec2(floor(q));
+  float ink = 0.0;
+  // A stroke lies in its cell's middle band and may reach into the cells beside it.
+  for (int dx = -1; dx <= 1; ++dx) {
+    uvec2 cell = uvec2(c + ivec2(dx, 0) + 32768);
+    uint h = cellHash(cell);
+    if (float(h & 0xffffu) / 65535.0 >= u_water.z) continue;
+    uint g = cellHash(cell ^ uvec2(0x9e3779b9u, 0x7f4a7c15u));
+    float centre_u = float(c.x + dx) + 0.5 + 0.4 * (float(g & 0xffu) / 255.0 - 0.5);
+    float centre_v = float(c.y) + 0.25 + 0.5 * float((g >> 8) & 0xffu) / 255.0;
+    float half_len = 0.35 + 0.45 * float((g >> 16) & 0xffu) / 255.0;
+    float s = (q.x - centre_u) / half_len;
+    if (abs(s) >= 1.0) continue;
+    // A shallow wave along the stroke, thickest in its middle, fading at its ends.
+    float bend = ((g >> 24) & 1u) == 0u ? 1.0 : -1.0;
+    float v = centre_v + bend * 0.08 * sin(3.14159265 * s);
+    float thick = half_thick * (1.0 - 0.6 * s * s);
+    float across = abs(q.y - v) / max(thick, 1e-6);
+    ink = max(ink, (1.0 - smoothstep(0.6, 1.0, across)) * (1.0 - smoothstep(0.75, 1.0, abs(s))));
+  }
+  return ink * visible * u_water.w;
+}
+
+// 1 on the land's side of a bank: a neighbour within the line's width is under water.
+float bankLine(ivec2 p) {
+  if (u_water_bank <= 0.0) return 0.0;
+  int r = max(1, int(round(u_water_bank)));
+  ivec2 size = textureSize(u_depth, 0);
+  for (int k = 0; k < 4; ++k) {
+    ivec2 q = p + r * ivec2(k == 0 ? 1 : (k == 1 ? -1 : 0), k == 2 ? 1 : (k == 3 ? -1 : 0));
+    if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, size))) continue;
+    float depth = texelFetch(u_depth, q, 0).r;
+    if (depth < 1.0 && underWater(worldPosition(q, depth))) return 1.0;
+  }
+  return 0.0;
+}
