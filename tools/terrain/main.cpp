@@ -32,6 +32,10 @@ int main(int argc, char** argv) {
                  "raise the step until the grid has at most K vertices (0: no limit)")
       ->check(tools::integerIn(0, 2000000000))
       ->default_val(0);
+  std::vector<double> crop;
+  app.add_option("--crop", crop,
+                 "keep the part W S E N of the grid, fractions of its width and height (x east, y north)")
+      ->expected(4);
   app.add_flag("--fill-nodata", field.fill_nodata,
                "fill no-data samples (voids, the sea) by interpolation instead of leaving holes");
   return tools::runBatchableTool(app, argc, argv, [&] {
@@ -41,6 +45,7 @@ int main(int argc, char** argv) {
     terrain::validate(meshOptions);
     OutputSet outputs({input});
     outputs.declare(output, "-o", {".obj", ".ply", ".off"});
+    if (!crop.empty()) std::copy(crop.begin(), crop.end(), field.crop.begin());
     // A large raster is read decimated to the vertex budget (GDAL formats) instead of whole.
     field.max_samples = meshOptions.max_vertices;
     const terrain::Heightfield h = terrain::loadHeightfield(input, field);

@@ -8,9 +8,9 @@
 
 #include "gl_test.h"
 #include "scene_in_memory.h"
-#include "shanshui/scene/scene_assets.h"
 #include "shanshui/render/camera.h"
 #include "shanshui/render/ink_renderer.h"
+#include "shanshui/scene/scene_assets.h"
 #include "test_meshes.h"
 #include "test_support.h"
 
@@ -29,7 +29,10 @@ mesh::Mesh ramp() {
 }
 
 scene::Scene waterScene(const json& water, const json& object = json::object()) {
-  json o = {{"up", "z"}, {"recentre", false}, {"lines", {{"enabled", false}}}, {"border", {{"mode", "keep"}}},
+  json o = {{"up", "z"},
+            {"recentre", false},
+            {"lines", {{"enabled", false}}},
+            {"border", {{"mode", "keep"}}},
             {"shading", {{"erosion", 0.0}, {"noise", 0.0}}}};
   o.update(object, true);
   return test::sceneWith(o, {{"water", water}, {"output", {{"fade", 0.0}, {"width", kWidth}, {"height", kHeight}}}});
@@ -121,8 +124,8 @@ TEST_F(Water, ASceneWithoutWaterBuildsNoWaterCode) {
 
 TEST_F(Water, NothingGrowsUnderWater) {
   const mesh::Mesh m = ramp();
-  const scene::Scene s =
-      waterScene({{"enabled", true}, {"level", 0.5}}, {{"shading", {{"enabled", false}}}, {"dots", {{"enabled", true}, {"size", 24.0}}}});
+  const scene::Scene s = waterScene({{"enabled", true}, {"level", 0.5}},
+                                    {{"shading", {{"enabled", false}}}, {"dots", {{"enabled", true}, {"size", 24.0}}}});
   std::vector<scene::LoadedObject> loaded = test::prepare(s, m);
   auto set = std::make_shared<scene::ElementSet>();
   for (double x : {40.0, 160.0}) {  // z = -30 (under) and z = 30 (above)

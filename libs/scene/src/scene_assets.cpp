@@ -116,12 +116,13 @@ LoadedObject AssetCache::get(const Scene& scene, std::size_t index) {
   const bool object_curvature = o.lines.enabled;  // the feature size serves every source
   const int curvature = o.lines.enabled ? static_cast<int>(o.lines.curvature) : -1;
   const std::filesystem::path source = scene.resolve(o.mesh.empty() ? o.dem : o.mesh);
-  const std::string key = source.string() + "|" + std::to_string(o.z_scale) + "|" + std::to_string(o.max_vertices) +
-                          "|" + std::to_string(o.cell_size) + "|" + std::to_string(o.fill_nodata) + "|" +
-                          std::to_string(o.crease_angle) + "|" + std::to_string(static_cast<int>(o.up)) + "|" +
-                          std::to_string(o.recentre) + "|" + std::to_string(object_curvature) +
-                          std::to_string(curvature) + "|" + std::to_string(o.lines.smoothing) + "|" +
-                          (wrinkled ? (o.wrinkle.uv == UvSource::Mesh ? "uv-mesh" : "uv-planar") : "no-uv");
+  const std::string key =
+      source.string() + "|" + std::to_string(o.z_scale) + "|" + std::to_string(o.max_vertices) + "|" +
+      std::to_string(o.cell_size) + "|" + std::to_string(o.fill_nodata) + "|" + std::to_string(o.crease_angle) + "|" +
+      std::to_string(o.crop[0]) + " " + std::to_string(o.crop[1]) + " " + std::to_string(o.crop[2]) + " " +
+      std::to_string(o.crop[3]) + "|" + std::to_string(static_cast<int>(o.up)) + "|" + std::to_string(o.recentre) +
+      "|" + std::to_string(object_curvature) + std::to_string(curvature) + "|" + std::to_string(o.lines.smoothing) +
+      "|" + (wrinkled ? (o.wrinkle.uv == UvSource::Mesh ? "uv-mesh" : "uv-planar") : "no-uv");
   std::shared_ptr<const ObjectAsset>& slot = meshes_[key];
   std::shared_ptr<const image::Image> wrinkle;
   if (wrinkled) {
@@ -151,6 +152,7 @@ LoadedObject AssetCache::get(const Scene& scene, std::size_t index) {
         hopt.image_relief_ratio = kImageReliefRatio;
         hopt.max_samples = o.max_vertices;
         hopt.fill_nodata = o.fill_nodata;
+        hopt.crop = o.crop;
         asset->mesh =
             terrain::heightfieldToMesh(terrain::loadHeightfield(source, hopt), topt, nullptr, source.string());
       } else {

@@ -379,6 +379,16 @@ void describe(V& v, Object& o) {
              "out of the mesh as holes",
              kRebuild},
             o.fill_nodata);
+  v.numbers({"crop",
+             "dem only: the part of the grid kept, its west, south, east and north edges as fractions of its width "
+             "and height, so one DEM gives several ranges",
+             kRebuild},
+            o.crop, kUnit);
+  v.check("crop", [&]() -> std::string {
+    if (o.crop[0] < o.crop[2] && o.crop[1] < o.crop[3]) return "";
+    return "west " + std::to_string(o.crop[0]) + " must be below east " + std::to_string(o.crop[2]) + " and south " +
+           std::to_string(o.crop[1]) + " below north " + std::to_string(o.crop[3]);
+  });
   v.number({"cell_size",
             "dem only: metres between samples; 0: from the file's header, and an image (PNG, TIFF: no header) "
             "gets cells that make its larger side 8 times its relief",

@@ -255,9 +255,9 @@ TEST(Scene, RebuildKeysAreTheOnesThatChangeVariantsOrFiles) {
   }
   const std::set<std::string> expected = {
       "objects", "objects.*.mesh", "objects.*.dem", "objects.*.z_scale", "objects.*.max_vertices",
-      "objects.*.cell_size", "objects.*.fill_nodata", "objects.*.crease_angle", "objects.*.up", "objects.*.recentre",
-      "objects.*.lines.enabled", "objects.*.lines.curvature", "objects.*.lines.smoothing", "objects.*.shading.enabled",
-      "objects.*.wrinkle.texture", "objects.*.wrinkle.uv", "objects.*.wrinkle.mapping",
+      "objects.*.cell_size", "objects.*.fill_nodata", "objects.*.crop", "objects.*.crease_angle", "objects.*.up",
+      "objects.*.recentre", "objects.*.lines.enabled", "objects.*.lines.curvature", "objects.*.lines.smoothing",
+      "objects.*.shading.enabled", "objects.*.wrinkle.texture", "objects.*.wrinkle.uv", "objects.*.wrinkle.mapping",
       "objects.*.strokes.style",  // builds the strokes pass
       "objects.*.pigment.name",   // builds the pigment pass
       // Elements are placed on load from these (and build

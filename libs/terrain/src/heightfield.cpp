@@ -81,6 +81,38 @@ Heightfield loadHeightmapImage(const fs::path& path, const HeightfieldOptions& o
   return h;
 }
 
+void cropHeightfield(Heightfield& h, const std::array<double, 4>& crop, const std::string& what) {
+  const auto [west, south, east, north] = crop;
+  for (double f : crop) {
+    if (!(f >= 0.0 && f <= 1.0)) throw makeError(what, ": crop ", f, " is outside [0, 1]");
+  }
+  if (!(east > west && north > south)) {
+    throw makeError(what, ": crop [", west, ", ", south, ", ", east, ", ", north,
+                    "] is empty; expected west < east and south < north");
+  }
+  // Columns run west to east, rows north to south.
+  const int c0 = static_cast<int>(std::floor(west * (h.columns - 1) + 1e-9)),
+            c1 = static_cast<int>(std::ceil(east * (h.columns - 1) - 1e-9));
+  const int r0 = static_cast<int>(std::floor((1.0 - north) * (h.rows - 1) + 1e-9)),
+            r1 = static_cast<int>(std::ceil((1.0 - south) * (h.rows - 1) - 1e-9));
+  if (c1 - c0 < 1 || r1 - r0 < 1) {
+    throw makeError(what, ": crop keeps ", c1 - c0 + 1, " x ", r1 - r0 + 1,
+                    " samples; expected at least 2 x 2 (widen it)");
+  }
+  std::vector<double> kept;
+  kept.reserve(static_cast<std::size_t>(c1 - c0 + 1) * (r1 - r0 + 1));
+  for (int r = r0; r <= r1; ++r)
+    for (int c = c0; c <= c1; ++c) kept.push_back(h.at(c, r));
+  h.origin_x += c0 * h.cell_x;
+  h.origin_y -= r0 * h.cell_y;
+  h.notes.push_back("cropped to columns " + std::to_string(c0) + "-" + std::to_string(c1) + " and rows " +
+                    std::to_string(r0) + "-" + std::to_string(r1) + " of " + std::to_string(h.columns) + " x " +
+                    std::to_string(h.rows));
+  h.columns = c1 - c0 + 1;
+  h.rows = r1 - r0 + 1;
+  h.elevation = std::move(kept);
+}
+
 Heightfield loadHeightfield(const fs::path& path, const HeightfieldOptions& options) {
   if (!(options.cell_size >= 0.0 && options.cell_size <= 1e6)) {
     throw makeError("--cell-size: ", options.cell_size, " is out of range; expected (0, 1e6] metres");
@@ -95,6 +127,8 @@ Heightfield loadHeightfield(const fs::path& path, const HeightfieldOptions& opti
   else
     h = loadGdalRaster(path, options);
   if (h.validCount() == 0) throw makeError(path.string(), ": no valid elevations (every sample is NODATA)");
+  if (options.crop != std::array<double, 4>{0.0, 0.0, 1.0, 1.0}) cropHeightfield(h, options.crop, path.string());
+  if (h.validCount() == 0) throw makeError(path.string(), ": no valid elevations in the crop (every sample is NODATA)");
   if (options.fill_nodata) fillNoData(h);
   return h;
 }

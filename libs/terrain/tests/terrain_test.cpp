@@ -180,6 +180,26 @@ Heightfield ramp(int cols, int rows) {
   return h;
 }
 
+TEST(Terrain, CropKeepsThePartAskedForAndMovesTheOrigin) {
+  Heightfield h = ramp(11, 6);  // columns west to east, rows north to south
+  const Heightfield whole = h;
+  cropHeightfield(h, {0.2, 0.0, 0.6, 0.4}, "ramp");
+  ASSERT_EQ(h.columns, 5);  // columns 2..6
+  ASSERT_EQ(h.rows, 3);     // the southern rows 3..5
+  for (int r = 0; r < h.rows; ++r)
+    for (int c = 0; c < h.columns; ++c) EXPECT_EQ(h.at(c, r), whole.at(c + 2, r + 3));
+  EXPECT_DOUBLE_EQ(h.origin_x, whole.origin_x + 2 * whole.cell_x);
+  EXPECT_DOUBLE_EQ(h.origin_y, whole.origin_y - 3 * whole.cell_y);
+  Heightfield g = whole;
+  test::expectErrorNaming([&] { cropHeightfield(g, {0.5, 0.0, 0.5, 1.0}, "ramp.asc"); }, "ramp.asc", "is empty");
+  test::expectErrorNaming([&] { cropHeightfield(g, {0.0, 0.0, 1.5, 1.0}, "ramp.asc"); }, "ramp.asc", "outside [0, 1]");
+  test::expectErrorNaming(
+      [&] {
+        cropHeightfield(g, {0.0, 0.0, 1e-12, 1.0}, "ramp.asc");
+      },
+      "ramp.asc", "at least 2 x 2");
+}
+
 TEST(TerrainMesh, GridMeshMatchesTheSamplesAndFacesUp) {
   const Heightfield h = ramp(7, 5);
   TerrainMeshInfo info;

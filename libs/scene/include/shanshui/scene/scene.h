@@ -196,6 +196,8 @@ struct Object {
   UpAxis up = UpAxis::Auto;           //!< the model axis that is up in the world
   std::size_t max_vertices = 250000;  //!< dem only: grid decimation limit
   bool fill_nodata = false;           //!< dem only: fill no-data samples instead of leaving holes
+  //! dem only: the part kept, west, south, east, north as fractions of the grid.
+  std::array<double, 4> crop{0.0, 0.0, 1.0, 1.0};
   //! mesh only: normals split across edges sharper than this (degrees); 180: smooth.
   double crease_angle = 40.0;
   //! true: the mesh is moved so its bounding-box centre is the model origin.

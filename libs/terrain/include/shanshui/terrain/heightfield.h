@@ -2,6 +2,7 @@
 // PNG/TIFF height maps, ...), USGS ASCII DEM and ESRI ASCII grids.
 #pragma once
 
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
@@ -57,6 +58,9 @@ struct HeightfieldOptions {
   //! No-data samples (voids, the sea) filled by interpolation from the valid ones around
   //! them instead of being left out of the mesh as holes.
   bool fill_nodata = false;
+  //! The part of the grid kept: west, south, east and north edges as fractions of its width
+  //! and height (x east, y north), so one DEM can give several ranges. {0, 0, 1, 1}: all.
+  std::array<double, 4> crop{0.0, 0.0, 1.0, 1.0};
 };
 
 //! Loads .dem (USGS ASCII DEM) and .asc (ESRI ASCII grid) with shanshui's own readers and
@@ -73,6 +77,11 @@ Heightfield loadHeightfield(const std::filesystem::path& path, const Heightfield
 //! without georeference keep the image rule (cell_size, image_relief_ratio or 1 m) and say
 //! so in `notes`, with the range of heights they took as metres.
 Heightfield loadGdalRaster(const std::filesystem::path& path, const HeightfieldOptions& options);
+
+//! Keeps the part of `h` between the fractions west, south, east, north of `crop` (at least
+//! two samples a side), moving its origin with it; throws Error naming `what` for a crop
+//! outside [0, 1] or with an edge not beyond its opposite.
+void cropHeightfield(Heightfield& h, const std::array<double, 4>& crop, const std::string& what);
 
 //! Fills the NaN samples of `h` by inverse-distance interpolation from the valid samples
 //! around them (GDAL's GDALFillNodata) and says so in its notes; returns how many.
