@@ -1,4 +1,6 @@
 // shanshui-param: UVs for a mountain mesh so the wrinkle texture maps without stretch.
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 
@@ -103,6 +105,14 @@ int main(int argc, char** argv) {
     }
 
     const mesh::PolygonSoup soup = mesh::readPolygonSoup(input);
+    if (texel->count() > 0) {  // UVs are mesh units over the texel size: they must fit a float
+      const mesh::Bounds b = mesh::bounds(soup.positions);
+      const double extent = std::max({b.size().x, b.size().y, b.size().z});
+      if (!(extent / texelSize < 1e37)) {
+        throw makeError("--texel-size: ", texelSize, " makes UVs beyond a float's range on a mesh ", extent,
+                        " units across; expected at least ", extent / 1e37);
+      }
+    }
     mesh::RepairOptions repairOptions;
     const bool atlasAllowed = options.method == param::Method::Auto || options.method == param::Method::Charts;
     if (components.empty()) components = atlasAllowed ? "keep-all" : "keep-largest";
@@ -133,6 +143,10 @@ int main(int argc, char** argv) {
     }
     if (texel->count() > 0) {
       param::scaleToTexelSize(m, texelSize);
+      if (!std::all_of(m.uvs.begin(), m.uvs.end(),
+                       [](const glm::vec2& uv) { return std::isfinite(uv.x) && std::isfinite(uv.y); })) {
+        throw makeError("--texel-size: ", texelSize, " makes UVs beyond a float's range");
+      }
     } else {
       param::normalizeUvs(m);
     }

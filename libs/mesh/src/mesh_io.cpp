@@ -379,6 +379,21 @@ std::string encodeMesh(const Mesh& mesh, const fs::path& path) {
     throw makeError(path.string(), ": mesh has ", mesh.normals.size(), " normals for ", mesh.positions.size(),
                     " vertices");
   }
+  // Finite or refused: no file of ours holds a NaN or an infinity.
+  auto refuse = [&](const char* what, std::size_t v, auto value) {
+    std::ostringstream s;
+    for (int k = 0; k < value.length(); ++k) s << (k ? " " : "") << value[k];
+    throw makeError(path.string(), ": refusing to write a non-finite ", what, " (vertex ", v + 1, ": ", s.str(), ")");
+  };
+  for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
+    if (!std::isfinite(mesh.positions[v].x + mesh.positions[v].y + mesh.positions[v].z)) {
+      refuse("position", v, mesh.positions[v]);
+    }
+    if (!mesh.uvs.empty() && !std::isfinite(mesh.uvs[v].x + mesh.uvs[v].y)) refuse("UV", v, mesh.uvs[v]);
+    if (!mesh.normals.empty() && !std::isfinite(mesh.normals[v].x + mesh.normals[v].y + mesh.normals[v].z)) {
+      refuse("normal", v, mesh.normals[v]);
+    }
+  }
   if (ext == ".obj") return objText(mesh);
   if (ext == ".off") return offText(mesh);
   return plyBytes(mesh);

@@ -360,12 +360,25 @@ Mesh repairMesh(const PolygonSoup& soup, const RepairOptions& options, RepairRep
   }
   r.output_vertices = out.positions.size();
   r.output_faces = out.triangles.size();
+  // UVs or normals with a NaN or an infinity (a PLY's NaN u, an OBJ's vt 1e300 beyond a
+  // float) cannot be carried: they are dropped, and said so.
+  auto allFinite = [](const auto& values) {
+    return std::all_of(values.begin(), values.end(), [](const auto& v) {
+      for (int k = 0; k < v.length(); ++k)
+        if (!std::isfinite(v[k])) return false;
+      return true;
+    });
+  };
+  const bool finiteUvs = allFinite(soup.uvs), finiteNormals = allFinite(soup.normals);
+  if (!finiteUvs || !finiteNormals) {
+    r.warnings.push_back(std::string("non-finite ") + (!finiteUvs ? "UVs" : "normals") + " in the input were dropped");
+  }
   const bool sameVertices = attributesFollow && out.positions.size() == soup.positions.size() &&
                             r.non_manifold_vertices_split == 0 && r.components_removed == 0;
   if (sameVertices) {
-    out.uvs = soup.uvs;
-    out.normals = soup.normals;
-  } else if (soup.uvs.size() == soup.positions.size() && !soup.uvs.empty()) {
+    if (finiteUvs) out.uvs = soup.uvs;
+    if (finiteNormals) out.normals = soup.normals;
+  } else if (finiteUvs && soup.uvs.size() == soup.positions.size() && !soup.uvs.empty()) {
     // UVs with seams (a chart atlas, a sphere cut open) come as coincident vertices that
     // step 2 merged: they follow the corners, and seams are split again.
     out.normals = vertexNormals(out);

@@ -1,6 +1,8 @@
 #include "shanshui/mesh/mesh_io.h"
 
+#include <cmath>
 #include <fstream>
+#include <limits>
 
 #include "shanshui/core/error.h"
 #include "test_meshes.h"
@@ -122,6 +124,21 @@ TEST(MeshIo, RefusesToWriteAFacelessMeshAndKeepsTheOldFile) {
   writeMesh(good, dir / "m.obj");
   EXPECT_THROW(writeMesh(Mesh{}, dir / "m.obj"), Error);
   EXPECT_EQ(readPolygonSoup(dir / "m.obj").faces.size(), good.triangles.size());
+}
+
+// Finite or refused (issue 48): a NaN or an infinity never reaches a file.
+TEST(MeshIo, RefusesToEncodeNonFiniteNumbers) {
+  Mesh m = unitCube();
+  m.uvs.assign(m.positions.size(), glm::vec2(0.5f));
+  m.uvs[3].y = std::numeric_limits<float>::infinity();
+  test::expectErrorNaming([&] { encodeMesh(m, "uv.obj"); }, "uv.obj", "non-finite UV (vertex 4: 0.5 inf)");
+  m.uvs.clear();
+  m.positions[0].x = std::nan("");
+  test::expectErrorNaming([&] { encodeMesh(m, "p.ply"); }, "p.ply", "non-finite position (vertex 1");
+  m = unitCube();
+  m.normals = vertexNormals(m);
+  m.normals[7].z = -std::numeric_limits<float>::infinity();
+  test::expectErrorNaming([&] { encodeMesh(m, "n.off"); }, "n.off", "non-finite normal (vertex 8");
 }
 
 TEST(MeshGeometry, NormalsOfASpherePointOutwardsAndRecentreIsExact) {

@@ -1,5 +1,7 @@
 #include "shanshui/mesh/repair.h"
 
+#include <cmath>
+#include <limits>
 #include <random>
 
 #include "mesh_checks.h"
@@ -28,6 +30,27 @@ TEST(Repair, EveryCgalTestMeshComesOutClean) {
   for (const auto& entry : std::filesystem::directory_iterator(test::cgalMeshes())) {
     repairFile(entry.path().filename().c_str());
   }
+}
+
+// Issue 48: a PLY's NaN u/v, or an OBJ's vt beyond a float, was copied into the output.
+TEST(Repair, NonFiniteUvsAndNormalsAreDroppedAndSaidSo) {
+  const Mesh cube = unitCube();
+  PolygonSoup soup;
+  soup.positions = cube.positions;
+  for (const glm::uvec3& t : cube.triangles) soup.faces.push_back({t.x, t.y, t.z});
+  soup.uvs.assign(soup.positions.size(), glm::vec2(0.25f, 0.75f));
+  soup.uvs[2].x = std::nanf("");
+  RepairReport r;
+  const Mesh out = repairMesh(soup, RepairOptions{}, &r, "nan.ply");
+  EXPECT_TRUE(out.uvs.empty());
+  ASSERT_FALSE(r.warnings.empty());
+  EXPECT_NE(r.warnings.back().find("non-finite UVs"), std::string::npos) << r.warnings.back();
+  EXPECT_NO_THROW(encodeMesh(out, "fixed.obj"));
+  soup.uvs.clear();
+  soup.normals.assign(soup.positions.size(), glm::vec3(0, 0, 1));
+  soup.normals[5].y = std::numeric_limits<float>::infinity();
+  const Mesh n = repairMesh(soup, RepairOptions{}, nullptr, "inf.ply");
+  for (const glm::vec3& v : n.normals) EXPECT_TRUE(std::isfinite(v.x + v.y + v.z));
 }
 
 TEST(Repair, CleanMeshesAreLeftAlone) {
