@@ -32,6 +32,7 @@
 #include <nlohmann/json.hpp>
 
 #include "bench_args.h"
+#include "bench_output.h"
 #include "order_stats.h"
 #include "shanshui/image/image_io.h"
 #include "shanshui/mesh/shapes.h"
@@ -417,7 +418,7 @@ int main(int argc, char** argv) {
   const bool quick = args.quick;
   const std::string only = args.text("--only", "");  // one section (a quick look; the files then hold only it)
   std::filesystem::create_directories(out);
-  std::ofstream csv(out / "canvas_tradeoff.csv"), md(out / "canvas_tradeoff.md");
+  bench::OutputFile csv(out / "canvas_tradeoff.csv"), md(out / "canvas_tradeoff.md");
   bench::TradeoffPoints points(out / "canvas_tradeoff_points.csv");
   const auto context = render::GlContext::create({.kind = render::ContextKind::Headless});
   md << "# Dynamic canvas: temporal coherence, flatness, and error against run time\n\nDevice: "

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "bench_args.h"
+#include "bench_output.h"
 #include "shanshui/mesh/curvature.h"
 #include "shanshui/mesh/shapes.h"
 #include "tradeoff_points.h"
@@ -50,7 +51,7 @@ int main(int argc, char** argv) {
   const std::filesystem::path out = args.out;
   const bool quick = args.quick;
   std::filesystem::create_directories(out);
-  std::ofstream csv(out / "curvature_tradeoff.csv"), md(out / "curvature_tradeoff.md");
+  bench::OutputFile csv(out / "curvature_tradeoff.csv"), md(out / "curvature_tradeoff.md");
   bench::TradeoffPoints points(out / "curvature_tradeoff_points.csv");
   csv << "surface,estimator,resolution,vertices,milliseconds,median_rel_error,p95_rel_error\n";
   md << "Object-space mean curvature against the analytic value (relative error of |H| per vertex); "

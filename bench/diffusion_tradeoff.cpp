@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "bench_args.h"
+#include "bench_output.h"
 #include "order_stats.h"
 #include "shanshui/ink/diffusion.h"
 #include "shanshui/render/gl_context.h"
@@ -89,7 +90,7 @@ int main(int argc, char** argv) {
   const bool quick = args.quick;
   const int mainSize = quick ? 128 : 512, boundarySize = quick ? 64 : 256, frameSize = quick ? 256 : 1024;
   std::filesystem::create_directories(out);
-  std::ofstream csv(out / "diffusion_tradeoff.csv"), md(out / "diffusion_tradeoff.md");
+  bench::OutputFile csv(out / "diffusion_tradeoff.csv"), md(out / "diffusion_tradeoff.md");
   bench::TradeoffPoints points(out / "diffusion_tradeoff_points.csv");
   const auto context = render::GlContext::create({.kind = render::ContextKind::Headless});
   md << "# Ink diffusion: error against run time, and cost\n\nDevice: " << context->description()

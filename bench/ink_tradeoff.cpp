@@ -29,6 +29,7 @@
 #include <nlohmann/json.hpp>
 
 #include "bench_args.h"
+#include "bench_output.h"
 #include "order_stats.h"
 #include "shanshui/core/random.h"
 #include "shanshui/mesh/curvature.h"
@@ -158,7 +159,7 @@ int main(int argc, char** argv) {
   const bool quick = args.quick;
   const int size = args.integer("--size", quick ? 256 : 1024);
   std::filesystem::create_directories(out);
-  std::ofstream csv(out / "ink_tradeoff.csv"), md(out / "ink_tradeoff.md");
+  bench::OutputFile csv(out / "ink_tradeoff.csv"), md(out / "ink_tradeoff.md");
   bench::TradeoffPoints points(out / "ink_tradeoff_points.csv");
   const auto context = render::GlContext::create({.kind = render::ContextKind::Headless});
   md << "# Ink renderer: error against run time, and cost\n\nDevice: " << context->description() << "\n\n";

@@ -20,6 +20,7 @@
 #include <nlohmann/json.hpp>
 
 #include "bench_args.h"
+#include "bench_output.h"
 #include "box_on_plane.h"
 #include "shanshui/mesh/shapes.h"
 #include "shanshui/render/gl_context.h"
@@ -63,7 +64,7 @@ int main(int argc, char** argv) {
   std::filesystem::create_directories(args.out);
   const auto context = render::GlContext::create({.kind = render::ContextKind::Headless});
   const int size = args.quick ? 256 : 1024, repeats = args.quick ? 3 : 7;
-  std::ofstream md(args.out / "paper_tradeoff.md"), csv(args.out / "paper_tradeoff.csv");
+  bench::OutputFile md(args.out / "paper_tradeoff.md"), csv(args.out / "paper_tradeoff.csv");
   bench::TradeoffPoints points(args.out / "paper_tradeoff_points.csv");
   csv << "knob,value,ms,error_mean,error_p99\n";
   char line[256];

@@ -18,6 +18,7 @@
 
 #include "bench_args.h"
 #include "bench_data.h"
+#include "bench_output.h"
 #include "shanshui/core/error.h"
 #include "shanshui/mesh/mesh_io.h"
 #include "shanshui/mesh/repair.h"
@@ -158,10 +159,10 @@ int main(int argc, char** argv) {
       {"arap", Method::Arap, Border::Circle},
       {"charts", Method::Charts, Border::Circle},
   };
-  std::ofstream csv(out / "param_tradeoff.csv");
+  bench::OutputFile csv(out / "param_tradeoff.csv");
   csv << "input,vertices,config,seconds,l2_stretch,linf_stretch,angle_distortion,area_distortion,flipped,"
          "degenerate,valid,note\n";
-  std::ofstream md(out / "param_tradeoff.md");
+  bench::OutputFile md(out / "param_tradeoff.md");
   md << "Parameterization: distortion against seconds per method (DEMs decimated to at most " << maxVertices
      << " vertices). L2/Linf: Sander stretch, angle: mean σ1/σ2, area: mean |log σ1σ2| (all area-weighted; "
         "1, 1, 1, 0 ideal). Invalid = flipped or degenerate UV faces.\n\n"

@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "bench_args.h"
+#include "bench_output.h"
 #include "shanshui/core/parse.h"
 #include "shanshui/image/image_io.h"
 #include "shanshui/render/gl_context.h"
@@ -104,7 +105,7 @@ int main(int argc, char** argv) {
   const Size2 size = parseSize(args.text("--size", quick ? "128x96" : "512x384"), "--size");
   const int width = size.width, height = size.height;
   std::filesystem::create_directories(out);
-  std::ofstream csv(out / "pipeline_tradeoff.csv"), md(out / "pipeline_tradeoff.md");
+  bench::OutputFile csv(out / "pipeline_tradeoff.csv"), md(out / "pipeline_tradeoff.md");
   bench::TradeoffPoints points(out / "pipeline_tradeoff_points.csv");
   const auto context = render::GlContext::create({.kind = render::ContextKind::Headless});
 

@@ -13,6 +13,7 @@
 
 #include "bench_args.h"
 #include "bench_data.h"
+#include "bench_output.h"
 #include "shanshui/core/error.h"
 #include "shanshui/image/image_io.h"
 #include "shanshui/texsynth/quilt_metrics.h"
@@ -57,7 +58,7 @@ int main(int argc, char** argv) {
       {"fft + none", SearchMode::Fft, SeamMode::None, false},
       {"fft + cut, tileable", SearchMode::Fft, SeamMode::Cut, true},
   };
-  std::ofstream csv(out / "quilt_tradeoff.csv");
+  bench::OutputFile csv(out / "quilt_tradeoff.csv");
   csv << "texture,config,seconds,search_error_ratio,search_rule_violations,overlap_error_per_pixel,seam_error_per_edge,"
          "coherence_mean,verbatim_copy_ratio,sample_coverage,wrap_seam_error\n";
   std::map<std::string, std::vector<Row>> rows;
@@ -94,7 +95,7 @@ int main(int argc, char** argv) {
     }
   }
 
-  std::ofstream md(out / "quilt_tradeoff.md");
+  bench::OutputFile md(out / "quilt_tradeoff.md");
   md << "Image quilting, " << size << "x" << size << " output, block " << block << " (or the sample size), "
      << "overlap B/6, tolerance 0.1, one thread; means over " << files.size() << " textures.\n\n"
      << "| configuration | seconds | time / fft | chosen / exhaustive min | blocks outside the exact rule | overlap "

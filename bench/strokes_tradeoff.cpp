@@ -15,6 +15,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "bench_args.h"
+#include "bench_output.h"
 #include "shanshui/mesh/shapes.h"
 #include "shanshui/strokes/chains.h"
 #include "shanshui/strokes/edges.h"
@@ -70,8 +71,8 @@ int main(int argc, char** argv) {
   const double truth = focal * std::tan(std::asin(radius / distance));
   const std::vector<strokes::Chain> sphereChains = strokes::linkSegments(sphere.seen);
 
-  std::ofstream md(args.out / "strokes_tradeoff.md");
-  std::ofstream csv(args.out / "strokes_tradeoff.csv");
+  bench::OutputFile md(args.out / "strokes_tradeoff.md");
+  bench::OutputFile csv(args.out / "strokes_tradeoff.csv");
   csv << "knob,value,ms,error_px,chains\n";
   bench::TradeoffPoints points(args.out / "strokes_tradeoff_points.csv");
   md << "## Spline: sampling step and subdivision span against the true silhouette\n\n"

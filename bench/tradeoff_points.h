@@ -6,17 +6,15 @@
 #pragma once
 
 #include <filesystem>
-#include <fstream>
 #include <string>
 
-#include "shanshui/core/error.h"
+#include "bench_output.h"
 
 namespace shanshui::bench {
 
 class TradeoffPoints {
  public:
   explicit TradeoffPoints(const std::filesystem::path& csv) : out_(csv) {
-    if (!out_) throw makeError(csv.string(), ": cannot write");
     out_ << "plot,y_label,series,joined,ms,error\n";
     out_.precision(9);
   }
@@ -33,7 +31,7 @@ class TradeoffPoints {
     for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
     return q + '"';
   }
-  std::ofstream out_;
+  OutputFile out_;
 };
 
 }  // namespace shanshui::bench

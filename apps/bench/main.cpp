@@ -244,7 +244,7 @@ int main(int argc, char** argv) {
           for (const std::string& png : r.pngs) pictures += "![" + png + "](" + png + ")\n";
       if (!pictures.empty()) index += "\n## " + d.name + ": " + d.what + "\n\n" + pictures;
     }
-    writeAtomically(dir / "README.md", [&](const fs::path& tmp) { std::ofstream(tmp) << index; });
+    writeFileAtomically(dir / "README.md", index);
     std::fprintf(stderr, "wrote %s\n", (dir / "README.md").c_str());
     if (failed) throw makeError(failed, " of ", now, " bench programs failed (see ", (dir / "README.md").string(), ")");
   });

@@ -94,9 +94,8 @@ class Runner {
       throw shanshui::makeError("stage ", s.name, " failed: ", run.last_line, " (log: ", log.string(), ")");
     }
     r.summary = run.last_line;
-    shanshui::writeAtomically(cache, [&](const fs::path& tmp) {
-      std::ofstream(tmp) << json{{"key", hex(key)}, {"seconds", r.seconds}, {"summary", r.summary}}.dump(2) << "\n";
-    });
+    shanshui::writeFileAtomically(
+        cache, json{{"key", hex(key)}, {"seconds", r.seconds}, {"summary", r.summary}}.dump(2) + "\n");
     return r;
   }
 
@@ -121,7 +120,7 @@ void writeScene(const fs::path& sample_scene, const fs::path& out, bool quick) {
   if (quick) j["output"] = {{"width", 160}, {"height", 120}};
   const std::string text = j.dump(2) + "\n";
   if (fs::exists(out) && readFile(out) == text) return;  // same content: nothing to do
-  shanshui::writeAtomically(out, [&](const fs::path& tmp) { std::ofstream(tmp) << text; });
+  shanshui::writeFileAtomically(out, text);
 }
 
 std::string jsonNumber(const fs::path& file, const std::vector<std::string>& path, int precision = 3) {
@@ -490,7 +489,7 @@ int main(int argc, char** argv) {
           "every "
           "approximate stage on inputs with known answers and writes tables and plots to out/bench/README.md; the "
           "results of a full run ship in docs/bench/README.md.\n";
-    shanshui::writeAtomically(o / "report.md", [&](const fs::path& tmp) { std::ofstream(tmp) << md.str(); });
+    shanshui::writeFileAtomically(o / "report.md", md.str());
     std::printf("report: %s\n", (o / "report.md").string().c_str());
     if (!stability_failure.empty()) throw shanshui::makeError(stability_failure);
   });

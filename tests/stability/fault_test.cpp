@@ -250,6 +250,21 @@ TEST(Faults, FullDiskForEveryOutputKindOfEveryTool) {
   }
 }
 
+// Issue 48: the bench programs wrote their tables with plain streams, so a full disk left an
+// earlier run's tables empty. They are written atomically now: the old ones stay.
+TEST(Faults, ABenchOnAFullDiskKeepsTheTablesOfTheRunBefore) {
+  const fs::path program = test::binDir() / "bench_strokes_tradeoff";
+  if (!fs::exists(program)) GTEST_SKIP() << "the benchmarks are not built (SHANSHUI_BUILD_BENCH=OFF)";
+  Fixture f;
+  const fs::path out = f / "bench";
+  fs::create_directories(out);
+  const Outcome first = runProgram({program.string(), "--quick", "--out", out.string()});
+  ASSERT_EQ(first.exit_code, 0) << first.err;
+  ASSERT_TRUE(fs::exists(out / "strokes_tradeoff.md"));
+  expectCleanFailure("bench tables on a full disk", {program.string(), "--quick", "--out", out.string()}, out,
+                     "strokes_tradeoff", 1000);
+}
+
 TEST(Faults, ReadOnlyTargetsAndDirectoriesAreRefusedBeforeAnyWork) {
   Fixture f;
   f.precious({"ro.png"});
