@@ -6,7 +6,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <mutex>
 
 #include "gdal_module.h"
 #include "shanshui/core/atomic_output.h"
@@ -83,8 +82,9 @@ Heightfield loadGdalRaster(const fs::path& path, const HeightfieldOptions& optio
                     "); warp it north-up first (gdalwarp)");
   }
   if (r.georeferenced && !(std::isfinite(gt[0]) && std::isfinite(gt[3]) && std::isfinite(gt[1]) &&
-                           std::isfinite(gt[5]) && gt[1] != 0.0 && gt[5] != 0.0)) {
-    throw makeError(path.string(), ": the georeference has a cell size of ", gt[1], " x ", gt[5]);
+                           std::isfinite(gt[5]) && gt[1] > 0.0 && gt[5] != 0.0)) {
+    throw makeError(path.string(), ": the georeference has a cell size of ", gt[1], " x ", gt[5],
+                    "; expected columns running east (a positive x size) and a non-zero y size");
   }
   const double zUnit = r.z_unit_metres > 0 ? r.z_unit_metres : verticalUnit(r.z_unit);
   if (zUnit <= 0) {

@@ -105,6 +105,25 @@ TEST(GdalRaster, ProjectedGeoTiffOfEverySampleTypeGivesItsHeightsAndCells) {
   }
 }
 
+// A grid stored south row first (a positive y cell size) comes out north row first, at the
+// same place as the same grid stored north-up.
+TEST(GdalRaster, SouthUpGridIsTurnedNorthUp) {
+  test::TempDir dir;
+  Raster spec;
+  const double gt[6] = {500000, 30, 0, 4100000 - 48 * 30, 0, 30};
+  std::copy(gt, gt + 6, spec.geotransform);
+  writeRaster(dir / "south_up.tif", spec, [](int c, int r) { return 10.0 * c + r; });  // row r from the south
+  const Heightfield h = loadHeightfield(dir / "south_up.tif");
+  ASSERT_EQ(h.rows, 48);
+  EXPECT_DOUBLE_EQ(h.cell_y, 30.0);
+  EXPECT_DOUBLE_EQ(h.origin_y, 4099985.0);
+  EXPECT_EQ(h.at(3, 0), 10.0 * 3 + 47) << "row 0 is the north row";
+  EXPECT_EQ(h.at(3, 47), 10.0 * 3);
+  spec.geotransform[1] = -30;  // columns running west
+  writeRaster(dir / "west.tif", spec, [](int, int) { return 1.0; });
+  test::expectErrorNaming([&] { loadHeightfield(dir / "west.tif"); }, "west.tif", "columns running east");
+}
+
 TEST(GdalRaster, ProjectedFeetAndVerticalFeetBecomeMetres) {
   test::TempDir dir;
   Raster spec;
