@@ -27,3 +27,21 @@ function(shanshui_executable name)
   target_link_libraries(${name} PRIVATE ${ARG_DEPS})
   shanshui_warnings(${name})
 endfunction()
+
+# shanshui_module(NAME OF LIBRARY SOURCES ... DEPS ... LOADER source MACRO name): a part of
+# a library built as a module beside the programs and loaded on first use (see
+# shanshui/core/module.h), so that a program that never needs its heavy dependencies does
+# not load them at start. LOADER is the library source that loads it; it gets MACRO defined
+# to the module's build directory.
+function(shanshui_module name)
+  cmake_parse_arguments(ARG "" "OF;LOADER;MACRO" "SOURCES;DEPS" ${ARGN})
+  add_library(${name} MODULE ${ARG_SOURCES})
+  target_link_libraries(${name} PRIVATE ${ARG_DEPS})
+  set_target_properties(${name} PROPERTIES
+    LIBRARY_OUTPUT_DIRECTORY ${CMAKE_RUNTIME_OUTPUT_DIRECTORY}
+    CXX_VISIBILITY_PRESET hidden)
+  shanshui_warnings(${name})
+  add_dependencies(${ARG_OF} ${name})
+  set_source_files_properties(${ARG_LOADER} PROPERTIES
+    COMPILE_DEFINITIONS ${ARG_MACRO}="${CMAKE_RUNTIME_OUTPUT_DIRECTORY}")
+endfunction()
