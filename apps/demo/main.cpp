@@ -240,32 +240,27 @@ int main(int argc, char** argv) {
       results.push_back(runner.run(st));
       stages.push_back(st);
     }
+    // A sample scene rendered as it is, with its look statistics: `name`.png and
+    // `name`_stats.json from scenes/`name`.json, which reads `inputs` besides.
+    auto sampleStage = [&](const std::string& name, std::vector<fs::path> inputs) {
+      const fs::path scene = s / ("scenes/" + name + ".json");
+      if (!fs::exists(scene)) throw shanshui::makeError(scene.string(), ": not found");
+      inputs.insert(inputs.begin(), scene);
+      const fs::path png = o / (name + ".png"), stats = o / (name + "_stats.json");
+      Stage st{name,
+               "shanshui-render",
+               {scene.string(), "-o", png.string(), "--stats", stats.string()},
+               std::move(inputs),
+               {png, stats}};
+      if (quick) st.args.insert(st.args.end(), {"--set", "output.height=120", "--set", "output.width=160"});
+      results.push_back(runner.run(st));
+      stages.push_back(st);
+    };
     // Trees and moss dots close up (issue 44): the grove on the project's own hill.
-    {
-      const fs::path scene = s / "scenes/grove.json";
-      if (!fs::exists(scene)) throw shanshui::makeError(scene.string(), ": not found");
-      Stage st{"grove",
-               "shanshui-render",
-               {scene.string(), "-o", (o / "grove.png").string(), "--stats", (o / "grove_stats.json").string()},
-               {scene, s / "terrain/hill.asc", s / "textures/rain_strokes_wrinkle.png"},
-               {o / "grove.png", o / "grove_stats.json"}};
-      if (quick) st.args.insert(st.args.end(), {"--set", "output.height=120", "--set", "output.width=160"});
-      results.push_back(runner.run(st));
-      stages.push_back(st);
-    }
+    sampleStage("grove", {s / "terrain/hill.asc", s / "textures/rain_strokes_wrinkle.png"});
     // Water (issue 45): the hill as an island in a lake, with the boat on it.
-    {
-      const fs::path scene = s / "scenes/lake.json";
-      if (!fs::exists(scene)) throw shanshui::makeError(scene.string(), ": not found");
-      Stage st{"lake",
-               "shanshui-render",
-               {scene.string(), "-o", (o / "lake.png").string(), "--stats", (o / "lake_stats.json").string()},
-               {scene, s / "terrain/hill.asc", s / "textures/rain_strokes_wrinkle.png", s / "meshes/fishing_boat.obj"},
-               {o / "lake.png", o / "lake_stats.json"}};
-      if (quick) st.args.insert(st.args.end(), {"--set", "output.height=120", "--set", "output.width=160"});
-      results.push_back(runner.run(st));
-      stages.push_back(st);
-    }
+    sampleStage("lake",
+                {s / "terrain/hill.asc", s / "textures/rain_strokes_wrinkle.png", s / "meshes/fishing_boat.obj"});
     // Seed 002's brush strokes (willow leaf) on the level distance.
     {
       const fs::path scene = s / "scenes/level_distance.json";
