@@ -142,12 +142,7 @@ Heightfield loadEsriAscii(const fs::path& path, const HeightfieldOptions& option
   } else if (looksGeographic(path, xll, yllCorner, cellX, rows, why)) {
     const double latLo = yllCorner, latHi = yllCorner + rows * cellY;
     const double latMid = 0.5 * (latLo + latHi);
-    const double error = eastWestScaleError(latLo, latHi);
-    if (error > options.max_geographic_scale_error || std::abs(latMid) > 85) {
-      throw makeError(path.string(), ": cell size is in degrees (", why, ") and the grid spans latitudes ", latLo,
-                      " to ", latHi, "; a local projection would distort east-west distances by ", error * 100,
-                      " %; reproject to metres or give --cell-size");
-    }
+    const double error = checkGeographicSpan(path.string(), why, latLo, latHi, options);
     h.cell_x = cellX * metresPerDegreeLongitude(latMid);
     h.cell_y = cellY * metresPerDegreeLatitude(latMid);
     h.origin_x = westCentre * metresPerDegreeLongitude(latMid);

@@ -149,12 +149,7 @@ Heightfield loadGdalRaster(const fs::path& path, const HeightfieldOptions& optio
     if (geographic) {
       const double latLo = std::min(top, bottom) * r.crs_unit, latHi = std::max(top, bottom) * r.crs_unit;
       const double latMid = 0.5 * (latLo + latHi);
-      const double error = eastWestScaleError(latLo, latHi);
-      if (error > options.max_geographic_scale_error || std::abs(latMid) > 85) {
-        throw makeError(path.string(), ": cell size is in degrees (", why, ") and the grid spans latitudes ", latLo,
-                        " to ", latHi, "; a local projection would distort east-west distances by ", error * 100,
-                        " %; reproject to metres (gdalwarp) or give --cell-size");
-      }
+      const double error = checkGeographicSpan(path.string(), why, latLo, latHi, options);
       mx = metresPerDegreeLongitude(latMid) * r.crs_unit;
       my = metresPerDegreeLatitude(latMid) * r.crs_unit;
       h.notes.push_back("cells of " + number("%.6g", stepX * r.crs_unit) + " x " +

@@ -81,6 +81,17 @@ Heightfield loadHeightmapImage(const fs::path& path, const HeightfieldOptions& o
   return h;
 }
 
+double checkGeographicSpan(const std::string& what, const std::string& why, double lat_lo, double lat_hi,
+                           const HeightfieldOptions& options) {
+  const double error = eastWestScaleError(lat_lo, lat_hi);
+  if (error > options.max_geographic_scale_error || std::abs(0.5 * (lat_lo + lat_hi)) > 85) {
+    throw makeError(what, ": cell size is in degrees (", why, ") and the grid spans latitudes ", lat_lo, " to ", lat_hi,
+                    "; a local projection would distort east-west distances by ", error * 100,
+                    " %; reproject to metres (gdalwarp) or give --cell-size");
+  }
+  return error;
+}
+
 void cropHeightfield(Heightfield& h, const std::array<double, 4>& crop, const std::string& what) {
   const auto [west, south, east, north] = crop;
   for (double f : crop) {

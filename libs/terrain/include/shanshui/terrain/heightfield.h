@@ -96,6 +96,13 @@ Heightfield loadEsriAscii(const std::filesystem::path& path, const HeightfieldOp
 //! latitudes [lat_lo, lat_hi] is projected with one standard parallel at its centre.
 double eastWestScaleError(double lat_lo_deg, double lat_hi_deg);
 
+//! The east-west scale error of a degree grid spanning latitudes [lat_lo, lat_hi] projected
+//! at its centre, after checking it against options.max_geographic_scale_error (and the
+//! centre against the poles); throws Error naming `what` and `why` (how the degrees were
+//! recognised) above it.
+double checkGeographicSpan(const std::string& what, const std::string& why, double lat_lo, double lat_hi,
+                           const HeightfieldOptions& options);
+
 //! Metres per degree of latitude and of longitude at latitude `lat_deg` (WGS84 ellipsoid).
 double metresPerDegreeLatitude(double lat_deg);
 double metresPerDegreeLongitude(double lat_deg);
