@@ -232,6 +232,15 @@ int main(int argc, char** argv) {
     for (const auto& o : objects) stats["load_seconds"].push_back(o.geometry->load_seconds);
     stats["place_seconds"] = nlohmann::json::array();  // trees and moss dots, per object
     for (const auto& o : objects) stats["place_seconds"].push_back(o.elements ? o.elements->place_seconds : 0.0);
+    stats["grounded"] = nlohmann::json::array();  // where objects standing on others came to rest
+    for (std::size_t i = 0; i < sc.objects.size(); ++i) {
+      if (!sc.objects[i].grounded()) continue;
+      const glm::dvec3 at(renderer.worldMatrix(i) * glm::dvec4(objects[i].geometry->bounds.centre(), 1.0));
+      stats["grounded"].push_back({{"object", i}, {"on", sc.objects[i].ground.on}, {"centre", {at.x, at.y, at.z}}});
+      if (verbose)
+        std::fprintf(stderr, "objects.%zu '%s' stands on '%s', its centre at (%.1f, %.1f, %.1f)\n", i,
+                     sc.objects[i].name.c_str(), sc.objects[i].ground.on.c_str(), at.x, at.y, at.z);
+    }
     stats["frames"] = nlohmann::json::array();
     for (int i = 0; i < frames; ++i) {
       render::FrameStats fs;

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <limits>
 
+#include "shanshui/scene/grounding.h"
+
 namespace shanshui::render {
 
 namespace {
@@ -45,7 +47,7 @@ double presence(const FrameInputs& in, std::size_t object, const glm::dmat4& to_
 
 float waterLevel(const FrameInputs& in) {
   if (!in.scene.usesWater()) return std::numeric_limits<float>::lowest();
-  return static_cast<float>(in.world_bounds.min.z + in.scene.water.level * in.world_bounds.size().z);
+  return static_cast<float>(scene::waterHeight(in.scene, in.world_bounds));
 }
 
 glm::vec3 pictureHorizontal(const FrameInputs& in) {

@@ -177,6 +177,7 @@ InkRenderer::InkRenderer(const scene::Scene& s, const std::vector<scene::LoadedO
     }
     objects_.push_back(std::move(g));
   }
+  if (scene::usesGrounding(s)) grounding_ = std::make_unique<scene::Grounding>(objects);
   setObjects(s);
   const PassSetup setup{s, objects_, world_bounds_};
   for (const PassEntry& e : passList()) {
@@ -249,11 +250,23 @@ void InkRenderer::setScene(const scene::Scene& s) {
 }
 
 void InkRenderer::setObjects(const scene::Scene& s) {
+  // Objects standing on others take the pose that rests them on their ground; the world
+  // bounds (the water level, the mist's height, the fade) are those of what stands on
+  // nothing, so a pagoda on a summit moves none of them.
+  if (scene::usesGrounding(s) && !grounding_)
+    throw makeError("InkRenderer::setObjects: the scene now grounds objects; build a new renderer");
+  std::vector<glm::dmat4>& world = world_;
+  world.clear();
+  if (grounding_) {
+    world = grounding_->worldMatrices(s);
+  } else {
+    for (const scene::Object& o : s.objects) world.push_back(o.transform.matrix());
+  }
   world_bounds_ = {glm::dvec3(std::numeric_limits<double>::max()), glm::dvec3(std::numeric_limits<double>::lowest())};
   inked_bounds_ = world_bounds_;
   for (std::size_t i = 0; i < objects_.size(); ++i) {
     SceneObjectGpu& g = objects_[i];
-    const glm::dmat4 t = s.objects[i].transform.matrix();
+    const glm::dmat4& t = world[i];
     g.model = t * glm::translate(glm::dmat4(1.0), g.model_bounds.centre());
     const double scale = std::cbrt(std::abs(glm::determinant(glm::dmat3(t))));
     g.centre = glm::dvec3(t * glm::dvec4(g.model_bounds.centre(), 1.0));
@@ -272,8 +285,10 @@ void InkRenderer::setObjects(const scene::Scene& s) {
     const mesh::Bounds inked{g.model_bounds.min + inset, g.model_bounds.max - inset};
     for (int c = 0; c < 8; ++c) {
       const glm::dvec3 w(t * glm::dvec4(g.model_bounds.corner(c), 1.0));
-      world_bounds_.min = glm::min(world_bounds_.min, w);
-      world_bounds_.max = glm::max(world_bounds_.max, w);
+      if (!o.grounded()) {
+        world_bounds_.min = glm::min(world_bounds_.min, w);
+        world_bounds_.max = glm::max(world_bounds_.max, w);
+      }
       const glm::dvec3 wi(t * glm::dvec4(inked.corner(c), 1.0));
       inked_bounds_.min = glm::min(inked_bounds_.min, wi);
       inked_bounds_.max = glm::max(inked_bounds_.max, wi);
@@ -281,8 +296,7 @@ void InkRenderer::setObjects(const scene::Scene& s) {
   }
   std::vector<glm::dvec3> points;
   for (std::size_t i = 0; i < objects_.size(); ++i) {
-    const glm::dmat4 t = s.objects[i].transform.matrix();
-    for (const glm::dvec3& p : relief_points_[i]) points.emplace_back(t * glm::dvec4(p, 1.0));
+    for (const glm::dvec3& p : relief_points_[i]) points.emplace_back(world[i] * glm::dvec4(p, 1.0));
   }
   relief_ = Relief(points);
 }

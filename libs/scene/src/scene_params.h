@@ -20,6 +20,7 @@
 #include "shanshui/core/range.h"
 #include "shanshui/ink/diffusion.h"
 #include "shanshui/noise/gabor.h"
+#include "shanshui/scene/grounding.h"
 #include "shanshui/scene/scene.h"
 
 namespace shanshui::scene {
@@ -95,6 +96,12 @@ inline constexpr std::array<Named<WrinkleMapping>, 2> kWrinkleMappings{
     {{"uv", WrinkleMapping::Uv}, {"slope", WrinkleMapping::Slope}}};
 inline constexpr std::array<Named<UpAxis>, 4> kUpAxes{
     {{"auto", UpAxis::Auto}, {"x", UpAxis::X}, {"y", UpAxis::Y}, {"z", UpAxis::Z}}};
+inline constexpr std::array<Named<GroundSite>, 6> kGroundSites{{{"at", GroundSite::At},
+                                                                {"summit", GroundSite::Summit},
+                                                                {"ridge", GroundSite::Ridge},
+                                                                {"water_edge", GroundSite::WaterEdge},
+                                                                {"bank", GroundSite::Bank},
+                                                                {"slope_foot", GroundSite::SlopeFoot}}};
 inline constexpr std::array<Named<CameraPreset>, 4> kCameraPresets{{{"none", CameraPreset::None},
                                                                     {"high", CameraPreset::High},
                                                                     {"deep", CameraPreset::Deep},
@@ -234,6 +241,24 @@ void describe(V& v, BorderParams& b) {
            b.mode, kBorderModes);
   v.number({"width", "falloff width, fraction of the smaller horizontal half-extent; 0 = a hard edge"}, b.width, kUnit);
   v.number({"roughness", "how far noise pushes the falloff inwards, fraction of the width"}, b.roughness, {0, 4});
+}
+
+template <typename V>
+void describe(V& v, GroundParams& g) {
+  v.text({"on",
+          "name of the object this one stands on (a terrain); empty: the transform alone places it. Grounded, "
+          "its base rests on that surface: translate.z lifts it above the ground",
+          kRebuild},
+         g.on, Text::Plain);
+  v.choice({"site",
+            "where on the ground: `at` transform.translate's x, y (world); or a spot found from the ground's form, "
+            "away from objects grounded before it: `summit` the highest flat enough to build on, `ridge` a "
+            "ridge's crest, `water_edge` where the ground meets the water, `bank` a flat spot a little above the "
+            "water, `slope_foot` where a slope flattens into a hollow or a valley floor"},
+           g.site, kGroundSites);
+  v.number({"align", "0 stands upright (buildings), 1 tilts to the ground's slope (boulders)"}, g.align, kUnit);
+  v.number({"sink", "fraction of its height sunk into the ground, so no gap shows under it on a slope"}, g.sink,
+           {0, 0.9});
 }
 
 template <typename V>
@@ -443,6 +468,7 @@ void describe(V& v, Object& o) {
   v.group("substrate", o.substrate, Table::Inline);
   v.group("trees", o.trees, Table::Own);
   v.group("dots", o.dots, Table::Own);
+  v.group("ground", o.ground, Table::Own);
 }
 
 template <typename V>
@@ -709,6 +735,7 @@ void describe(V& v, Scene& s) {
             s.seed, {0, 1LL << 53});
   v.list(
       {"objects", "the objects, below", kRebuild}, s.objects, {1, 255}, [] { return Object{}; }, Table::Own);
+  v.check("objects", [&]() -> std::string { return groundingProblem(s); });
   v.group("light", s.light, Table::Inline);
   v.group("camera", s.camera, Table::Own);
   v.group("canvas", s.canvas, Table::Own);

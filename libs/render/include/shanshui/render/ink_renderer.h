@@ -17,6 +17,7 @@
 #include "shanshui/render/ink_diffusion_pass.h"
 #include "shanshui/render/render_pass.h"
 #include "shanshui/render/shader_program.h"
+#include "shanshui/scene/grounding.h"
 #include "shanshui/scene/scene.h"
 #include "shanshui/scene/scene_assets.h"
 
@@ -93,6 +94,8 @@ class InkRenderer {
   const mesh::Bounds& worldBounds() const { return world_bounds_; }
   //! The scene's relief (world coordinates, from up to 4096 points of each object).
   const Relief& relief() const { return relief_; }
+  //! Object i's model-to-world matrix as drawn (grounded objects rest on their ground).
+  const glm::dmat4& worldMatrix(std::size_t i) const { return world_[i]; }
   //! sceneCamera() for this scene, its bounds and relief.
   OrbitCamera camera(const scene::CameraKey& key, double aspect) const {
     return sceneCamera(scene_, world_bounds_, aspect, key, &relief_, &inked_bounds_);
@@ -149,6 +152,9 @@ class InkRenderer {
   mesh::Bounds world_bounds_;
   mesh::Bounds inked_bounds_;  //!< world bounds less the dissolving borders' falloff bands
   Relief relief_;
+  //! Resolves where grounded objects stand (objects.N.ground); null when none is grounded.
+  std::unique_ptr<scene::Grounding> grounding_;
+  std::vector<glm::dmat4> world_;                       //!< per object, model to world
   std::vector<std::vector<glm::dvec3>> relief_points_;  //!< per object, model coordinates
   std::vector<Built> passes_;
   std::vector<std::string> pass_names_;

@@ -185,6 +185,27 @@ struct PathKey {
   glm::dvec3 offset{0.0};
 };
 
+//! Where a grounded object stands on its ground: at the transform's x, y, or at a spot the
+//! ground's form suits (found on load, deterministic, away from objects grounded before).
+enum class GroundSite {
+  At,         //!< transform.translate's x and y (world)
+  Summit,     //!< the highest point with ground flat enough to build on (a pagoda)
+  Ridge,      //!< high on a ridge, on its crest (a pavilion looking out)
+  WaterEdge,  //!< where the ground meets the water (boulders, a jetty)
+  Bank,       //!< a flat spot a little above the water (a hut, a pavilion by the lake)
+  SlopeFoot,  //!< where a slope flattens into a hollow or a valley floor (boulders, huts)
+};
+
+//! An object standing on another (objects.N.ground): a hut, a pavilion, a boulder on a
+//! terrain. It is moved so its base rests on the ground's surface there, upright or
+//! tilted to the slope.
+struct GroundParams {
+  std::string on;  //!< name of the object it stands on; empty: placed by its transform alone
+  GroundSite site = GroundSite::At;
+  double align = 0.0;  //!< 0 upright (buildings), 1 tilted to the ground's slope (boulders)
+  double sink = 0.05;  //!< fraction of its height sunk into the ground (no gap under it on a slope)
+};
+
 struct Object {
   std::string name;
   std::string mesh;  //!< any mesh file (OBJ, PLY, OFF, glTF, FBX, ...) relative to the scene file (one of mesh, dem)
@@ -225,6 +246,8 @@ struct Object {
   SubstrateWeights substrate;
   elements::TreeOptions trees;  //!< trees grown on the surface (issue 44)
   elements::DotOptions dots;    //!< moss dots on ridges, rock edges and at the feet of trees
+  GroundParams ground;          //!< standing on another object
+  bool grounded() const { return !ground.on.empty(); }
   //! Some element (a tree or a moss dot) is grown on this object.
   bool hasElements() const {
     const bool grows_trees = trees.enabled && trees.density > 0;
