@@ -59,6 +59,7 @@ uniform uint u_dot_template;
 uniform float u_fade;
 uniform vec2 u_fade_range;
 uniform vec3 u_mist;  // density, z where it is full, thinning band (0: no mist)
+uniform float u_mist_near;  // share of the mist at the near end of u_fade_range
 uniform vec4 u_to_model_x, u_to_model_y;
 uniform vec2 u_half_extent;
 uniform float u_border_width;  // 0: no border
@@ -66,8 +67,10 @@ uniform float u_border_roughness;
 uniform float u_water_level;  // world z of the water's surface; the lowest float without water
 
 float presence(vec3 world) {
-  float f = 1.0 - u_fade * smoothstep(u_fade_range.x, u_fade_range.y, distance(world, u_eye));
-  if (u_mist.x > 0.0) f *= 1.0 - u_mist.x * (1.0 - smoothstep(0.0, 1.0, (world.z - u_mist.y) / u_mist.z));
+  float far = smoothstep(u_fade_range.x, u_fade_range.y, distance(world, u_eye));
+  float f = 1.0 - u_fade * far;
+  if (u_mist.x > 0.0)
+    f *= 1.0 - u_mist.x * mix(u_mist_near, 1.0, far) * (1.0 - smoothstep(0.0, 1.0, (world.z - u_mist.y) / u_mist.z));
   if (u_border_width > 0.0) {
     vec4 w = vec4(world, 1.0);
     vec2 m = vec2(dot(u_to_model_x, w), dot(u_to_model_y, w));

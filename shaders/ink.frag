@@ -9,7 +9,8 @@
 // indexing), CANVAS (the paper grain, when no diffusion pass comes after), PIGMENT (the
 // presence the atmosphere leaves, in alpha, for the pigment pass), ELEMENTS (the trees' and
 // moss dots' ink over the rest; ELEMENT_NEARNESS with animated objects), WATER (a water level:
-// the land below it hidden, paper with wave strokes, bank lines), DEBUG_OUTPUTS (line
+// the land below it hidden, paper with wave strokes, bank lines), MARKS (some object's
+// texture strokes as discrete marks, ink_marks.glsl), DEBUG_OUTPUTS (line
 // weight, tone and wrinkle luma as extra targets, for tests). PAPER builds the background's
 // program, which the pass draws apart by the depth test.
 #include "ink_objects.glsl"
@@ -49,10 +50,7 @@ layout(rg16f, binding = 2) readonly uniform image2D u_canvas;
 uniform float u_canvas_contrast;
 #endif
 
-#ifdef WRINKLE_SLOPE
-layout(binding = 4) uniform sampler2D u_wrinkle;  // Eq. 5's luma, mipmapped
-#include "ink_wrinkle.glsl"
-
+#if defined(WRINKLE_SLOPE) || defined(MARKS)
 // How far the surface point moves for one pixel along `step` on screen: where that pixel's
 // view ray meets the tangent plane at P (normal n), less P. For a surface of planar UVs it
 // stands in for the screen derivatives of position the G-buffer pass takes from the
@@ -64,6 +62,11 @@ vec3 tangentStep(ivec2 p, vec2 step, vec3 P, vec3 n) {
   float dn = dot(d, n), least = 1e-6 * length(d);
   return o + dot(P - o, n) / (abs(dn) > least ? dn : least) * d - P;
 }
+#endif
+
+#ifdef WRINKLE_SLOPE
+layout(binding = 4) uniform sampler2D u_wrinkle;  // Eq. 5's luma, mipmapped
+#include "ink_wrinkle.glsl"
 
 // The slope wrinkles at P of an object with planar UVs: its model x and y from the box's
 // low corner over the box's larger horizontal side (scene_assets.cpp's planarUvs), through
@@ -76,6 +79,30 @@ float planarSlopeWrinkle(ObjectParams o, ivec2 p, vec3 P, vec3 n) {
             o.half_extent.xy * per_unit;
   return slopeWrinkle(u_wrinkle, n, uv, dpx, dpy, vec2(dot(ux, dpx), dot(uy, dpx)), vec2(dot(ux, dpy), dot(uy, dpy)),
                       o.wrinkle_tile_px, o.wrinkle_angle);
+}
+#endif
+
+#ifdef MARKS
+#include "ink_marks.glsl"
+
+// Texture marks at P of object o (normal n, curvature k): the lattice lies on the object's
+// horizontal plane (model x, y), the marks run down the fall line turned by marks_angle, and
+// their density grows from marks_lit of it on lit slopes to all of it in shadow and near
+// ridges; flat ground stays bare.
+float objectMarks(ObjectParams o, ivec2 p, vec3 P, vec3 n, float k) {
+  vec3 down = vec3(0.0, 0.0, -1.0) + n.z * n;
+  float steep = smoothstep(0.12, 0.35, length(down));
+  float shade = 1.0 - max(dot(n, u_light_dir), 0.0);
+  float density = o.marks_density * steep * mix(o.marks_lit, 1.0, shade) * (1.0 + o.marks_ridge * clamp(abs(k), 0.0, 1.0));
+  if (density <= 0.0) return 0.0;
+  vec3 dpx = tangentStep(p, vec2(1.0, 0.0), P, n), dpy = tangentStep(p, vec2(0.0, 1.0), P, n);
+  vec3 mx = o.world_to_model_x.xyz, my = o.world_to_model_y.xyz;
+  vec2 uv = vec2(dot(mx, P) + o.world_to_model_x.w, dot(my, P) + o.world_to_model_y.w);
+  vec2 fall = vec2(dot(mx, down), dot(my, down));
+  float c = cos(o.marks_angle), s = sin(o.marks_angle);
+  fall = vec2(c * fall.x - s * fall.y, s * fall.x + c * fall.y);
+  return o.marks_ink * textureMarks(uv, vec2(dot(mx, dpx), dot(my, dpx)), vec2(dot(mx, dpy), dot(my, dpy)), fall,
+                                    o.marks_spacing_px, min(density, 1.0), o.marks_style, o.marks_seed);
 }
 #endif
 
@@ -117,6 +144,9 @@ void main() {
   ink = strokeInk(p);
 #endif
   vec3 colour = mix(u_paper, objects[0].line_color, ink);
+#ifdef WATER
+  colour = mix(colour, objects[0].line_color, openWaterInk(p));
+#endif
 #ifdef ELEMENTS
   colour = mix(colour, u_element_colour, elementInk(p, 1.0));
 #endif
@@ -246,6 +276,9 @@ void main() {
   // Composite: ink on paper, lines over the interior, then the atmosphere and the border
   // take it back towards the paper; strokes carry their own.
   vec3 colour = mix(u_paper * o.bg_color * tone, o.line_color, line_weight);
+#ifdef MARKS
+  if (o.marks_style != 0u) colour = mix(colour, o.line_color, objectMarks(o, p, position, n, k));
+#endif
   colour = mix(u_paper, colour, here);
 #ifdef STROKES
   float stroke = strokeInk(p);

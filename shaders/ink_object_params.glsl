@@ -16,7 +16,9 @@
   F(vec4, world_to_model_y) \
   F(vec3, half_extent)    F(float, border_width) \
   F(float, stroke_half_width) F(float, stroke_taper) F(float, stroke_far) F(float, valley_ink) \
-  F(float, suggestive)    F(float, wrinkle_tile_px) F(float, wrinkle_angle)     F(float, noise_frequency)
+  F(float, suggestive)    F(float, wrinkle_tile_px) F(float, wrinkle_angle)     F(float, noise_frequency) \
+  F(float, marks_ink)     F(float, marks_density) F(float, marks_spacing_px)    F(float, marks_lit) \
+  F(float, marks_ridge)   F(uint, marks_style)   F(uint, marks_seed)            F(float, marks_angle)
 
 // world_to_model_x/y: rows of the world-to-model affine map (x and y of the model, relative
 // to its bounding-box centre); half_extent: the box's half size; border_width: the
@@ -25,6 +27,9 @@
 // suggestive: see LineParams; wrinkle_tile_px, wrinkle_angle: the slope wrinkles' tile size
 // on screen (pixels) and turn (radians) where the ink pass computes them (kWrinkleHere);
 // noise_frequency: erosion-noise tiles per model unit (x and y as world_to_model_x/y give them).
+// marks_*: the texture marks (objects.N.marks; ink_marks.glsl): ink, density on the darkest
+// ground, lattice spacing on screen (pixels), density on lit slopes relative to shadow, the
+// extra near ridges, style (0 none, kMarksHemp, kMarksAxe), seed, turn from the fall line.
 
 // line_flags bits
 const uint kLinesOn = 1u;

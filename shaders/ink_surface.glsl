@@ -49,6 +49,7 @@ uniform vec2 u_fade_range;   // distances where the fade starts and is full
 #ifdef MIST
 uniform vec4 u_mist;         // density, z of the full mist's top, thinning band, noise amplitude (world units)
 uniform float u_mist_noise;  // noise tiles per world unit
+uniform float u_mist_near;   // share of the mist at the near end of u_fade_range (all of it at the far end)
 #endif
 
 vec3 worldPosition(ivec2 p, float depth) {
@@ -112,15 +113,16 @@ float borderPresence(ObjectParams o, vec3 position) {
 
 #ifdef MIST
 // Mist at `position`: full below u_mist.y, thinning over u_mist.z above it, the band broken
-// by noise so it lies in banks.
+// by noise so it lies in banks; u_mist_near of it on the nearest land, all of it on the farthest.
 float mistAt(vec3 position) {
   // Noise moves the band by at most u_mist.w: outside that, no noise is needed.
   float h0 = (position.z - u_mist.y) / u_mist.z, reach = u_mist.w / u_mist.z;
   if (h0 >= 1.0 + reach) return 0.0;
-  if (h0 <= -reach) return u_mist.x;
+  float share = mix(u_mist_near, 1.0, smoothstep(u_fade_range.x, u_fade_range.y, distance(u_eye, position)));
+  if (h0 <= -reach) return u_mist.x * share;
   float n = 2.0 * valueNoise(position.xy * u_mist_noise) - 1.0;
   float h = h0 + reach * n;
-  return u_mist.x * (1.0 - smoothstep(0.0, 1.0, h));
+  return u_mist.x * share * (1.0 - smoothstep(0.0, 1.0, h));
 }
 #endif
 

@@ -8,6 +8,17 @@ uniform vec4 u_water;        // level (world z), wave cell (world units), share 
 uniform vec2 u_water_right;  // the picture's horizontal laid on the water: a unit vector in world xy
 uniform float u_water_bank;  // bank line width, pixels
 uniform float u_pixel_angle; // a pixel's width at distance 1, world units
+uniform vec4 u_water_extent; // the open water's rectangle in world xy (min, max): the land's bounds
+
+// Where this pixel's view ray meets the water's surface; false when it does not (looking up).
+bool onWaterPlane(ivec2 p, out vec3 w) {
+  vec2 ndc = (vec2(p) + 0.5) / vec2(textureSize(u_depth, 0)) * 2.0 - 1.0;
+  vec4 a = u_inverse_view_projection * vec4(ndc, -1.0, 1.0), b = u_inverse_view_projection * vec4(ndc, 1.0, 1.0);
+  vec3 o = a.xyz / a.w, d = normalize(b.xyz / b.w - o);
+  float t = (u_water.x - o.z) / (abs(d.z) > 1e-6 ? d.z : -1e-6);
+  w = o + t * d;
+  return t > 0.0;
+}
 
 bool underWater(vec3 position) {
   return position.z < u_water.x;
@@ -50,6 +61,24 @@ float waveInk(ivec2 p) {
     ink = max(ink, (1.0 - smoothstep(0.6, 1.0, across)) * (1.0 - smoothstep(0.75, 1.0, abs(s))));
   }
   return ink * visible * u_water.w;
+}
+
+// Open water where no land was drawn (between ranges, in front of a near bank): the wave
+// strokes where the view ray meets the water inside the land's rectangle, fading out over
+// its outer fifth as a dissolving border does, with the distance fade and the mist at the
+// water's height. Needs presence's uniforms (ink_surface.glsl).
+float openWaterInk(ivec2 p) {
+  vec3 w;
+  if (!onWaterPlane(p, w)) return 0.0;
+  vec2 size = u_water_extent.zw - u_water_extent.xy;
+  vec2 inside = min(w.xy - u_water_extent.xy, u_water_extent.zw - w.xy) / max(0.2 * min(size.x, size.y), 1e-6);
+  float f = smoothstep(0.0, 1.0, min(inside.x, inside.y));
+  if (f <= 0.0) return 0.0;
+  f *= 1.0 - u_fade * smoothstep(u_fade_range.x, u_fade_range.y, distance(u_eye, w));
+#ifdef MIST
+  f *= 1.0 - mistAt(w);
+#endif
+  return f * waveInk(p);
 }
 
 // 1 on the land's side of a bank: a neighbour within the line's width is under water.

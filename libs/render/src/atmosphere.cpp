@@ -27,12 +27,14 @@ glm::dvec2 fadeRange(const FrameInputs& in) {
 double presence(const FrameInputs& in, std::size_t object, const glm::dmat4& to_model, glm::dvec3 world,
                 glm::dvec2 fade_range) {
   const scene::Scene& s = in.scene;
-  double f = 1.0 - s.output.fade * smooth01((glm::length(world - in.camera.eye()) - fade_range.x) /
-                                            std::max(fade_range.y - fade_range.x, 1e-9));
+  const double far =
+      smooth01((glm::length(world - in.camera.eye()) - fade_range.x) / std::max(fade_range.y - fade_range.x, 1e-9));
+  double f = 1.0 - s.output.fade * far;
   if (s.mist.enabled()) {
     const double z0 = in.world_bounds.min.z, extent = std::max(in.world_bounds.size().z, 1e-9);
     const double h0 = (world.z - (z0 + s.mist.height * extent)) / std::max(s.mist.softness * extent, 1e-9);
-    f *= 1.0 - s.mist.density * (1.0 - smooth01(h0));
+    const double share = s.mist.near + (1.0 - s.mist.near) * far;
+    f *= 1.0 - s.mist.density * share * (1.0 - smooth01(h0));
   }
   const scene::Object& o = s.objects[object];
   if (o.dissolvesBorder()) {

@@ -53,8 +53,9 @@ OrbitCamera frameBounds(const mesh::Bounds& b, double azimuth_deg, double elevat
   return cam;
 }
 
-OrbitCamera fillBounds(const mesh::Bounds& b, double azimuth_deg, double elevation_deg, double fov_y_deg, double aspect,
-                       double zoom) {
+OrbitCamera fillPoints(const std::vector<glm::dvec3>& points, double azimuth_deg, double elevation_deg,
+                       double fov_y_deg, double aspect, double zoom) {
+  const mesh::Bounds b = mesh::bounds(points);
   OrbitCamera cam;
   cam.azimuth_deg = azimuth_deg;
   cam.elevation_deg = elevation_deg;
@@ -64,15 +65,15 @@ OrbitCamera fillBounds(const mesh::Bounds& b, double azimuth_deg, double elevati
   const glm::dvec3 f = -glm::dvec3(std::cos(el) * std::cos(az), std::cos(el) * std::sin(az), std::sin(el));
   const glm::dvec3 r = glm::normalize(glm::cross(f, glm::dvec3(0, 0, 1)));
   const glm::dvec3 u = glm::cross(r, f);
-  constexpr double kMargin = 0.94;  // the box's picture fills 94 % of the frame
+  constexpr double kMargin = 0.94;  // the points' picture fills 94 % of the frame
   const double radius = std::max(0.5 * glm::length(b.size()), 1e-6);
   const double ty = kMargin * std::tan(radians(fov_y_deg) * 0.5), tx = ty * aspect;
-  // A corner (x, y, z) in the basis, seen from the eye (ex, ey, ez), is in the frame when
+  // A point (x, y, z) in the basis, seen from the eye (ex, ey, ez), is in the frame when
   // |x - ex| <= tx (z - ez) and |y - ey| <= ty (z - ez). The four supporting planes give
   // the eye's place: each pair fixes how far back the eye must be and where it is centred.
   double a = -1e300, bb = -1e300, c = -1e300, d = -1e300;
-  for (int i = 0; i < 8; ++i) {
-    const glm::dvec3 p = b.corner(i) - b.centre();
+  for (const glm::dvec3& q : points) {
+    const glm::dvec3 p = q - b.centre();
     const double x = glm::dot(p, r), y = glm::dot(p, u), z = glm::dot(p, f);
     a = std::max(a, x - tx * z);
     bb = std::max(bb, -x - tx * z);
@@ -82,7 +83,7 @@ OrbitCamera fillBounds(const mesh::Bounds& b, double azimuth_deg, double elevati
   const double ez_x = -(a + bb) / (2 * tx), ez_y = -(c + d) / (2 * ty);
   const double ez = std::min(ez_x, ez_y);
   double ex = 0.5 * (a - bb), ey = 0.5 * (c - d);
-  // The other axis has room; centre the box's picture in it. The sum of its picture's two
+  // The other axis has room; centre the points' picture in it. The sum of its picture's two
   // extremes falls as the eye moves along that axis: bisect for zero.
   const bool x_has_room = ez < ez_x;
   const glm::dvec3 side = x_has_room ? r : u;
@@ -90,8 +91,8 @@ OrbitCamera fillBounds(const mesh::Bounds& b, double azimuth_deg, double elevati
   for (int step = 0; step < 80; ++step) {
     const double mid = 0.5 * (lo + hi);
     double most = -1e300, least = 1e300;
-    for (int i = 0; i < 8; ++i) {
-      const glm::dvec3 p = b.corner(i) - b.centre();
+    for (const glm::dvec3& q : points) {
+      const glm::dvec3 p = q - b.centre();
       const double s = (glm::dot(p, side) - mid) / (glm::dot(p, f) - ez);
       most = std::max(most, s);
       least = std::min(least, s);
@@ -103,6 +104,13 @@ OrbitCamera fillBounds(const mesh::Bounds& b, double azimuth_deg, double elevati
   cam.distance = std::max(-ez, 1e-3 * radius) / zoom;
   cam.enclose(b);
   return cam;
+}
+
+OrbitCamera fillBounds(const mesh::Bounds& b, double azimuth_deg, double elevation_deg, double fov_y_deg, double aspect,
+                       double zoom) {
+  std::vector<glm::dvec3> corners;
+  for (int c = 0; c < 8; ++c) corners.push_back(b.corner(c));
+  return fillPoints(corners, azimuth_deg, elevation_deg, fov_y_deg, aspect, zoom);
 }
 
 Relief::Relief(const std::vector<glm::dvec3>& points, int cells) {

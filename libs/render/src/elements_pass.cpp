@@ -244,6 +244,7 @@ class ElementsPass final : public RenderPass {
                                                      static_cast<float>(z0 + mist.height * extent),
                                                      static_cast<float>(std::max(mist.softness * extent, 1e-9)))
                                          : glm::vec3(0.0f));
+    expand_.set("u_mist_near", static_cast<float>(mist.near));
     for (const Run& r : runs_) {
       const scene::Object& o = scene_.objects[r.object];
       const glm::dmat4 model = in.modelAt(r.object);

@@ -60,6 +60,7 @@ std::vector<std::string> inkDefines(const scene::Scene& s, bool debug_outputs) {
   if (s.usesElements()) d.emplace_back("ELEMENTS");
   if (s.usesElements() && elementsKeepNearness(s)) d.emplace_back("ELEMENT_NEARNESS");
   if (s.usesWater()) d.emplace_back("WATER");
+  if (s.usesMarks()) d.emplace_back("MARKS");
   addSurfaceDefines(s, d);
   if (debug_outputs) d.emplace_back("DEBUG_OUTPUTS");
   return d;
@@ -247,6 +248,7 @@ class InkPass final : public RenderPass {
                                 static_cast<float>(m.softness * extent), static_cast<float>(m.roughness * extent)));
       const double size = std::max(std::max(in.world_bounds.size().x, in.world_bounds.size().y), 1e-9);
       p.set("u_mist_noise", static_cast<float>(2.0 / size));
+      p.set("u_mist_near", static_cast<float>(m.near));
     }
   }
 
@@ -258,6 +260,8 @@ class InkPass final : public RenderPass {
     p.set("u_water", glm::vec4(waterLevel(in), static_cast<float>(w.spacing * side), static_cast<float>(w.waves),
                                static_cast<float>(w.ink)));
     p.set("u_water_right", glm::vec2(pictureHorizontal(in)));
+    p.set("u_water_extent",
+          glm::vec4(in.world_bounds.min.x, in.world_bounds.min.y, in.world_bounds.max.x, in.world_bounds.max.y));
     p.set("u_water_bank", static_cast<float>(w.bank * in.height / 1024.0));
     p.set("u_pixel_angle",
           static_cast<float>(2.0 * std::tan(glm::radians(in.camera.fov_y_deg) * 0.5) / std::max(in.height, 1)));
@@ -311,6 +315,19 @@ class InkPass final : public RenderPass {
       p.wrinkle_tile_px = wrinkleTilePixels(o, in.height);
       p.wrinkle_angle = static_cast<float>(glm::radians(o.wrinkle.angle_deg));
       p.noise_frequency = erosionNoiseFrequency(o, g);
+      const scene::MarksParams& mk = o.marks;
+      p.marks_style = mk.style == scene::MarkStyle::Hemp ? 1u : mk.style == scene::MarkStyle::Axe ? 2u : 0u;
+      p.marks_ink = static_cast<float>(mk.ink);
+      p.marks_density = static_cast<float>(mk.density);
+      // A lattice cell per 0.6 of a hemp fibre's length (they overlap along the fall line),
+      // per 0.8 of an axe cut's (wedges stand apart).
+      p.marks_spacing_px =
+          static_cast<float>(mk.size * (mk.style == scene::MarkStyle::Axe ? 0.8 : 0.6) * in.height / 1024.0);
+      p.marks_lit = static_cast<float>(mk.lit);
+      p.marks_ridge = static_cast<float>(mk.ridge);
+      p.marks_seed =
+          static_cast<std::uint32_t>((in.scene.seed * 0x9E3779B97F4A7C15ull + i * 0xBF58476D1CE4E5B9ull) >> 32);
+      p.marks_angle = static_cast<float>(glm::radians(mk.angle_deg));
       // The dissolving border, in the coordinates the object was uploaded in (relative to
       // its bounding-box centre).
       const glm::dmat4 to_model = glm::inverse(in.modelAt(i));

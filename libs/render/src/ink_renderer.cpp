@@ -37,14 +37,17 @@ struct PresetView {
   scene::Framing framing;
 };
 
-PresetView presetView(const scene::Camera& c, const scene::CameraKey& key) {
+PresetView presetView(const scene::Scene& s, const scene::CameraKey& key) {
+  const scene::Camera& c = s.camera;
+  // A composition of ranges is framed by what is drawn of it: its boxes are mostly empty.
+  const scene::Framing fill = s.isComposition() ? scene::Framing::Drawn : scene::Framing::Fill;
   switch (c.preset) {
     case scene::CameraPreset::High:
-      return {0.0, 40.0, scene::Framing::Fill};
+      return {0.0, 40.0, fill};
     case scene::CameraPreset::Deep:
-      return {40.0, 35.0, scene::Framing::Fill};
+      return {40.0, 35.0, fill};
     case scene::CameraPreset::Level:
-      return {6.0, 22.0, scene::Framing::Fill};
+      return {6.0, 22.0, fill};
     case scene::CameraPreset::None:
       break;
   }
@@ -66,16 +69,19 @@ std::vector<glm::dvec3> reliefSample(const mesh::Mesh& m) {
 }  // namespace
 
 OrbitCamera sceneCamera(const scene::Scene& s, const mesh::Bounds& world_bounds, double aspect,
-                        const scene::CameraKey& key, const Relief* relief, const mesh::Bounds* inked) {
+                        const scene::CameraKey& key, const Relief* relief, const mesh::Bounds* inked,
+                        const std::vector<glm::dvec3>* drawn) {
   const scene::Camera& c = s.camera;
-  const PresetView v = presetView(c, key);
+  const PresetView v = presetView(s, key);
   const mesh::Bounds& framed = inked ? *inked : world_bounds;
   OrbitCamera cam;
   if (c.preset == scene::CameraPreset::High) {
     const glm::dvec3 lo = world_bounds.min, hi = world_bounds.max, mid = world_bounds.centre();
     const Relief floor({lo, {hi.x, hi.y, lo.z}, {mid.x, mid.y, hi.z}});
     cam = highDistance(relief && !relief->empty() ? *relief : floor, key.azimuth_deg, v.fov_y_deg, key.zoom);
-  } else if (v.framing == scene::Framing::Fill) {
+  } else if (v.framing == scene::Framing::Drawn && drawn && !drawn->empty()) {
+    cam = fillPoints(*drawn, key.azimuth_deg, v.elevation_deg, v.fov_y_deg, aspect, key.zoom);
+  } else if (v.framing != scene::Framing::Sphere) {
     cam = fillBounds(framed, key.azimuth_deg, v.elevation_deg, v.fov_y_deg, aspect, key.zoom);
   } else {
     cam = frameBounds(world_bounds, key.azimuth_deg, v.elevation_deg, v.fov_y_deg, aspect, key.zoom);
@@ -294,9 +300,22 @@ void InkRenderer::setObjects(const scene::Scene& s) {
       inked_bounds_.max = glm::max(inked_bounds_.max, wi);
     }
   }
+  // What is drawn of the land: the relief samples inside each dissolving border's inner
+  // edge and above the water (Framing::Drawn frames these).
   std::vector<glm::dvec3> points;
+  drawn_.clear();
+  const double water = scene::waterHeight(s, world_bounds_);
   for (std::size_t i = 0; i < objects_.size(); ++i) {
-    for (const glm::dvec3& p : relief_points_[i]) points.emplace_back(world[i] * glm::dvec4(p, 1.0));
+    const scene::Object& o = s.objects[i];
+    const mesh::Bounds& mb = objects_[i].model_bounds;
+    const glm::dvec3 half = 0.5 * mb.size(), centre = mb.centre();
+    const double band = o.dissolvesBorder() ? o.border.width * std::min(half.x, half.y) : 0.0;
+    for (const glm::dvec3& p : relief_points_[i]) {
+      const glm::dvec3 w(world[i] * glm::dvec4(p, 1.0));
+      points.push_back(w);
+      const bool inside = std::abs(p.x - centre.x) <= half.x - band && std::abs(p.y - centre.y) <= half.y - band;
+      if (inside && w.z >= water) drawn_.push_back(w);
+    }
   }
   relief_ = Relief(points);
 }

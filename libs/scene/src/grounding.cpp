@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <sstream>
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -13,6 +14,12 @@
 namespace shanshui::scene {
 
 namespace {
+
+std::string number(double x) {
+  std::ostringstream o;
+  o << x;
+  return o.str();
+}
 
 std::string label(const Scene& s, std::size_t i) {
   return s.objects[i].name.empty() ? "objects." + std::to_string(i) : "'" + s.objects[i].name + "'";
@@ -114,12 +121,22 @@ std::optional<std::size_t> groundOf(const Scene& s, std::size_t i) {
   return found[0];
 }
 
+bool floatsOnWater(const Scene& s, std::size_t i) {
+  const Object& o = s.objects[i];
+  return o.ground.on == kOnWater && s.usesWater() && namedLike(s, kOnWater).empty();
+}
+
 std::string groundingProblem(const Scene& s) {
   for (std::size_t i = 0; i < s.objects.size(); ++i) {
     const Object& o = s.objects[i];
     if (!o.grounded()) continue;
     const std::string key = "objects." + std::to_string(i) + ".ground.on: '" + o.ground.on + "' ";
     const std::vector<std::size_t> found = namedLike(s, o.ground.on);
+    if (found.empty() && o.ground.on == kOnWater) {
+      if (!s.usesWater()) return key + "needs water (water.enabled: true)";
+      if (o.ground.site != GroundSite::At) return key + "floats at transform.translate's x, y: its site must be 'at'";
+      continue;
+    }
     if (found.empty()) {
       std::string names;
       for (const Object& other : s.objects)
@@ -177,6 +194,15 @@ std::vector<glm::dmat4> Grounding::worldMatrices(const Scene& s) const {
 
   for (std::size_t i = 0; i < s.objects.size(); ++i) {
     const Object& o = s.objects[i];
+    if (floatsOnWater(s, i)) {
+      // On the water: its lowest point `sink` of its height below the surface.
+      const mesh::Bounds b = transformed(model_bounds[i], world[i]);
+      world[i] =
+          glm::translate(glm::dmat4(1.0),
+                         glm::dvec3(0.0, 0.0, level - o.ground.sink * b.size().z - b.min.z + o.transform.translate.z)) *
+          world[i];
+      continue;
+    }
     const std::optional<std::size_t> gi = groundOf(s, i);
     if (!gi) continue;
     const std::string key = "objects." + std::to_string(i) + ".ground";
@@ -223,7 +249,8 @@ std::vector<glm::dmat4> Grounding::worldMatrices(const Scene& s) const {
         glm::dvec2 at;
       };
       std::vector<Candidate> candidates;
-      const glm::dvec3 lo = model_bounds[*gi].min + glm::dvec3(band, band, 0), hi = model_bounds[*gi].max - glm::dvec3(band, band, 0);
+      const glm::dvec3 lo = model_bounds[*gi].min + glm::dvec3(band, band, 0),
+                       hi = model_bounds[*gi].max - glm::dvec3(band, band, 0);
       const double reach = 0.04 * std::max(gb.size().x, gb.size().y);
       for (int yi = 0; yi < n; ++yi) {
         for (int xi = 0; xi < n; ++xi) {
@@ -245,15 +272,18 @@ std::vector<glm::dmat4> Grounding::worldMatrices(const Scene& s) const {
       }
       std::stable_sort(candidates.begin(), candidates.end(),
                        [](const Candidate& a, const Candidate& b) { return a.score > b.score; });
-      const auto best = std::find_if(candidates.begin(), candidates.end(), [&](const Candidate& c) { return fits(c.at); });
+      const auto best =
+          std::find_if(candidates.begin(), candidates.end(), [&](const Candidate& c) { return fits(c.at); });
       if (best == candidates.end())
         throw makeError(key, ".site: no spot on ", label(s, *gi), " suits '",
-                        o.ground.site == GroundSite::Summit     ? "summit"
-                        : o.ground.site == GroundSite::Ridge   ? "ridge"
+                        o.ground.site == GroundSite::Summit      ? "summit"
+                        : o.ground.site == GroundSite::Ridge     ? "ridge"
                         : o.ground.site == GroundSite::WaterEdge ? "water_edge"
-                        : o.ground.site == GroundSite::Bank    ? "bank"
-                                                               : "slope_foot",
-                        "' and leaves room for the objects placed there before (", placed[*gi].size(), ")");
+                        : o.ground.site == GroundSite::Bank      ? "bank"
+                                                                 : "slope_foot",
+                        "' and leaves room for the objects placed there before (", placed[*gi].size(),
+                        "); it spans z [", gb.min.z, ", ", gb.max.z, "]",
+                        s.usesWater() ? ", the water is at z " + number(level) : "");
       at = best->at;
     }
 

@@ -23,6 +23,15 @@ glm::dmat4 Transform::matrix() const {
   return glm::scale(m, scale);
 }
 
+bool Scene::usesMarks() const {
+  return std::any_of(objects.begin(), objects.end(), [](const Object& o) { return o.marks.enabled(); });
+}
+
+bool Scene::isComposition() const {
+  return std::count_if(objects.begin(), objects.end(),
+                       [](const Object& o) { return !o.dem.empty() && !o.grounded(); }) > 1;
+}
+
 std::filesystem::path Scene::resolve(const std::string& relative) const {
   const std::filesystem::path p(relative);
   return p.is_absolute() ? p : base_dir / p;

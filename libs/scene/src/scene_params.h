@@ -96,6 +96,8 @@ inline constexpr std::array<Named<WrinkleMapping>, 2> kWrinkleMappings{
     {{"uv", WrinkleMapping::Uv}, {"slope", WrinkleMapping::Slope}}};
 inline constexpr std::array<Named<UpAxis>, 4> kUpAxes{
     {{"auto", UpAxis::Auto}, {"x", UpAxis::X}, {"y", UpAxis::Y}, {"z", UpAxis::Z}}};
+inline constexpr std::array<Named<MarkStyle>, 3> kMarkStyles{
+    {{"none", MarkStyle::None}, {"hemp", MarkStyle::Hemp}, {"axe", MarkStyle::Axe}}};
 inline constexpr std::array<Named<GroundSite>, 6> kGroundSites{{{"at", GroundSite::At},
                                                                 {"summit", GroundSite::Summit},
                                                                 {"ridge", GroundSite::Ridge},
@@ -106,7 +108,8 @@ inline constexpr std::array<Named<CameraPreset>, 4> kCameraPresets{{{"none", Cam
                                                                     {"high", CameraPreset::High},
                                                                     {"deep", CameraPreset::Deep},
                                                                     {"level", CameraPreset::Level}}};
-inline constexpr std::array<Named<Framing>, 2> kFramings{{{"sphere", Framing::Sphere}, {"fill", Framing::Fill}}};
+inline constexpr std::array<Named<Framing>, 3> kFramings{
+    {{"sphere", Framing::Sphere}, {"fill", Framing::Fill}, {"drawn", Framing::Drawn}}};
 inline constexpr std::array<Named<Format>, 2> kFormats{
     {{"free", Format::Free}, {"vertical_scroll", Format::VerticalScroll}}};
 
@@ -244,10 +247,31 @@ void describe(V& v, BorderParams& b) {
 }
 
 template <typename V>
+void describe(V& v, MarksParams& m) {
+  v.choice({"style",
+            "texture strokes as discrete marks down the fall line: `hemp` long, thin, wavy fibres (披麻皴), `axe` "
+            "short wedges broad at the downhill end (斧劈皴); `none`: no marks code",
+            kRebuild},
+           m.style, kMarkStyles);
+  v.number({"density",
+            "share of lattice cells holding a mark in shadow near a ridge; less on lit slopes, none on flat ground"},
+           m.density, kUnit);
+  v.number({"size", "a mark's length (the lattice follows it)", Effect::Uniform, "pixels at 1024 high"}, m.size,
+           {2, 512});
+  v.number({"ink", "a mark's darkness, share of the line colour"}, m.ink, kUnit);
+  v.number({"lit", "density on fully lit slopes relative to shadowed ones"}, m.lit, kUnit);
+  v.number({"ridge", "extra density at ridges and creases, times the curvature (1 at the mesh's 90th percentile)"},
+           m.ridge, {0, 8});
+  v.number({"angle", "turn from the fall line: 90 lays the marks along the contour arcs", Effect::Uniform, "degrees"},
+           m.angle_deg, {-360, 360});
+}
+
+template <typename V>
 void describe(V& v, GroundParams& g) {
   v.text({"on",
-          "name of the object this one stands on (a terrain); empty: the transform alone places it. Grounded, "
-          "its base rests on that surface: translate.z lifts it above the ground",
+          "name of the object this one stands on (a terrain), or `water` to float on the water (a boat: at "
+          "translate's x, y, `sink` of its height under the surface); empty: the transform alone places it. "
+          "Grounded, its base rests on that surface: translate.z lifts it above the ground",
           kRebuild},
          g.on, Text::Plain);
   v.choice({"site",
@@ -468,6 +492,7 @@ void describe(V& v, Object& o) {
   v.group("substrate", o.substrate, Table::Inline);
   v.group("trees", o.trees, Table::Own);
   v.group("dots", o.dots, Table::Own);
+  v.group("marks", o.marks, Table::Own);
   v.group("ground", o.ground, Table::Own);
 }
 
@@ -506,11 +531,13 @@ void describe(V& v, Camera& c) {
   v.choice({"preset",
             "the three distances of landscape painting: `high` looks up at the highest peak from its foot, "
             "`deep` looks from above into ranges behind ranges, `level` looks across the ranges from near the "
-            "ground; each sets the elevation, field of view and framing (azimuth and zoom stay); `none`: as given"},
+            "ground; each sets the elevation, field of view and framing (`fill`; `drawn` when the scene holds "
+            "several terrains; azimuth and zoom stay); `none`: as given"},
            c.preset, kCameraPresets);
   v.choice({"framing",
             "how distance 0 frames the scene: `sphere`, its bounding sphere (room on every side); `fill`, its "
-            "bounding box filling the frame from this angle"},
+            "bounding box filling the frame from this angle; `drawn`, what is drawn of its land filling the frame "
+            "(surfaces inside their dissolving borders, above the water: a composition of ranges)"},
            c.framing, kFramings);
   v.list(
       {"path", "keys for `--frames`: frames spread evenly over them, angles linear, zoom geometric"}, c.path,
@@ -616,6 +643,10 @@ void describe(V& v, Mist& m) {
            kUnit);
   v.number({"softness", "band above it over which the mist thins out, same units"}, m.softness, {0.001, 1});
   v.number({"roughness", "noise amplitude that breaks the band into banks, same units"}, m.roughness, {0, 1});
+  v.number({"near",
+            "share of the mist on the nearest land, growing to all of it at the farthest (the distance fade's "
+            "range): below 1 the near bank stands clear and the mist lies between the ranges"},
+           m.near, kUnit);
 }
 
 template <typename V>
@@ -735,7 +766,6 @@ void describe(V& v, Scene& s) {
             s.seed, {0, 1LL << 53});
   v.list(
       {"objects", "the objects, below", kRebuild}, s.objects, {1, 255}, [] { return Object{}; }, Table::Own);
-  v.check("objects", [&]() -> std::string { return groundingProblem(s); });
   v.group("light", s.light, Table::Inline);
   v.group("camera", s.camera, Table::Own);
   v.group("canvas", s.canvas, Table::Own);
@@ -747,6 +777,8 @@ void describe(V& v, Scene& s) {
   v.group("edges", s.edges, Table::Own);
   v.group("motion_blur", s.motion_blur, Table::Own);
   v.group("output", s.output, Table::Own);
+  // After the water's keys: an object may float on it.
+  v.check("objects", [&]() -> std::string { return groundingProblem(s); });
 }
 
 }  // namespace shanshui::scene

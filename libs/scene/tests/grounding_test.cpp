@@ -131,6 +131,22 @@ TEST(Grounding, TheWaterEdgeRuleStandsWhereTheGroundMeetsTheWater) {
   }
 }
 
+TEST(Grounding, ABoatOnTheWaterFloatsAtItsLevel) {
+  auto h = [](double x, double y) { return 100.0 * std::exp(-(x * x + y * y) / 8000.0); };
+  const std::vector<LoadedObject> loaded{groundOf(h), box()};
+  Scene s = twoObjects(GroundSite::At, {150.0, -120.0});
+  s.objects[1].ground.on = "water";
+  s.objects[1].ground.sink = 0.2;
+  EXPECT_NE(groundingProblem(s).find("needs water"), std::string::npos) << groundingProblem(s);
+  s.water.enabled = true;
+  s.water.level = 0.25;
+  ASSERT_EQ(groundingProblem(s), "");
+  const mesh::Bounds b = placedBox(Grounding(loaded).worldMatrices(s)[1], *loaded[1].geometry);
+  const double lo = h(200.0, 200.0), level = lo + 0.25 * (100.0 - lo);
+  EXPECT_NEAR(b.min.z, level - 0.2 * 3.0, 1e-9);
+  EXPECT_NEAR(b.centre().x, 150.0, 1e-9);
+}
+
 TEST(Grounding, MistakesAreRefusedByKeyAndName) {
   const std::vector<LoadedObject> loaded{groundOf([](double, double) { return 0.0; }), box()};
   auto message = [&](const Scene& s) {
@@ -142,7 +158,8 @@ TEST(Grounding, MistakesAreRefusedByKeyAndName) {
     return std::string("no error");
   };
   Scene s = twoObjects(GroundSite::At, {500.0, 0.0});
-  EXPECT_NE(message(s).find("objects.1.ground: (500, 0) from transform.translate is off 'land'"), std::string::npos) << message(s);
+  EXPECT_NE(message(s).find("objects.1.ground: (500, 0) from transform.translate is off 'land'"), std::string::npos)
+      << message(s);
   s = twoObjects(GroundSite::At, {0.0, 0.0});
   s.objects[0].transform.rotate_deg.x = 10.0;
   EXPECT_NE(message(s).find("objects.1.ground.on: 'land' is tilted"), std::string::npos) << message(s);

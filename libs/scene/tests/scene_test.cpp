@@ -266,7 +266,7 @@ TEST(Scene, RebuildKeysAreTheOnesThatChangeVariantsOrFiles) {
       "objects.*.trees.max_slope", "objects.*.trees.band", "objects.*.trees.open", "objects.*.trees.grove",
       "objects.*.trees.grove_radius", "objects.*.trees.kinds", "objects.*.trees.seed", "objects.*.dots.enabled",
       "objects.*.dots.density", "objects.*.dots.cluster", "objects.*.dots.spread", "objects.*.dots.at_trees",
-      "objects.*.dots.seed", "objects.*.ground.on",
+      "objects.*.dots.seed", "objects.*.ground.on", "objects.*.marks.style",
       "shadow.pigment.name",  // builds the shadow pass
       "substrate.enabled",    // builds the substrate pass
       "substrate.texture",    // a file

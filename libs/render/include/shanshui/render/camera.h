@@ -39,6 +39,11 @@ OrbitCamera frameBounds(const mesh::Bounds& b, double azimuth_deg, double elevat
 OrbitCamera fillBounds(const mesh::Bounds& b, double azimuth_deg, double elevation_deg, double fov_y_deg = 35.0,
                        double aspect = 1.0, double zoom = 1.0);
 
+//! As fillBounds, for the picture of a set of points (what is drawn of the land) instead of
+//! a box's eight corners.
+OrbitCamera fillPoints(const std::vector<glm::dvec3>& points, double azimuth_deg, double elevation_deg,
+                       double fov_y_deg = 35.0, double aspect = 1.0, double zoom = 1.0);
+
 //! The scene's land seen from above, coarsely: its highest point, and the highest ground
 //! in each cell of a grid over its horizontal bounds. Enough to place a camera on the
 //! ground and aim it at a peak.

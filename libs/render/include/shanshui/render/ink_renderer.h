@@ -43,10 +43,11 @@ struct FrameStats {
 //! preset's elevation, field of view and framing when it has one. The high-distance preset
 //! stands on the ground of `relief` (without one: on the bounds' floor, aiming at the top
 //! of their centre); `fill` framing frames `inked` (the part of the bounds that is not
-//! dissolved into paper; default: all of them).
+//! dissolved into paper; default: all of them), `drawn` framing the points `drawn` (what is
+//! drawn of the land; without them, as `fill`).
 OrbitCamera sceneCamera(const scene::Scene& s, const mesh::Bounds& world_bounds, double aspect,
                         const scene::CameraKey& key, const Relief* relief = nullptr,
-                        const mesh::Bounds* inked = nullptr);
+                        const mesh::Bounds* inked = nullptr, const std::vector<glm::dvec3>* drawn = nullptr);
 
 //! The camera key of frame `index` of `count`: along camera.path when the scene has one,
 //! else the scene camera turned by orbit_deg · index / count around +Z.
@@ -98,7 +99,7 @@ class InkRenderer {
   const glm::dmat4& worldMatrix(std::size_t i) const { return world_[i]; }
   //! sceneCamera() for this scene, its bounds and relief.
   OrbitCamera camera(const scene::CameraKey& key, double aspect) const {
-    return sceneCamera(scene_, world_bounds_, aspect, key, &relief_, &inked_bounds_);
+    return sceneCamera(scene_, world_bounds_, aspect, key, &relief_, &inked_bounds_, &drawn_);
   }
   std::size_t triangleCount() const;
 
@@ -154,6 +155,7 @@ class InkRenderer {
   Relief relief_;
   //! Resolves where grounded objects stand (objects.N.ground); null when none is grounded.
   std::unique_ptr<scene::Grounding> grounding_;
+  std::vector<glm::dvec3> drawn_;                       //!< relief samples inside the borders, above the water (world)
   std::vector<glm::dmat4> world_;                       //!< per object, model to world
   std::vector<std::vector<glm::dvec3>> relief_points_;  //!< per object, model coordinates
   std::vector<Built> passes_;

@@ -21,6 +21,13 @@
 
 namespace shanshui::scene {
 
+//! objects.N.ground.on naming no object but this floats the object on the water.
+inline constexpr const char* kOnWater = "water";
+
+//! objects[i] floats on the water (ground.on "water", the scene has water and no object of
+//! that name).
+bool floatsOnWater(const Scene& s, std::size_t i);
+
 //! The index of the object objects[i] stands on (by name), or nothing when it is not grounded
 //! or the name matches no other object.
 std::optional<std::size_t> groundOf(const Scene& s, std::size_t i);

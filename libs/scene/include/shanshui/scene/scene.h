@@ -185,6 +185,21 @@ struct PathKey {
   glm::dvec3 offset{0.0};
 };
 
+//! Texture strokes (cun) as discrete brush marks (issue 45), beside the wrinkle texture:
+//! hemp-fibre (long, thin, wavy) or axe-cut (short wedges) marks down the fall line.
+enum class MarkStyle { None, Hemp, Axe };
+
+struct MarksParams {
+  MarkStyle style = MarkStyle::None;  //!< none: no marks code is built
+  double density = 0.5;               //!< share of lattice cells holding a mark in shadow near a ridge, [0, 1]
+  double size = 28.0;                 //!< a mark's length, pixels at 1024 high
+  double ink = 0.6;                   //!< a mark's darkness, share of the line colour
+  double lit = 0.2;                   //!< density on fully lit slopes relative to shadowed ones
+  double ridge = 1.0;                 //!< extra density at ridges and creases, times the curvature
+  double angle_deg = 0;               //!< turn from the fall line: 90 lays them along the contours
+  bool enabled() const { return style != MarkStyle::None; }
+};
+
 //! Where a grounded object stands on its ground: at the transform's x, y, or at a spot the
 //! ground's form suits (found on load, deterministic, away from objects grounded before).
 enum class GroundSite {
@@ -247,6 +262,7 @@ struct Object {
   elements::TreeOptions trees;  //!< trees grown on the surface (issue 44)
   elements::DotOptions dots;    //!< moss dots on ridges, rock edges and at the feet of trees
   GroundParams ground;          //!< standing on another object
+  MarksParams marks;            //!< texture strokes as discrete marks
   bool grounded() const { return !ground.on.empty(); }
   //! Some element (a tree or a moss dot) is grown on this object.
   bool hasElements() const {
@@ -280,7 +296,10 @@ enum class CameraPreset { None, High, Deep, Level };
 
 //! How distance 0 frames the scene: its bounding sphere (the whole scene from any angle,
 //! with room around it), or its bounding box filling the frame from this angle.
-enum class Framing { Sphere, Fill };
+//! Or (drawn) what is drawn of the land filling the frame: the surfaces inside their
+//! dissolving borders and above the water, for a composition of several ranges whose boxes
+//! are mostly empty.
+enum class Framing { Sphere, Fill, Drawn };
 
 //! An orbit camera. Without a target it looks at the centre of the scene's bounds;
 //! distance 0 frames the bounds (zoom > 1 moves closer).
@@ -370,6 +389,10 @@ struct Mist {
   double height = 0.3;     //!< top of the full mist, fraction of the scene's vertical extent
   double softness = 0.3;   //!< band above it over which the mist thins out, same units
   double roughness = 0.5;  //!< noise that breaks the band into banks, same units
+  //! Share of the mist on the nearest land, growing to all of it at the farthest (over the
+  //! distance fade's range): below 1 the near bank stands clear and the mist lies between
+  //! the ranges, as the air between the eye and the land thickens with distance.
+  double near = 1.0;
   bool enabled() const { return density > 0; }
 };
 
@@ -471,8 +494,12 @@ struct Scene {
   bool usesShading() const;
   bool usesElements() const;  //!< some object grows trees or moss dots
   bool usesWater() const { return water.enabled; }
+  bool usesMarks() const;  //!< some object draws texture marks
   bool hasAnimation() const;
   bool dissolvesBorders() const;
+  //! Several terrains (DEM objects standing on nothing): a composition of ranges, which the
+  //! camera presets frame by what is drawn of them (Framing::Drawn).
+  bool isComposition() const;
 };
 
 //! What a change of a parameter needs: new uniforms only (the next frame shows it), or a

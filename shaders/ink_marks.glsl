@@ -1,0 +1,77 @@
+// Texture strokes (cun) as discrete brush marks (issue 45), beside seed 001's wrinkle
+// texture: hemp-fibre marks (long, thin, wavy, tapering at both ends) or axe-cut marks
+// (short wedges, broad at the downhill end, turned a little off the fall line), laid down
+// the fall line on a jittered lattice over the object's horizontal plane. A lattice cell
+// holds at most one mark; whether it does is a random threshold against the density there,
+// which grows on the shadowed side and near ridges, so lit slopes keep few marks and no
+// regular dash pattern forms. Two power-of-two octaves around the marks' size on screen
+// are blended, as the slope wrinkles do, so marks stay on the land and keep their size.
+
+#include "ink_hash.glsl"
+
+const uint kMarksHemp = 1u, kMarksAxe = 2u;
+
+// Four random numbers in [0, 1) from one hash.
+vec4 unpack4(uint h) {
+  return vec4(h & 0xffu, (h >> 8) & 0xffu, (h >> 16) & 0xffu, h >> 24) / 256.0;
+}
+
+// The darkest mark over lattice point q (cells), marks running along dir (unit, in the
+// lattice's plane), each kept where `density` beats its cell's threshold (a soft step, so
+// a mark fades instead of being cut where the density changes under it).
+float marksOctave(vec2 q, vec2 dir, float density, uint style, uint seed) {
+  vec2 perp = vec2(-dir.y, dir.x);
+  ivec2 base = ivec2(floor(q));
+  float ink = 0.0;
+  for (int j = -1; j <= 1; ++j) {
+    for (int i = -1; i <= 1; ++i) {
+      ivec2 c = base + ivec2(i, j);
+      uint h = cellHash(uvec2(c + 32768) ^ uvec2(seed, seed * 0x9e3779b9u));
+      vec4 a = unpack4(h), b = unpack4(cellHash(uvec2(h, seed + 7u)));
+      float keep = smoothstep(a.z - 0.06, a.z + 0.06, density);
+      if (keep <= 0.0) continue;
+      vec2 d = q - (vec2(c) + a.xy);
+      float cover;
+      if (style == kMarksAxe) {
+        // A wedge turned up to ±25 degrees: its point uphill, its broad end downhill.
+        float turn = (b.x - 0.5) * 0.87, cs = cos(turn), sn = sin(turn);
+        vec2 along_dir = cs * dir + sn * perp;
+        float along = dot(d, along_dir), across = dot(d, vec2(-along_dir.y, along_dir.x));
+        float half_length = 0.32 + 0.18 * b.y;
+        float t = along / half_length;  // -1 uphill point .. 1 broad end
+        float width = (0.05 + 0.16 * b.z) * clamp(0.5 + 0.5 * t, 0.0, 1.0);
+        cover = (1.0 - smoothstep(0.85, 1.0, abs(t))) * (1.0 - smoothstep(0.7 * width, width, abs(across)));
+      } else {
+        // A long fibre, gently waving across its length, tapering to both ends.
+        float along = dot(d, dir), across = dot(d, perp);
+        float half_length = 0.65 + 0.35 * b.y;
+        float t = along / half_length;
+        across += 0.07 * sin(6.0 * along + 6.2832 * b.x);
+        float width = (0.045 + 0.035 * b.z) * sqrt(max(1.0 - t * t, 0.0));
+        cover = abs(t) < 1.0 ? 1.0 - smoothstep(0.5 * width, width + 1e-4, abs(across)) : 0.0;
+      }
+      ink = max(ink, keep * cover * (0.55 + 0.45 * b.w));
+    }
+  }
+  return ink;
+}
+
+// The marks' ink at the point uv of an object's horizontal plane (model units), moving by
+// duv_dx, duv_dy per pixel; down: the fall line there in the same plane (zero on flat
+// ground); spacing_px: lattice cells on screen (pixels); density in [0, 1].
+float textureMarks(vec2 uv, vec2 duv_dx, vec2 duv_dy, vec2 down, float spacing_px, float density, uint style,
+                   uint seed) {
+  if (density <= 0.0) return 0.0;
+  float det = abs(duv_dx.x * duv_dy.y - duv_dy.x * duv_dx.y);
+  if (!(det > 1e-30)) return 0.0;
+  vec2 dir = length(down) > 1e-6 ? normalize(down) : vec2(0.0, 1.0);
+  float scale = log2(max(spacing_px * sqrt(det), 1e-30));  // log2 of a cell's size in model units
+  float level = floor(scale), blend = scale - level;
+  float size0 = exp2(level);
+  // Each octave its own lattice (a different seed), so the coarser one's marks are not
+  // the finer one's doubled.
+  int octave = int(level);
+  float a = marksOctave(uv / size0, dir, density, style, seed + uint(octave & 1023) * 131u);
+  float b = marksOctave(uv / (2.0 * size0), dir, density, style, seed + uint((octave + 1) & 1023) * 131u);
+  return mix(a, b, blend);
+}
