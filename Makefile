@@ -42,7 +42,8 @@ demo: build
 	@echo "demo results in $(CURDIR)/out/ (a second run reuses every stage whose inputs are unchanged):"
 	@echo "  out/report.md            pictures, per-stage times and quality numbers, the stability table"
 	@echo "  out/stability/           the stability suite's table of cases and outcomes (.md, .csv)"
-	@echo "  out/mountain.png         the sample scene painted from the chain's own assets"
+	@echo "  out/painting.png         the painting sample (ranges, trees, buildings, water) on the chain's own assets"
+	@echo "  out/mountain.png         the sample scene's style on the chain's mesh alone"
 	@echo "  out/orbit_*.png          an orbit around it"
 	@echo "  out/assets/              enhanced sample, quilted wrinkle texture, meshes, UVs, reports"
 

@@ -91,7 +91,7 @@ float planarSlopeWrinkle(ObjectParams o, ivec2 p, vec3 P, vec3 n) {
 // ridges; flat ground stays bare.
 float objectMarks(ObjectParams o, ivec2 p, vec3 P, vec3 n, float k) {
   vec3 down = vec3(0.0, 0.0, -1.0) + n.z * n;
-  float steep = smoothstep(0.12, 0.35, length(down));
+  float steep = smoothstep(0.2, 0.45, length(down));
   float shade = 1.0 - max(dot(n, u_light_dir), 0.0);
   float density = o.marks_density * steep * mix(o.marks_lit, 1.0, shade) * (1.0 + o.marks_ridge * clamp(abs(k), 0.0, 1.0));
   if (density <= 0.0) return 0.0;
@@ -173,6 +173,9 @@ void main() {
 #endif
   vec3 position = worldPosition(p, depth);
 #ifdef WATER
+  // How much the height changes from pixel to pixel here (taken before any branch), so the
+  // bank line looks at its neighbours only near the water's level.
+  float z_per_pixel = max(abs(dFdx(position.z)), abs(dFdy(position.z)));
   if (underWater(position)) {
     // The land under the water is hidden: paper, the waves, and what stands in front.
     // The atmosphere at the water's height above the land the pixel shows (its border too).
@@ -238,7 +241,7 @@ void main() {
   }
 #endif
 #ifdef WATER
-  line_weight = max(line_weight, bankLine(p));
+  line_weight = max(line_weight, bankLine(p, position.z, z_per_pixel));
 #endif
 
   // Interior shading: diffuse term eroded by noise, or by the wrinkle texture where the

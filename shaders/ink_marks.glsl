@@ -18,13 +18,15 @@ vec4 unpack4(uint h) {
 
 // The darkest mark over lattice point q (cells), marks running along dir (unit, in the
 // lattice's plane), each kept where `density` beats its cell's threshold (a soft step, so
-// a mark fades instead of being cut where the density changes under it).
+// a mark fades instead of being cut where the density changes under it). A mark reaches at
+// most half a cell from its centre, which lies in its cell, so the 2 × 2 cells nearest q
+// hold every mark that can cover it.
 float marksOctave(vec2 q, vec2 dir, float density, uint style, uint seed) {
   vec2 perp = vec2(-dir.y, dir.x);
-  ivec2 base = ivec2(floor(q));
+  ivec2 base = ivec2(floor(q - 0.5));
   float ink = 0.0;
-  for (int j = -1; j <= 1; ++j) {
-    for (int i = -1; i <= 1; ++i) {
+  for (int j = 0; j <= 1; ++j) {
+    for (int i = 0; i <= 1; ++i) {
       ivec2 c = base + ivec2(i, j);
       uint h = cellHash(uvec2(c + 32768) ^ uvec2(seed, seed * 0x9e3779b9u));
       vec4 a = unpack4(h), b = unpack4(cellHash(uvec2(h, seed + 7u)));
@@ -37,17 +39,17 @@ float marksOctave(vec2 q, vec2 dir, float density, uint style, uint seed) {
         float turn = (b.x - 0.5) * 0.87, cs = cos(turn), sn = sin(turn);
         vec2 along_dir = cs * dir + sn * perp;
         float along = dot(d, along_dir), across = dot(d, vec2(-along_dir.y, along_dir.x));
-        float half_length = 0.32 + 0.18 * b.y;
-        float t = along / half_length;  // -1 uphill point .. 1 broad end
-        float width = (0.05 + 0.16 * b.z) * clamp(0.5 + 0.5 * t, 0.0, 1.0);
+        float half_length = 0.3 + 0.12 * b.y;  // with the ±25° turn, at most half a cell along x or y
+        float t = along / half_length;        // -1 uphill point .. 1 broad end
+        float width = (0.04 + 0.1 * b.z) * clamp(0.5 + 0.5 * t, 0.0, 1.0);
         cover = (1.0 - smoothstep(0.85, 1.0, abs(t))) * (1.0 - smoothstep(0.7 * width, width, abs(across)));
       } else {
         // A long fibre, gently waving across its length, tapering to both ends.
         float along = dot(d, dir), across = dot(d, perp);
-        float half_length = 0.65 + 0.35 * b.y;
+        float half_length = 0.36 + 0.1 * b.y;
         float t = along / half_length;
-        across += 0.07 * sin(6.0 * along + 6.2832 * b.x);
-        float width = (0.045 + 0.035 * b.z) * sqrt(max(1.0 - t * t, 0.0));
+        across += 0.035 * sin(12.0 * along + 6.2832 * b.x);
+        float width = (0.022 + 0.018 * b.z) * sqrt(max(1.0 - t * t, 0.0));
         cover = abs(t) < 1.0 ? 1.0 - smoothstep(0.5 * width, width + 1e-4, abs(across)) : 0.0;
       }
       ink = max(ink, keep * cover * (0.55 + 0.45 * b.w));
@@ -71,7 +73,8 @@ float textureMarks(vec2 uv, vec2 duv_dx, vec2 duv_dy, vec2 down, float spacing_p
   // Each octave its own lattice (a different seed), so the coarser one's marks are not
   // the finer one's doubled.
   int octave = int(level);
-  float a = marksOctave(uv / size0, dir, density, style, seed + uint(octave & 1023) * 131u);
-  float b = marksOctave(uv / (2.0 * size0), dir, density, style, seed + uint((octave + 1) & 1023) * 131u);
+  float a = blend < 0.98 ? marksOctave(uv / size0, dir, density, style, seed + uint(octave & 1023) * 131u) : 0.0;
+  float b = blend > 0.02 ? marksOctave(uv / (2.0 * size0), dir, density, style, seed + uint((octave + 1) & 1023) * 131u)
+                         : 0.0;
   return mix(a, b, blend);
 }

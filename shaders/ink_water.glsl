@@ -81,10 +81,14 @@ float openWaterInk(ivec2 p) {
   return f * waveInk(p);
 }
 
-// 1 on the land's side of a bank: a neighbour within the line's width is under water.
-float bankLine(ivec2 p) {
+// 1 on the land's side of a bank: a neighbour within the line's width is under water. z is
+// the pixel's height and z_per_pixel how much it changes to a neighbour (a 2 × 2 quad's
+// screen derivative): a pixel higher above the water than r such steps (with room for the
+// quad's estimate to be low) has no neighbour under it, and reads none.
+float bankLine(ivec2 p, float z, float z_per_pixel) {
   if (u_water_bank <= 0.0) return 0.0;
   int r = max(1, int(round(u_water_bank)));
+  if (z - u_water.x > 4.0 * float(r) * z_per_pixel + 1e-4 * abs(u_water.x) + 1e-6) return 0.0;
   ivec2 size = textureSize(u_depth, 0);
   for (int k = 0; k < 4; ++k) {
     ivec2 q = p + r * ivec2(k == 0 ? 1 : (k == 1 ? -1 : 0), k == 2 ? 1 : (k == 3 ? -1 : 0));

@@ -24,7 +24,8 @@ constexpr int kWidth = 256, kHeight = 192;
 
 // A ridge along x: z = 60 − 0.6 (|y − 100| − 10) over x, y in [0, 200], a flat top 20 wide.
 mesh::Mesh ridge() {
-  return test::heightGrid(81, 81, 2.5, [](double, double y) { return 60.0 - 0.6 * std::max(std::abs(y - 100.0) - 10.0, 0.0); });
+  return test::heightGrid(81, 81, 2.5,
+                          [](double, double y) { return 60.0 - 0.6 * std::max(std::abs(y - 100.0) - 10.0, 0.0); });
 }
 
 json plainObject(const json& extra = json::object()) {
@@ -58,8 +59,9 @@ double inkAt(const image::Image& c, int x, int y, const scene::Scene& s) {
 
 TEST_F(Composition, MarksAreDenserInShadowThanOnLitSlopesAndAbsentOnFlatGround) {
   // Light from +y: the slope facing +y (y > 110) is lit, the one facing −y in shadow.
-  const scene::Scene s = sceneOf(json::array({plainObject({{"marks", {{"style", "hemp"}, {"density", 0.6}, {"lit", 0.2}, {"ridge", 0.0}}}})}),
-                                 {{"light", {{"direction", {0.0, 1.0, 0.6}}}}});
+  const scene::Scene s = sceneOf(
+      json::array({plainObject({{"marks", {{"style", "hemp"}, {"density", 0.6}, {"lit", 0.2}, {"ridge", 0.0}}}})}),
+      {{"light", {{"direction", {0.0, 1.0, 0.6}}}}});
   InkRenderer r(s, load(s, {ridge()}));
   const OrbitCamera cam = sceneCamera(s, r.worldBounds(), static_cast<double>(kWidth) / kHeight, {0, 70, 1.3});
   const image::Image c = r.render(cam, kWidth, kHeight).colour(0).download(3);
@@ -97,8 +99,9 @@ TEST_F(Composition, FarRangesCarryLessInkThanNearOnes) {
     objects.push_back(plainObject({{"transform", {{"translate", {0.0, y, z}}}},
                                    {"lines", {{"enabled", true}, {"width", 2.5}}},
                                    {"shading", {{"enabled", true}}}}));
-  const scene::Scene s = sceneOf(objects, {{"output", {{"fade", 0.6}}},
-                                           {"mist", {{"density", 0.7}, {"height", 0.3}, {"softness", 0.4}, {"near", 0.0}}}});
+  const scene::Scene s = sceneOf(
+      objects,
+      {{"output", {{"fade", 0.6}}}, {"mist", {{"density", 0.7}, {"height", 0.3}, {"softness", 0.4}, {"near", 0.0}}}});
   InkRenderer r(s, load(s, {ridge(), ridge(), ridge()}));
   const OrbitCamera cam = sceneCamera(s, r.worldBounds(), static_cast<double>(kWidth) / kHeight, {-90, 12, 1.0});
   const image::Image c = r.render(cam, kWidth, kHeight).colour(0).download(3);
@@ -128,7 +131,8 @@ TEST(DrawnFraming, ThePointsFillTheFrameOnTwoSidesAndAreCentredOnTheOthers) {
     points.push_back({300.0 * r * std::cos(a), 200.0 * r * std::sin(a), 20.0 * std::sin(3.0 * a)});
   }
   points.push_back({-100.0, 2500.0, 700.0});  // the far peak's top
-  for (const auto& [azimuth, elevation, aspect] : {std::tuple{-90.0, 12.0, 0.75}, {-60.0, 30.0, 1.5}, {20.0, 45.0, 1.0}}) {
+  for (const auto& [azimuth, elevation, aspect] :
+       {std::tuple{-90.0, 12.0, 0.75}, {-60.0, 30.0, 1.5}, {20.0, 45.0, 1.0}}) {
     const OrbitCamera cam = fillPoints(points, azimuth, elevation, 30.0, aspect, 1.0);
     const glm::dmat4 vp = glm::dmat4(cam.projection(aspect)) * glm::dmat4(cam.view());
     glm::dvec2 lo(1e9), hi(-1e9);
@@ -152,12 +156,13 @@ TEST_F(Composition, OpenWaterBetweenRangesCarriesWaves) {
   json objects = json::array();
   for (double y : {0.0, 700.0}) objects.push_back(plainObject({{"transform", {{"translate", {0.0, y, 0.0}}}}}));
   auto ink = [&](bool water) {
-    const scene::Scene s =
-        sceneOf(objects, {{"water", {{"enabled", water}, {"level", 0.2}, {"waves", 1.0}, {"spacing", 0.03}, {"ink", 1.0}}},
-                          {"canvas", {{"type", "none"}}}});
+    const scene::Scene s = sceneOf(
+        objects, {{"water", {{"enabled", water}, {"level", 0.2}, {"waves", 1.0}, {"spacing", 0.03}, {"ink", 1.0}}},
+                  {"canvas", {{"type", "none"}}}});
     InkRenderer r(s, load(s, {ridge(), ridge()}));
-    const image::Image c =
-        r.render(r.camera({-90, 30, 1.0}, static_cast<double>(kWidth) / kHeight), kWidth, kHeight).colour(0).download(3);
+    const image::Image c = r.render(r.camera({-90, 30, 1.0}, static_cast<double>(kWidth) / kHeight), kWidth, kHeight)
+                               .colour(0)
+                               .download(3);
     const image::Image pos = r.worldPositions();
     double sum = 0.0;
     for (int y = 0; y < kHeight; ++y)
@@ -201,8 +206,8 @@ TEST_F(Composition, AGroundedHutIsDrawnStandingWhereItWasPlaced) {
   int hut_pixels = 0;
   for (int y = 0; y < kHeight; ++y)
     for (int x = 0; x < kWidth; ++x)
-      if (pos.at(x, y, 3) > 0.5f && std::abs(pos.at(x, y, 0) - 100.0) < 6.5 && std::abs(pos.at(x, y, 1) - 150.0) < 6.5 &&
-          pos.at(x, y, 2) > 60.0 - 0.6 * (144.0 - 110.0) + 0.5)
+      if (pos.at(x, y, 3) > 0.5f && std::abs(pos.at(x, y, 0) - 100.0) < 6.5 &&
+          std::abs(pos.at(x, y, 1) - 150.0) < 6.5 && pos.at(x, y, 2) > 60.0 - 0.6 * (144.0 - 110.0) + 0.5)
         ++hut_pixels;
   EXPECT_GT(hut_pixels, 20) << "the hut is drawn where it stands";
 }
