@@ -408,11 +408,26 @@ std::map<std::string, std::string> demoStages(const std::string& output) {
 TEST(Cli, DemoRunsTheChainThenReusesWhatIsUpToDate) {
   test::TempDir dir;
   const std::filesystem::path samples = dir / "samples", out = dir / "out";
-  for (const char* f :
-       {"textures/rain_strokes_scan.png", "textures/rain_strokes_wrinkle.png", "terrain/mount_st_helens.dem",
-        "scenes/default.json", "scenes/high_distance.json", "scenes/deep_distance.json", "scenes/level_distance.json",
-        "scenes/light_colour.json", "scenes/moving_boat.json", "meshes/fishing_boat.obj", "scenes/grove.json",
-        "terrain/hill.asc", "scenes/lake.json"}) {
+  for (const char* f : {"textures/rain_strokes_scan.png",
+                        "textures/rain_strokes_wrinkle.png",
+                        "terrain/mount_st_helens.dem",
+                        "scenes/default.json",
+                        "scenes/high_distance.json",
+                        "scenes/deep_distance.json",
+                        "scenes/level_distance.json",
+                        "scenes/light_colour.json",
+                        "scenes/moving_boat.json",
+                        "meshes/fishing_boat.obj",
+                        "scenes/grove.json",
+                        "terrain/hill.asc",
+                        "scenes/lake.json",
+                        "scenes/painting.json",
+                        "meshes/pagoda.obj",
+                        "meshes/pavilion.obj",
+                        "meshes/hut.obj",
+                        "meshes/boulder_a.obj",
+                        "meshes/boulder_b.obj",
+                        "meshes/boulder_c.obj"}) {
     std::filesystem::create_directories((samples / f).parent_path());
     std::filesystem::copy_file(test::sourceDir() / "samples" / f, samples / f);
   }
@@ -421,20 +436,25 @@ TEST(Cli, DemoRunsTheChainThenReusesWhatIsUpToDate) {
       "cd " + quote(dir.path()) + " && " + bin("shanshui-demo") + " --quick --frames 2 --samples samples --out out";
   auto r = run(demo);
   ASSERT_EQ(r.exit_code, 0) << r.output;
-  const std::map<std::string, std::string> all_ran = {
-      {"enhance", "running"},       {"quilt", "running"},         {"terrain", "running"},
-      {"param", "running"},         {"still", "running"},         {"orbit", "running"},
-      {"high_distance", "running"}, {"deep_distance", "running"}, {"level_distance", "running"},
-      {"grove", "running"},         {"lake", "running"},          {"level_strokes", "running"},
-      {"light_colour", "running"},  {"moving_boat", "running"},   {"moving_boat_sharp", "running"},
-      {"boat_lines", "running"},    {"boat_strokes", "running"},  {"stability", "running"}};
+  const std::map<std::string, std::string> all_ran = {{"enhance", "running"},       {"quilt", "running"},
+                                                      {"terrain", "running"},       {"param", "running"},
+                                                      {"painting", "running"},      {"still", "running"},
+                                                      {"orbit", "running"},         {"high_distance", "running"},
+                                                      {"deep_distance", "running"}, {"level_distance", "running"},
+                                                      {"grove", "running"},         {"lake", "running"},
+                                                      {"level_strokes", "running"}, {"light_colour", "running"},
+                                                      {"moving_boat", "running"},   {"moving_boat_sharp", "running"},
+                                                      {"boat_lines", "running"},    {"boat_strokes", "running"},
+                                                      {"stability", "running"}};
   EXPECT_EQ(demoStages(r.output), all_ran);
-  for (const char* f : {"report.md", "mountain.png", "orbit_0000.png", "orbit_0001.png", "assets/wrinkle.png",
-                        "assets/st_helens_uv.obj", "assets/checker.png", "assets/scan.png"}) {
+  for (const char* f : {"report.md", "painting.png", "mountain.png", "orbit_0000.png", "orbit_0001.png",
+                        "assets/wrinkle.png", "assets/st_helens_uv.obj", "assets/checker.png", "assets/scan.png"}) {
     EXPECT_TRUE(std::filesystem::exists(out / f)) << f;
   }
   const std::string report = readBytes(out / "report.md");
   EXPECT_NE(report.find("![mountain](mountain.png)"), std::string::npos);
+  EXPECT_LT(report.find("![painting](painting.png)"), report.find("![mountain](mountain.png)")) << "the headline";
+  EXPECT_NE(report.find("| painting | 0."), std::string::npos);
   EXPECT_NE(report.find("![high](high.png) ![deep](deep.png) ![level](level.png)"), std::string::npos);
   EXPECT_NE(report.find("| deep | 0."), std::string::npos) << "the look statistics of each picture";
   EXPECT_NE(report.find("![grove](grove.png)"), std::string::npos);
@@ -471,6 +491,7 @@ TEST(Cli, DemoRunsTheChainThenReusesWhatIsUpToDate) {
                                                                       {"quilt", "running"},
                                                                       {"terrain", "reused"},
                                                                       {"param", "reused"},
+                                                                      {"painting", "running"},
                                                                       {"still", "running"},
                                                                       {"orbit", "running"},
                                                                       {"high_distance", "reused"},
