@@ -149,7 +149,7 @@ double Relief::groundAt(glm::dvec2 xy, double radius) const {
   return ground;
 }
 
-OrbitCamera highDistance(const Relief& relief, double azimuth_deg, double fov_y_deg, double zoom) {
+OrbitCamera highDistance(const Relief& relief, double azimuth_deg, double fov_y_deg, double zoom, bool over_ranges) {
   const mesh::Bounds& b = relief.bounds();
   const glm::dvec3 summit = relief.summit();
   const double relief_height = std::max(b.size().z, 1e-6);
@@ -175,7 +175,13 @@ OrbitCamera highDistance(const Relief& relief, double azimuth_deg, double fov_y_
   // the edge would see the underside of the surface.
   const glm::dvec2 edge = glm::dvec2(summit) + std::min({exit.x, exit.y, horizontal}) * away;
   const double ground = std::max(relief.groundAt(at, 0.03 * footprint), relief.groundAt(edge, 0.03 * footprint));
-  const double eye_z = std::max(base_z, ground + 0.03 * relief_height);
+  double eye_z = std::max(base_z, ground + 0.03 * relief_height);
+  if (over_ranges) {
+    for (int k = 0; k <= 48; ++k) {
+      const glm::dvec2 p = at + (0.6 * k / 48.0) * (glm::dvec2(summit) - at);
+      eye_z = std::max(eye_z, relief.groundAt(p, 0.01 * footprint) + 0.03 * relief_height);
+    }
+  }
   const glm::dvec3 eye(at, eye_z);
 
   OrbitCamera cam;

@@ -78,7 +78,8 @@ OrbitCamera sceneCamera(const scene::Scene& s, const mesh::Bounds& world_bounds,
   if (c.preset == scene::CameraPreset::High) {
     const glm::dvec3 lo = world_bounds.min, hi = world_bounds.max, mid = world_bounds.centre();
     const Relief floor({lo, {hi.x, hi.y, lo.z}, {mid.x, mid.y, hi.z}});
-    cam = highDistance(relief && !relief->empty() ? *relief : floor, key.azimuth_deg, v.fov_y_deg, key.zoom);
+    cam = highDistance(relief && !relief->empty() ? *relief : floor, key.azimuth_deg, v.fov_y_deg, key.zoom,
+                       s.isComposition());
   } else if (v.framing == scene::Framing::Drawn && drawn && !drawn->empty()) {
     cam = fillPoints(*drawn, key.azimuth_deg, v.elevation_deg, v.fov_y_deg, aspect, key.zoom);
   } else if (v.framing != scene::Framing::Sphere) {

@@ -122,6 +122,31 @@ TEST_F(Composition, FarRangesCarryLessInkThanNearOnes) {
   EXPECT_GT(middle, 1.3 * far) << middle << " " << far;
 }
 
+TEST_F(Composition, TheHighDistanceOfSeveralRangesSeesTheFarPeakOverTheNearOnes) {
+  // A far ridge twice as high behind two near ones: standing at the foot of the land, the
+  // near ridges would hide it; the preset rises over them and the far ridge fills the top
+  // of the frame.
+  json objects = json::array();
+  for (const auto& [y, z] : {std::pair{0.0, 0.0}, {500.0, 20.0}, {1400.0, 0.0}}) {
+    json o = plainObject({{"transform", {{"translate", {0.0, y, z}}, {"scale", {1.0, 1.0, y > 1000.0 ? 3.0 : 1.0}}}},
+                          {"shading", {{"enabled", true}}}});
+    o.erase("mesh");
+    o["dem"] = "memory.asc";  // a terrain, as compositions are made of (the mesh is given below)
+    objects.push_back(o);
+  }
+  const scene::Scene s = sceneOf(objects, {{"camera", {{"preset", "high"}, {"azimuth", -90.0}}}});
+  ASSERT_TRUE(s.isComposition());
+  InkRenderer r(s, load(s, {ridge(), ridge(), ridge()}));
+  r.render(r.camera({-90, 0, 1.0}, static_cast<double>(kWidth) / kHeight), kWidth, kHeight);
+  const image::Image pos = r.worldPositions();
+  int far = 0, land = 0;
+  for (int y = 0; y < kHeight; ++y)
+    for (int x = 0; x < kWidth; ++x)
+      if (pos.at(x, y, 3) > 0.5f) ++land, far += pos.at(x, y, 1) > 1000.0f;
+  ASSERT_GT(land, 1000);
+  EXPECT_GT(far, kWidth * kHeight / 10) << "the far ridge is seen over the near ones (" << far << " of " << land << ")";
+}
+
 TEST(DrawnFraming, ThePointsFillTheFrameOnTwoSidesAndAreCentredOnTheOthers) {
   // An uneven cloud (a near bank, a far peak): its picture from the camera fillPoints makes
   // reaches 94 % of the frame on two opposite sides and is centred between the other two.

@@ -69,6 +69,10 @@ class Relief {
 //! High distance (gao yuan): a camera standing on the ground, from the given azimuth
 //! around the highest peak, far enough that the summit is seen 18° above the horizon, and
 //! pitched up so the summit sits near the top of the frame. zoom > 1 narrows the field.
-OrbitCamera highDistance(const Relief& relief, double azimuth_deg, double fov_y_deg, double zoom);
+//! `over_ranges` (a composition of several ranges): the eye rises until its level clears the
+//! land on the nearer 60 % of its way to the summit, so the near ranges lie below the view
+//! instead of filling it.
+OrbitCamera highDistance(const Relief& relief, double azimuth_deg, double fov_y_deg, double zoom,
+                         bool over_ranges = false);
 
 }  // namespace shanshui::render
