@@ -353,7 +353,7 @@ std::vector<fs::path> temporaries(const fs::path& dir) {
 }
 
 TEST(Faults, SignalsInTheMiddleOfASequenceLeaveNoTemporaries) {
-  for (int sig : {SIGINT, SIGTERM}) {
+  for (int sig : {SIGINT, SIGTERM, SIGHUP, SIGQUIT}) {
     Fixture f;
     fs::create_directories(f / "seq");
     const std::vector<std::string> args = {bin("shanshui-render"), f.mesh.string(), "-o", (f / "seq/f.png").string(),
@@ -368,7 +368,8 @@ TEST(Faults, SignalsInTheMiddleOfASequenceLeaveNoTemporaries) {
     EXPECT_EQ(o.signal, sig) << o.err;
     EXPECT_TRUE(temporaries(f / "seq").empty());
     EXPECT_TRUE(fs::is_empty(f / "seq")) << "frames were committed before the sequence ended";
-    table().push_back({"faults", std::string(sig == SIGINT ? "SIGINT" : "SIGTERM") + " during a 200-frame render",
+    table().push_back({"faults",
+                       std::string(sigabbrev_np(sig) ? sigabbrev_np(sig) : "?") + " during a 200-frame render",
                        temporaries(f / "seq").empty() && fs::is_empty(f / "seq")
                            ? "clear error: ended by the signal; no temporary, no frame left"
                            : "PARTIAL OUTPUT: temporaries or frames left"});

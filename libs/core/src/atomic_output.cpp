@@ -5,7 +5,6 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <array>
 #include <atomic>
 #include <cctype>
 #include <csignal>
@@ -21,41 +20,52 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// Live temporaries, kept where a signal handler can read them without locks or allocation.
-constexpr std::size_t kSlots = 4096;
-constexpr std::size_t kPathMax = 1024;
-struct TempSlot {
-  std::atomic<bool> used{false};
-  std::atomic<bool> live{false};
-  char path[kPathMax] = {};
+// Live temporaries, where a signal handler can read them without locks or allocation: a
+// list that only grows at its head (nodes are never freed, and a node whose temporary is
+// gone is reused by a later one that fits), so any number of temporaries of any path length
+// are cleaned up.
+struct TempNode {
+  std::atomic<bool> used{false};  //!< taken by a live registration
+  std::atomic<bool> live{false};  //!< `path` names a temporary the handler must remove
+  std::size_t capacity = 0;
+  char* path = nullptr;
+  TempNode* next = nullptr;
 };
-std::array<TempSlot, kSlots> g_slots;
+std::atomic<TempNode*> g_temps{nullptr};
 
-// Registers a temporary for cleanup on signals; returns its slot (or kSlots when full or
-// too long: then only the next run's sweep can remove it after a kill).
-std::size_t registerTemp(const fs::path& tmp) {
+// Registers a temporary for removal on a signal; the handle goes to unregisterTemp.
+TempNode* registerTemp(const fs::path& tmp) {
   const std::string s = fs::absolute(tmp).string();
-  if (s.size() + 1 > kPathMax) return kSlots;
-  for (std::size_t i = 0; i < kSlots; ++i) {
+  for (TempNode* n = g_temps.load(std::memory_order_acquire); n; n = n->next) {
     bool expected = false;
-    if (g_slots[i].used.compare_exchange_strong(expected, true)) {
-      std::memcpy(g_slots[i].path, s.c_str(), s.size() + 1);
-      g_slots[i].live.store(true);
-      return i;
+    if (n->capacity > s.size() && n->used.compare_exchange_strong(expected, true)) {
+      std::memcpy(n->path, s.c_str(), s.size() + 1);
+      n->live.store(true, std::memory_order_release);
+      return n;
     }
   }
-  return kSlots;
+  auto* n = new TempNode;
+  n->capacity = std::max<std::size_t>(s.size() + 1, 256);
+  n->path = new char[n->capacity];
+  std::memcpy(n->path, s.c_str(), s.size() + 1);
+  n->used.store(true);
+  n->live.store(true);
+  n->next = g_temps.load(std::memory_order_relaxed);
+  while (!g_temps.compare_exchange_weak(n->next, n, std::memory_order_release, std::memory_order_relaxed)) {
+  }
+  return n;
 }
 
-void unregisterTemp(std::size_t slot) {
-  if (slot >= kSlots) return;
-  g_slots[slot].live.store(false);
-  g_slots[slot].used.store(false);
+void unregisterTemp(void* handle) {
+  auto* n = static_cast<TempNode*>(handle);
+  if (!n) return;
+  n->live.store(false, std::memory_order_release);
+  n->used.store(false, std::memory_order_release);
 }
 
 extern "C" void removeTempsAndReraise(int sig) {
-  for (TempSlot& s : g_slots) {
-    if (s.live.load()) ::unlink(s.path);
+  for (TempNode* n = g_temps.load(std::memory_order_acquire); n; n = n->next) {
+    if (n->live.load(std::memory_order_acquire)) ::unlink(n->path);
   }
   std::signal(sig, SIG_DFL);
   std::raise(sig);
@@ -103,7 +113,7 @@ class TempFile {
 
  private:
   fs::path path_;
-  std::size_t slot_ = kSlots;
+  void* slot_ = nullptr;
   bool released_ = false;
 };
 
@@ -192,7 +202,8 @@ void sweepStaleTemporaries(const fs::path& target) {
 void installTempFileCleanup() {
   static std::once_flag once;
   std::call_once(once, [] {
-    for (int sig : {SIGINT, SIGTERM, SIGHUP}) {
+    // Every terminating signal a user can send or a closed pipe can cause.
+    for (int sig : {SIGINT, SIGTERM, SIGHUP, SIGQUIT, SIGPIPE}) {
       struct sigaction old {};
       ::sigaction(sig, nullptr, &old);
       if (old.sa_handler == SIG_IGN) continue;  // a shell's `nohup` or background job keeps it
@@ -350,7 +361,7 @@ void OutputSet::declare(const fs::path& target, std::string_view what, const std
   checkOutputPath(target);
   byKey_[key] = entries_.size();
   if (exists) byInode_[inode] = entries_.size();
-  entries_.push_back({target, key, std::string(what), {}, static_cast<std::size_t>(-1)});
+  entries_.push_back({target, key, std::string(what), {}, nullptr});
 }
 
 OutputSet::Entry& OutputSet::find(const fs::path& target) {

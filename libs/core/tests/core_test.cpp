@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <atomic>
+#include <csignal>
 #include <fstream>
 #include <set>
 
@@ -131,6 +132,38 @@ TEST(AtomicOutput, AFileSizeLimitIsAnErrorNamingTheTargetAndItsCause) {
   EXPECT_EQ(message.find(".tmp"), std::string::npos) << "names the temporary: " << message;
   EXPECT_EQ(slurp(target), "good");
   EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir.path()), {}), 1);
+}
+
+TEST(AtomicOutput, ASignalRemovesEveryStagedTemporaryHoweverManyAndHoweverLongTheirPaths) {
+  // More staged outputs than the old 4096-slot table held (with SIGTERM; a few with the
+  // others), some under a path longer than its 1024 bytes; a child stages them all, then
+  // is terminated by the signal.
+  for (int sig : {SIGTERM, SIGINT, SIGHUP, SIGQUIT, SIGPIPE}) {
+    test::TempDir dir;
+    std::filesystem::path deep = dir.path();
+    while (deep.string().size() < 1200) deep /= std::string(200, 'd');
+    std::filesystem::create_directories(deep);
+    const pid_t child = ::fork();
+    if (child == 0) {
+      installTempFileCleanup();
+      OutputSet out;
+      std::vector<std::filesystem::path> targets;
+      for (int i = 0; i < (sig == SIGTERM ? 4200 : 16); ++i)
+        targets.push_back(dir / ("f" + std::to_string(i) + ".txt"));
+      for (int i = 0; i < 8; ++i) targets.push_back(deep / ("g" + std::to_string(i) + ".txt"));
+      for (const auto& t : targets) out.declare(t, "-o", {".txt"});
+      for (const auto& t : targets) out.stage(t, "x");
+      ::raise(sig);
+      ::_exit(0);  // not reached
+    }
+    int status = 0;
+    ::waitpid(child, &status, 0);
+    ASSERT_TRUE(WIFSIGNALED(status)) << "signal " << sig;
+    EXPECT_EQ(WTERMSIG(status), sig);
+    std::size_t left = 0;
+    for (const auto& e : std::filesystem::recursive_directory_iterator(dir.path())) left += e.is_regular_file();
+    EXPECT_EQ(left, 0u) << "signal " << sig << ": temporaries left";
+  }
 }
 
 TEST(AtomicOutput, TemporariesOfDeadProcessesAreSweptOthersKept) {

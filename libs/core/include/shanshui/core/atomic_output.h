@@ -88,7 +88,7 @@ class OutputSet {
     std::filesystem::path key;  //!< weakly canonical, to compare paths
     std::string what;
     std::filesystem::path staged;
-    std::size_t slot;  //!< signal-cleanup slot of the staged temporary
+    void* slot;  //!< the staged temporary's registration for removal on a signal
   };
   Entry& find(const std::filesystem::path& target);
   std::vector<std::filesystem::path> inputs_;
