@@ -5,10 +5,12 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <sstream>
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "scene_params.h"
 #include "shanshui/core/error.h"
 
 namespace shanshui::scene {
@@ -110,6 +112,50 @@ double siteScore(GroundSite rule, const elements::Site& s, double z, double leve
       break;
   }
   return kNo;
+}
+
+const char* siteName(GroundSite site) {
+  for (const auto& [name, value] : kGroundSites)
+    if (value == site) return name;
+  return "?";
+}
+
+struct Candidate {
+  double score;
+  glm::dvec2 at;  //!< world x, y
+};
+
+// The spots of a grid over the ground (96 × 96, inside its dissolving border's band, where
+// its land is drawn) that suit `rule`, best first.
+std::vector<Candidate> rankSites(GroundSite rule, const Object& ground_object, const mesh::Bounds& model,
+                                 const Ground& ground, const glm::dmat4& to_world, double level) {
+  const mesh::Bounds world = transformed(model, to_world);
+  const glm::dvec3 half = 0.5 * model.size();
+  const double band = ground_object.dissolvesBorder() ? ground_object.border.width * std::min(half.x, half.y) : 0.0;
+  const glm::dvec3 lo = model.min + glm::dvec3(band, band, 0), hi = model.max - glm::dvec3(band, band, 0);
+  const double reach = 0.04 * std::max(world.size().x, world.size().y);  // a slope foot's steep neighbours
+  constexpr int n = 96;
+  std::vector<Candidate> candidates;
+  for (int yi = 0; yi < n; ++yi) {
+    for (int xi = 0; xi < n; ++xi) {
+      const glm::dvec3 m(lo.x + (xi + 0.5) / n * (hi.x - lo.x), lo.y + (yi + 0.5) / n * (hi.y - lo.y), 0.0);
+      const glm::dvec2 w(to_world * glm::dvec4(m, 1.0));
+      const std::optional<double> z = ground.height(w.x, w.y);
+      if (!z) continue;
+      double steep = 0.0;
+      if (rule == GroundSite::SlopeFoot) {
+        for (int k = 0; k < 8; ++k) {
+          const double a = k * std::numbers::pi / 4.0;
+          steep = std::max(steep, ground.site(w.x + reach * std::cos(a), w.y + reach * std::sin(a)).slope_deg);
+        }
+      }
+      const double score = siteScore(rule, ground.site(w.x, w.y), *z, level, world.size().z, steep);
+      if (score > std::numeric_limits<double>::lowest()) candidates.push_back({score, w});
+    }
+  }
+  std::stable_sort(candidates.begin(), candidates.end(),
+                   [](const Candidate& x, const Candidate& y) { return x.score > y.score; });
+  return candidates;
 }
 
 }  // namespace
@@ -236,51 +282,13 @@ std::vector<glm::dmat4> Grounding::worldMatrices(const Scene& s) const {
     glm::dvec2 at(o.transform.translate);
     if (o.ground.site != GroundSite::At) {
       if ((o.ground.site == GroundSite::WaterEdge || o.ground.site == GroundSite::Bank) && !s.usesWater())
-        throw makeError(key, ".site: '", o.ground.site == GroundSite::Bank ? "bank" : "water_edge",
-                        "' needs water (water.enabled: true)");
-      // Candidates on a grid over the ground, inside its dissolving border's band (where
-      // its land is drawn), best score first; the first that fits away from the others.
-      const Object& go = s.objects[*gi];
-      const glm::dvec3 half = 0.5 * model_bounds[*gi].size();
-      const double band = go.dissolvesBorder() ? go.border.width * std::min(half.x, half.y) : 0.0;
-      const int n = 96;
-      struct Candidate {
-        double score;
-        glm::dvec2 at;
-      };
-      std::vector<Candidate> candidates;
-      const glm::dvec3 lo = model_bounds[*gi].min + glm::dvec3(band, band, 0),
-                       hi = model_bounds[*gi].max - glm::dvec3(band, band, 0);
-      const double reach = 0.04 * std::max(gb.size().x, gb.size().y);
-      for (int yi = 0; yi < n; ++yi) {
-        for (int xi = 0; xi < n; ++xi) {
-          const glm::dvec3 m(lo.x + (xi + 0.5) / n * (hi.x - lo.x), lo.y + (yi + 0.5) / n * (hi.y - lo.y), 0.0);
-          const glm::dvec2 w(tg * glm::dvec4(m, 1.0));
-          const std::optional<double> z = ground.height(w.x, w.y);
-          if (!z) continue;
-          const elements::Site site = ground.site(w.x, w.y);
-          double steep = 0.0;
-          if (o.ground.site == GroundSite::SlopeFoot) {
-            for (int k = 0; k < 8; ++k) {
-              const double a = k * 0.7853981633974483;
-              steep = std::max(steep, ground.site(w.x + reach * std::cos(a), w.y + reach * std::sin(a)).slope_deg);
-            }
-          }
-          const double score = siteScore(o.ground.site, site, *z, level, relief, steep);
-          if (score > std::numeric_limits<double>::lowest()) candidates.push_back({score, w});
-        }
-      }
-      std::stable_sort(candidates.begin(), candidates.end(),
-                       [](const Candidate& a, const Candidate& b) { return a.score > b.score; });
+        throw makeError(key, ".site: '", siteName(o.ground.site), "' needs water (water.enabled: true)");
+      const std::vector<Candidate> candidates =
+          rankSites(o.ground.site, s.objects[*gi], model_bounds[*gi], ground, tg, level);
       const auto best =
           std::find_if(candidates.begin(), candidates.end(), [&](const Candidate& c) { return fits(c.at); });
       if (best == candidates.end())
-        throw makeError(key, ".site: no spot on ", label(s, *gi), " suits '",
-                        o.ground.site == GroundSite::Summit      ? "summit"
-                        : o.ground.site == GroundSite::Ridge     ? "ridge"
-                        : o.ground.site == GroundSite::WaterEdge ? "water_edge"
-                        : o.ground.site == GroundSite::Bank      ? "bank"
-                                                                 : "slope_foot",
+        throw makeError(key, ".site: no spot on ", label(s, *gi), " suits '", siteName(o.ground.site),
                         "' and leaves room for the objects placed there before (", placed[*gi].size(),
                         "); it spans z [", gb.min.z, ", ", gb.max.z, "]",
                         s.usesWater() ? ", the water is at z " + number(level) : "");
@@ -295,7 +303,7 @@ std::vector<glm::dmat4> Grounding::worldMatrices(const Scene& s) const {
     // on a slope); tilted to the slope, the centre's height is the ground's under all of it.
     double lowest = *centre_z;
     for (int c = 0; c < 8; ++c) {
-      const double a = c * 0.7853981633974483;
+      const double a = c * std::numbers::pi / 4.0;
       if (const auto z = ground.height(at.x + fp.half.x * std::cos(a), at.y + fp.half.y * std::sin(a)))
         lowest = std::min(lowest, *z);
     }
