@@ -119,8 +119,11 @@ void load(const std::string& name, Decoded* out) {
   img.height = spec.height;
   img.channels = channels;
   img.pixels.assign(static_cast<std::size_t>(spec.width) * spec.height * channels, 0.0f);
-  if (!in->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, img.pixels.data())) {
-    throw makeError(name, ": cannot read pixels (truncated or corrupt?): ", oneLine(in->geterror()));
+  // OIIO's TIFF reader reports a truncated strip through geterror() yet returns true, the
+  // missing rows left black: any error it recorded refuses the image.
+  const bool read = in->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, img.pixels.data());
+  if (const std::string error = in->geterror(); !read || !error.empty()) {
+    throw makeError(name, ": cannot read pixels (truncated or corrupt?): ", oneLine(error));
   }
   const bool associated =
       img.hasAlpha() && spec.alpha_channel == channels - 1 && spec.get_int_attribute("oiio:UnassociatedAlpha", 0) == 0;

@@ -203,6 +203,36 @@ TEST(ImageIo, HugeHeaderAndCutJpegAreRefusedByName) {
   test::expectErrorNaming([&] { loadImage(dir / "half.jpg"); }, "half.jpg", "truncated JPEG");
 }
 
+// A grey 8-bit TIFF with its directory first and one strip of pixel data after it (as
+// GDAL and many scanners write them), of which only `keep` bytes of the strip are there.
+std::string stripTiff(int w, int h, std::size_t keep) {
+  std::string t("II*\0", 4);
+  auto u16 = [&](unsigned v) { t.push_back(static_cast<char>(v & 0xff)), t.push_back(static_cast<char>(v >> 8)); };
+  auto u32 = [&](unsigned v) { u16(v & 0xffff), u16(v >> 16); };
+  u32(8);  // the directory right after the header
+  const unsigned entries = 9, data = 8 + 2 + entries * 12 + 4;
+  u16(entries);
+  auto entry = [&](unsigned tag, unsigned type, unsigned value) {
+    u16(tag), u16(type), u32(1), type == 3 ? (u16(value), u16(0)) : u32(value);
+  };
+  entry(256, 3, w), entry(257, 3, h), entry(258, 3, 8), entry(259, 3, 1), entry(262, 3, 1);
+  entry(273, 4, data), entry(277, 3, 1), entry(278, 3, h), entry(279, 4, static_cast<unsigned>(w * h));
+  u32(0);  // no next directory
+  for (int i = 0; i < w * h && static_cast<std::size_t>(i) < keep; ++i) t.push_back(static_cast<char>(i * 7));
+  return t;
+}
+
+TEST(ImageIo, ACutTiffIsRefusedNotReadAsBlackRows) {
+  test::TempDir dir;
+  const std::string whole = stripTiff(40, 30, 40 * 30), cut = stripTiff(40, 30, 40 * 12);
+  std::ofstream(dir / "whole.tif", std::ios::binary).write(whole.data(), static_cast<std::streamsize>(whole.size()));
+  std::ofstream(dir / "cut.tif", std::ios::binary).write(cut.data(), static_cast<std::streamsize>(cut.size()));
+  const Image img = loadImage(dir / "whole.tif");
+  EXPECT_EQ(img.width, 40);
+  EXPECT_NEAR(img.at(3, 0, 0), (3 * 7 % 256) / 255.0f, 1e-6f) << "the hand-made TIFF reads as written";
+  test::expectErrorNaming([&] { loadImage(dir / "cut.tif"); }, "cut.tif", "truncated or corrupt");
+}
+
 TEST(Convert, GreyUsesStatedLumaWeightsAfterCompositingOverWhite) {
   Image rgb(3, 1, 3, 0.0f);
   rgb.at(0, 0, 0) = 1;
