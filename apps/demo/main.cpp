@@ -104,10 +104,23 @@ class Runner {
   bool force_;
 };
 
+// A sample scene's JSON, or an error naming the file and where the text breaks (the
+// scene's own checks run in shanshui-render).
+json readSampleScene(const fs::path& scene) {
+  try {
+    return json::parse(readFile(scene));
+  } catch (const json::exception& e) {
+    std::string msg = e.what();
+    // "[json.exception.parse_error.101] parse error at line 1, column 2: ..." -> the part after "] ".
+    if (const auto cut = msg.find("] "); cut != std::string::npos) msg = msg.substr(cut + 2);
+    throw shanshui::makeError(scene.string(), ": not valid JSON: ", msg);
+  }
+}
+
 // The sample scene pointed at the chain's own assets: the parameterized mesh and its UVs,
 // the quilted wrinkle texture, diffusion on.
 void writeScene(const fs::path& sample_scene, const fs::path& out, bool quick) {
-  json j = json::parse(readFile(sample_scene));
+  json j = readSampleScene(sample_scene);
   json& o = j["objects"][0];
   o.erase("dem");
   o.erase("z_scale");
@@ -128,7 +141,7 @@ void writeScene(const fs::path& sample_scene, const fs::path& out, bool quick) {
 // texture, drawn as terrain (dissolving border, mist, marks); the other ranges, the models
 // and the boat stay the sample's files (paths made absolute, as the scene moves to assets/).
 void writePainting(const fs::path& sample_scene, const fs::path& out, bool quick) {
-  json j = json::parse(readFile(sample_scene));
+  json j = readSampleScene(sample_scene);
   const fs::path base = fs::absolute(sample_scene).parent_path();
   for (json& o : j["objects"]) {
     for (const char* key : {"mesh", "dem"})
@@ -191,6 +204,7 @@ int main(int argc, char** argv) {
     for (const fs::path& f : {s / "textures/rain_strokes_scan.png", s / "terrain/mount_st_helens.dem",
                               s / "scenes/default.json", s / "scenes/painting.json"}) {
       if (!fs::exists(f)) throw shanshui::makeError(f.string(), ": not found (is --samples the samples directory?)");
+      if (f.extension() == ".json") readSampleScene(f);  // a broken scene is named before any work
     }
     if (!reference.empty() && !fs::is_regular_file(reference)) {
       throw shanshui::makeError("--reference: ", reference, ": not found (expected an image file)");

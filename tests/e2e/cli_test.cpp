@@ -515,6 +515,13 @@ TEST(Cli, DemoRunsTheChainThenReusesWhatIsUpToDate) {
   EXPECT_NE(r.exit_code, 0);
   EXPECT_NE(r.output.find("--reference: nowhere.jpg: not found"), std::string::npos) << r.output;
 
+  // A broken sample scene is named, with where its text breaks, before any stage runs.
+  std::ofstream(samples / "scenes/painting.json") << "{ broken";
+  r = run(demo + " --force");
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.output.find("painting.json: not valid JSON: parse error at line 1"), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("running"), std::string::npos) << r.output;
+
   // A missing sample is named.
   std::filesystem::remove(samples / "terrain/mount_st_helens.dem");
   r = run(demo);
