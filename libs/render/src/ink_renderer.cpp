@@ -90,7 +90,11 @@ OrbitCamera sceneCamera(const scene::Scene& s, const mesh::Bounds& world_bounds,
   }
   if (c.target) cam.target = *c.target;
   if (c.distance > 0) cam.distance = c.distance / key.zoom;
-  cam.enclose(world_bounds);  // the whole scene, seen from wherever the camera now is
+  // The whole scene, seen from wherever the camera now is: with what stands on the ground
+  // (outside the world bounds, a pagoda's top above a summit), which `inked` holds.
+  mesh::Bounds all = world_bounds;
+  if (inked) all = {glm::min(all.min, inked->min), glm::max(all.max, inked->max)};
+  cam.enclose(all);
   return cam;
 }
 
