@@ -308,11 +308,15 @@ TEST(Cli, ParamChartsAClosedMeshAndSaysWhy) {
   EXPECT_EQ(report["method"], "charts");
   EXPECT_EQ(report["atlas"]["per_chart"].size(), report["atlas"]["charts"].get<std::size_t>());
   EXPECT_LE(report["distortion"]["l2_stretch"].get<double>(), 1.5);
-  // The budget left went to ARAP rounds from the best one-piece map; they fold this one,
-  // so the atlas stays. --no-refine leaves them out.
-  ASSERT_EQ(report["refinements"].size(), 1u) << report.dump(1);
-  EXPECT_EQ(report["refinements"][0]["kept"], false);
-  EXPECT_NE(r.output.find("refine (ARAP rounds from"), std::string::npos) << r.output;
+  // The budget left goes to ARAP rounds from the best one-piece map; they fold this one,
+  // so the atlas stays. On a loaded machine the trials can spend the whole budget and no
+  // round runs (the report then has none; reading the missing key of a const json was
+  // undefined and failed about one run in five under load). --no-refine leaves them out.
+  if (report.contains("refinements")) {
+    ASSERT_EQ(report["refinements"].size(), 1u) << report.dump(1);
+    EXPECT_EQ(report["refinements"][0]["kept"], false);
+    EXPECT_NE(r.output.find("refine (ARAP rounds from"), std::string::npos) << r.output;
+  }
   const auto plain = run(bin("shanshui-param") + " " + quote(cow) + " -o " + quote(dir / "plain.obj") + " --report " +
                          quote(dir / "plain.json") + " --no-refine");
   ASSERT_EQ(plain.exit_code, 0) << plain.output;
