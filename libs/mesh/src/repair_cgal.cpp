@@ -139,6 +139,47 @@ std::size_t carryUvsByCorner(const PolygonSoup& soup, Mesh& out) {
   return copies;
 }
 
+// shanshui's triangles from a triangulated surface mesh.
+Mesh toMesh(const SurfaceMesh& sm) {
+  Mesh out;
+  out.positions.reserve(sm.number_of_vertices());
+  for (auto v : sm.vertices()) {
+    const Point& p = sm.point(v);
+    out.positions.emplace_back(p.x(), p.y(), p.z());
+  }
+  for (auto f : sm.faces()) {
+    glm::uvec3 t;
+    int k = 0;
+    for (auto v : CGAL::vertices_around_face(sm.halfedge(f), sm)) t[k++] = static_cast<unsigned>(v.idx());
+    SHANSHUI_CHECK_EQ(k, 3);
+    out.triangles.push_back(t);
+  }
+  return out;
+}
+
+// What the final check can still find: a quad whose triangulating diagonal joins two
+// vertices already joined by an edge (a folded quad in a low-poly head) leaves that pair in
+// three or four triangles, which a halfedge mesh holds as two edges but a triangle list
+// cannot. The triangles go through the soup orientation once more, which duplicates the
+// points where fans cannot agree; returns how many points it added, and the border loops.
+std::size_t splitWhatStaysNonManifold(Mesh& m, std::size_t* loops) {
+  std::vector<Point> points;
+  points.reserve(m.positions.size());
+  for (const glm::dvec3& p : m.positions) points.emplace_back(p.x, p.y, p.z);
+  std::vector<Polygon> polygons;
+  polygons.reserve(m.triangles.size());
+  for (const glm::uvec3& t : m.triangles) polygons.push_back({t[0], t[1], t[2]});
+  const std::size_t before = points.size();
+  PMP::orient_polygon_soup(points, polygons);
+  if (!PMP::is_polygon_soup_a_polygon_mesh(polygons)) return 0;
+  SurfaceMesh sm;
+  PMP::polygon_soup_to_polygon_mesh(points, polygons, sm);
+  const std::size_t added = points.size() - before + PMP::duplicate_non_manifold_vertices(sm);
+  m = toMesh(sm);
+  *loops = borderLoops(sm).size();
+  return added;
+}
+
 }  // namespace
 
 bool RepairReport::changed() const {
@@ -158,6 +199,7 @@ std::vector<std::pair<std::string, double>> RepairReport::counters() const {
           {"non_manifold_vertices_split", d(non_manifold_vertices_split)},
           {"orientation_fixed", d(orientation_fixed)},
           {"faces_triangulated", d(faces_triangulated)},
+          {"non_manifold_edges_split", d(non_manifold_edges_split)},
           {"non_manifold_edges_left", d(left.edges_over_two_faces + left.edges_same_direction)},
           {"pinched_vertices_left", d(left.pinched_vertices)},
           {"degenerate_faces_removed", d(degenerate_faces_removed)},
@@ -335,28 +377,25 @@ Mesh repairMesh(const PolygonSoup& soup, const RepairOptions& options, RepairRep
   }
 
   // 8. Back to shanshui's types.
-  Mesh out;
-  out.positions.reserve(sm.number_of_vertices());
-  for (auto v : sm.vertices()) {
-    const Point& p = sm.point(v);
-    out.positions.emplace_back(p.x(), p.y(), p.z());
-  }
-  for (auto f : sm.faces()) {
-    glm::uvec3 t;
-    int k = 0;
-    for (auto v : CGAL::vertices_around_face(sm.halfedge(f), sm)) t[k++] = static_cast<unsigned>(v.idx());
-    SHANSHUI_CHECK_EQ(k, 3);
-    out.triangles.push_back(t);
-  }
+  Mesh out = toMesh(sm);
   r.boundary_loops = borderLoops(sm).size();
-  // The final check, on the triangles handed back: a surface mesh cannot hold a
-  // non-manifold edge, but hole filling and degenerate-face removal can pinch a vertex.
+  // The final check, on the triangles handed back: a vertex pair in more than two triangles
+  // (a triangulated diagonal on an existing edge) or a pinched vertex is split apart once
+  // more, and a mesh that still fails is refused rather than handed on.
+  if (const ManifoldProblems found = manifoldProblems(out); found.any()) {
+    const std::size_t added = splitWhatStaysNonManifold(out, &r.boundary_loops);
+    r.non_manifold_vertices_split += added;
+    r.non_manifold_edges_split = found.edges_over_two_faces + found.edges_same_direction;
+    r.warnings.push_back("split " + std::to_string(r.non_manifold_edges_split) + " non-manifold edge(s) and " +
+                         std::to_string(found.pinched_vertices) + " pinched vertex(es) left after triangulation (" +
+                         std::to_string(added) + " vertices added)");
+  }
   r.left = manifoldProblems(out);
   if (r.left.any()) {
-    r.warnings.push_back("could not make the mesh manifold: " + std::to_string(r.left.edges_over_two_faces) +
-                         " edge(s) in more than two faces, " + std::to_string(r.left.edges_same_direction) +
-                         " edge(s) with disagreeing orientation, " + std::to_string(r.left.pinched_vertices) +
-                         " pinched vertex(es)");
+    throw makeError(name, ": cannot be made manifold: ", r.left.edges_over_two_faces,
+                    " edge(s) in more than two faces, ", r.left.edges_same_direction,
+                    " edge(s) with disagreeing orientation, ", r.left.pinched_vertices,
+                    " pinched vertex(es) remain after repair");
   }
   r.output_vertices = out.positions.size();
   r.output_faces = out.triangles.size();

@@ -159,6 +159,28 @@ TEST(Repair, SingleTriangleAndHugeCoordinatesSurvive) {
   EXPECT_EQ(m.uvs, s.uvs);
 }
 
+// The outside test's monkey head kept one non-manifold edge: a quad whose triangulating
+// diagonal joins two vertices that other faces already join. Here a quad (a, b, c, d) is
+// closed by two triangles over its halves (a, d, c) and (c, b, a): a closed manifold
+// polygon mesh, until the quad is cut along its short diagonal a-c, which then lies in
+// four triangles. Repair must split it and end manifold, keeping every triangle.
+TEST(Repair, ADiagonalOnAnExistingEdgeIsSplitNotHandedOn) {
+  PolygonSoup s;
+  s.positions = {{-1, 0, 0}, {0, -3, 0.5}, {1, 0, 0}, {0, 3, 0.5}};
+  s.faces = {{0, 1, 2, 3}, {0, 3, 2}, {2, 1, 0}};
+  RepairReport r;
+  RepairOptions keepAll;
+  keepAll.components = ComponentPolicy::KeepAll;
+  keepAll.fill_holes = false;
+  const Mesh m = repairMesh(s, keepAll, &r, "pillow");
+  EXPECT_EQ(r.faces_triangulated, 1u);
+  EXPECT_GE(r.non_manifold_edges_split, 1u) << r.summary();
+  EXPECT_FALSE(r.left.any()) << r.summary();
+  EXPECT_FALSE(manifoldProblems(m).any()) << "the oracle on the triangles handed back";
+  EXPECT_EQ(m.triangles.size(), 4u) << "nothing removed";
+  test::expectCleanMesh(m, "pillow");
+}
+
 }  // namespace
 }  // namespace shanshui::mesh
 

@@ -28,6 +28,8 @@ struct RepairReport {
   std::size_t duplicate_faces_removed = 0;
   std::size_t isolated_vertices_removed = 0;
   std::size_t non_manifold_vertices_split = 0;
+  //! Vertex pairs still in more than two triangles after triangulation, split at the end.
+  std::size_t non_manifold_edges_split = 0;
   bool orientation_fixed = false;            //!< some faces were flipped to agree
   std::size_t faces_triangulated = 0;        //!< polygons with more than three sides
   std::size_t degenerate_faces_removed = 0;  //!< zero-area triangles
@@ -40,7 +42,7 @@ struct RepairReport {
   //! UV seams (coincident vertices with different UVs) merged by the clean-up and split
   //! again so that the UVs follow every corner; normals are then recomputed.
   std::size_t uv_seam_vertices_split = 0;
-  ManifoldProblems left;  //!< what the final check still finds (warned)
+  ManifoldProblems left;  //!< what the final check finds: always none (repair refuses otherwise)
   std::size_t output_vertices = 0;
   std::size_t output_faces = 0;
   std::vector<std::string> warnings;
