@@ -1,7 +1,12 @@
 // Batch use (issue 8): every asset tool and the headless renderer take --manifest; one
 // failing item is reported by line with its error, writes nothing, and the others finish.
-#include <fstream>
+#include <sys/stat.h>
 
+#include <cmath>
+#include <fstream>
+#include <limits>
+
+#include "json_text.h"
 #include "shanshui/image/image_io.h"
 #include "shanshui/mesh/mesh_io.h"
 #include "test_support.h"
@@ -98,6 +103,33 @@ TEST(Batch, SharedArgumentsStdinAndSyntaxErrors) {
     EXPECT_NE(r.output.find(m), std::string::npos) << r.output;
     EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
   }
+}
+
+// The manifest passes the input gate: a FIFO, a link to /dev/zero or /dev/zero on stdin is
+// one line naming it, at once, instead of a hang or a gigabyte read.
+TEST(Batch, AManifestThatCouldNeverEndIsRefusedByName) {
+  const test::TempDir dir;
+  ASSERT_EQ(::mkfifo((dir / "fifo.txt").c_str(), 0600), 0);
+  fs::create_symlink("/dev/zero", dir / "zero.txt");
+  for (const char* m : {"fifo.txt", "zero.txt"}) {
+    const auto r = run("cd " + quote(dir.path()) + " && timeout 20 " + bin("shanshui-enhance") + " --manifest " + m);
+    EXPECT_EQ(r.exit_code, 1) << m << ": " << r.output;
+    EXPECT_NE(r.output.find(std::string(m) + ": not a regular file"), std::string::npos) << r.output;
+  }
+  const auto r = run("timeout 20 " + bin("shanshui-enhance") + " --manifest - < /dev/zero");
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_NE(r.output.find("stdin: more than"), std::string::npos) << r.output;
+}
+
+// Every report goes through jsonText: a NaN or an infinity (which JSON writes as null) is an
+// error naming the report and the value's key, before anything is written.
+TEST(Reports, ANonFiniteValueIsRefusedByItsKey) {
+  nlohmann::json j = {{"faces", 12}, {"stats", {{"ink", 0.5}, {"per_frame", {1.0, std::nan("")}}}}};
+  test::expectErrorNaming([&] { tools::jsonText(j, "r.json"); }, "r.json", "/stats/per_frame/1");
+  j["stats"]["per_frame"][1] = -std::numeric_limits<double>::infinity();
+  test::expectErrorNaming([&] { tools::jsonText(j, "r.json"); }, "r.json", "not finite (-inf)");
+  j["stats"]["per_frame"][1] = 2.0;
+  EXPECT_EQ(nlohmann::json::parse(tools::jsonText(j, "r.json")), j);
 }
 
 }  // namespace

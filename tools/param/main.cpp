@@ -207,7 +207,7 @@ int main(int argc, char** argv) {
       j["uv_scale"] = texel->count() > 0 ? nlohmann::json{{"texel_size", texelSize}} : nlohmann::json("normalized");
       for (const auto& [name, value] : repair.counters()) j["repair"][name] = value;
       j["repair_warnings"] = repair.warnings;
-      outputs.stage(reportPath, tools::jsonText(j));
+      outputs.stage(reportPath, tools::jsonText(j, reportPath));
     }
     if (!checkerPath.empty()) {
       const auto context = render::GlContext::create({});

@@ -134,7 +134,7 @@ int main(int argc, char** argv) {
     if (!reportPath.empty()) {
       const texsynth::QuiltMetrics m = texsynth::measureQuilt(sample, result, options.block);
       const nlohmann::json j = reportJson(input, output, options, result.stats, m);
-      outputs.stage(reportPath, tools::jsonText(j));
+      outputs.stage(reportPath, tools::jsonText(j, reportPath));
     }
     outputs.commit();
     const texsynth::QuiltStats& s = result.stats;

@@ -56,7 +56,7 @@ int main(int argc, char** argv) {
       for (const auto& [name, value] : report.counters()) j["changes"][name] = value;
       j["attributes_dropped"] = report.attributes_dropped;
       j["warnings"] = report.warnings;
-      outputs.stage(reportPath, tools::jsonText(j));
+      outputs.stage(reportPath, tools::jsonText(j, reportPath));
     }
     outputs.commit();
     for (const auto& n : soup.notes) std::fprintf(stderr, "note: %s\n", n.c_str());
