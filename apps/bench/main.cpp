@@ -10,12 +10,13 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
+#include <sstream>
 #include <string>
 #include <vector>
 
 #include "plot.h"
 #include "shanshui/core/atomic_output.h"
+#include "shanshui/core/input.h"
 #include "subprocess.h"
 #include "tool_main.h"
 
@@ -100,8 +101,7 @@ std::string slug(const std::string& s) {
 
 //! The plots of one points file, in order of first appearance.
 std::vector<bench::Plot> readPoints(const fs::path& csv) {
-  std::ifstream in(csv);
-  if (!in) throw makeError(csv.string(), ": cannot read");
+  std::istringstream in(readInputFile(csv, "a bench points table (CSV)", kMaxTextInputBytes));
   std::string line;
   std::getline(in, line);
   if (line != "plot,y_label,series,joined,ms,error")

@@ -7,13 +7,13 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <functional>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
 
 #include "shanshui/core/atomic_output.h"
+#include "shanshui/core/input.h"
 #include "subprocess.h"
 #include "tool_main.h"
 
@@ -22,10 +22,10 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
+// Every file the demo reads itself (samples to hash, caches, reports of its stages) passes
+// the input gate: a FIFO or a link to /dev/zero among the samples is refused by name.
 std::string readFile(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  if (!in) throw shanshui::makeError(p.string(), ": cannot read");
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  return shanshui::readInputFile(p, "a file the demo reads", shanshui::kMaxMediaInputBytes);
 }
 
 // FNV-1a, 64 bits: enough to notice a changed input (not meant against tampering).

@@ -71,6 +71,11 @@ std::filesystem::path framePath(const std::string& pattern, int index, int count
 scene::Scene loadSized(const std::string& input, std::vector<std::string> sets, const std::string& size) {
   if (size.size()) {
     const Size2 s = parseSize(size, "--size");
+    // The scene's output.width and output.height range, said of the option that gave it.
+    constexpr int kMaxSide = 16384;
+    if (s.width > kMaxSide || s.height > kMaxSide) {
+      throw makeError("--size: '", size, "' is out of range; expected each side in [1, ", kMaxSide, "]");
+    }
     sets.push_back("output.width=" + std::to_string(s.width));
     sets.push_back("output.height=" + std::to_string(s.height));
   }
@@ -140,7 +145,7 @@ void runBenchmark(const std::string& input, std::vector<std::string> sets, const
   }
   std::printf("  %-18s wall median %7.3f ms  p90 %8.3f ms (%.0f fps)\n", "frame", quantile(frame_ms, 0.5),
               quantile(frame_ms, 0.9), 1000.0 / std::max(quantile(frame_ms, 0.5), 1e-9));
-  if (!stats_path.empty()) outputs.stage(stats_path, tools::jsonText(out));
+  if (!stats_path.empty()) outputs.stage(stats_path, tools::jsonText(out, stats_path));
   outputs.commit();
 }
 
@@ -192,7 +197,7 @@ int main(int argc, char** argv) {
       return;
     }
     if (!describe_into.empty()) {
-      const std::string doc = readFileBounded(describe_into, 16u << 20);
+      const std::string doc = readInputFile(describe_into, "a Markdown page", kMaxTextInputBytes);
       const std::string updated = scene::spliceDescription(doc, describe_into);
       if (updated != doc) writeFileAtomically(describe_into, updated);
       std::fprintf(stderr, "%s: %s\n", describe_into.c_str(), updated == doc ? "up to date" : "tables rewritten");
@@ -271,7 +276,7 @@ int main(int argc, char** argv) {
       std::printf("%s\n", path.string().c_str());
     }
     if (frames > 1) std::fprintf(stderr, "\n");
-    if (!stats_path.empty()) outputs.stage(stats_path, tools::jsonText(stats));
+    if (!stats_path.empty()) outputs.stage(stats_path, tools::jsonText(stats, stats_path));
     outputs.commit();
   });
 }

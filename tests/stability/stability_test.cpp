@@ -559,7 +559,7 @@ TEST(Stability, BatchManifestsOnStiffInput) {
   };
   record("no items (comments only)", "empty.txt", "# nothing\n\n   \n", 1, "empty.txt: the manifest has no items");
   std::filesystem::create_directories(dir / "a_dir.txt");
-  record("the manifest is a directory", "a_dir.txt", "", 1, "a_dir.txt: --manifest names a directory");
+  record("the manifest is a directory", "a_dir.txt", "", 1, "a_dir.txt: is a directory, expected a --manifest");
   record("binary junk (NUL bytes)", "junk.txt", std::string("ramp.png -o j.png\n\0\x01\xff\n", 21), 1,
          "batch of 2: 1 done, 1 failed");
   record("CRLF line endings", "crlf.txt", "ramp.png -o c1.png\r\nramp.png -o c2.png\r\n", 0,

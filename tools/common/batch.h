@@ -11,15 +11,16 @@
 
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <optional>
+#include <sstream>
 #include <string>
 #include <vector>
 
 #include <CLI/CLI.hpp>
 
 #include "shanshui/core/error.h"
+#include "shanshui/core/input.h"
 #include "subprocess.h"
 
 namespace shanshui::tools {
@@ -85,14 +86,11 @@ inline std::vector<std::string> splitManifestLine(const std::string& line, std::
 
 //! The items of a manifest ('-' reads stdin); blank and comment-only lines are skipped.
 inline std::vector<ManifestItem> readManifest(const std::string& path) {
-  std::ifstream file;
-  if (path != "-") {
-    if (std::filesystem::is_directory(path))
-      throw makeError(path, ": --manifest names a directory, expected a text file");
-    file.open(path);
-    if (!file) throw makeError(path, ": cannot read the manifest");
-  }
-  std::istream& in = path == "-" ? std::cin : file;
+  // Through the input gate: a FIFO, a device or a directory is refused, and standard input
+  // is bounded while it is read.
+  const std::string text = path == "-" ? readInputStream(stdin, "stdin", "a --manifest", kMaxTextInputBytes)
+                                       : readInputFile(path, "a --manifest (a text file)", kMaxTextInputBytes);
+  std::istringstream in(text);
   std::vector<ManifestItem> items;
   std::string line;
   for (int n = 1; std::getline(in, line); ++n) {

@@ -4,6 +4,7 @@
 
 #include <charconv>
 #include <cstdio>
+#include <cstdlib>
 #include <exception>
 #include <functional>
 #include <string>
@@ -13,6 +14,7 @@
 #include "batch.h"
 #include "shanshui/core/atomic_output.h"
 #include "shanshui/core/error.h"
+#include "shanshui/core/input.h"
 
 namespace shanshui::tools {
 
@@ -48,20 +50,32 @@ inline CLI::Validator integerIn(long long min, unsigned long long max = ~0ULL) {
 //! for usage errors, 0 for --help). Every error is one line on stderr.
 inline int runTool(CLI::App& app, int argc, char** argv, const std::function<void()>& body) {
   installTempFileCleanup();
+  std::string max_memory;
+  app.add_option("--max-memory", max_memory,
+                 "the most memory one input may take once decoded, from its header before anything is read (bytes, "
+                 "or K, M, G; default: half this machine's memory, less under ulimit -v; also SHANSHUI_MAX_MEMORY)")
+      ->option_text("SIZE");
   try {
     app.parse(argc, argv);
+    if (!max_memory.empty()) {
+      setMemoryBudget(parseByteSize(max_memory, "--max-memory"));
+      ::setenv("SHANSHUI_MAX_MEMORY", max_memory.c_str(), 1);  // for the programs this one runs
+    }
   } catch (const CLI::ParseError& e) {
     if (e.get_exit_code() == 0) return app.exit(e);  // --help
     // A usage error is one line too, like every other error.
     std::fprintf(stderr, "%s: error: %s (see --help)\n", app.get_name().c_str(), e.what());
     return e.get_exit_code();
+  } catch (const Error& e) {
+    std::fprintf(stderr, "%s: error: %s\n", app.get_name().c_str(), e.what());
+    return 2;
   }
   try {
     body();
     return 0;
   } catch (const std::bad_alloc&) {
-    std::fprintf(stderr, "%s: error: out of memory: the input or the requested size is too large for this machine\n",
-                 app.get_name().c_str());
+    std::fprintf(stderr, "%s: error: out of memory%s: the input or the requested size is too large (--max-memory)\n",
+                 app.get_name().c_str(), addressSpaceLimitNote().c_str());
     return 1;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "%s: error: %s\n", app.get_name().c_str(), e.what());

@@ -1,6 +1,8 @@
 #include "shanshui/core/atomic_output.h"
 
 #include <fcntl.h>
+#include <sys/file.h>
+#include <sys/resource.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -8,10 +10,12 @@
 #include <atomic>
 #include <cctype>
 #include <csignal>
+#include <cstdio>
 #include <cstring>
 #include <map>
 #include <mutex>
 #include <system_error>
+#include <vector>
 
 #include "shanshui/core/error.h"
 
@@ -218,6 +222,45 @@ void installTempFileCleanup() {
   });
 }
 
+namespace {
+char g_crash_message[512];
+
+extern "C" void reportCrashUnderLimit(int) {
+  for (TempNode* n = g_temps.load(std::memory_order_acquire); n; n = n->next) {
+    if (n->live.load(std::memory_order_acquire)) ::unlink(n->path);
+  }
+  const ssize_t ignored = ::write(2, g_crash_message, std::strlen(g_crash_message));
+  (void)ignored;
+  ::_exit(1);
+}
+}  // namespace
+
+void guardCrashesUnderMemoryLimit(std::string_view component) {
+  rlimit lim{};
+  if (::getrlimit(RLIMIT_AS, &lim) != 0 || lim.rlim_cur == RLIM_INFINITY) return;
+  static std::once_flag once;
+  std::call_once(once, [&] {
+    std::snprintf(g_crash_message, sizeof g_crash_message,
+                  "%s: error: %.*s crashed under an address-space limit of %llu MiB (ulimit -v): it ran out of memory "
+                  "without saying so; raise the limit\n",
+                  program_invocation_short_name, static_cast<int>(component.size()), component.data(),
+                  static_cast<unsigned long long>(lim.rlim_cur >> 20));
+    // Its own stack: a crash may come from a stack that cannot grow.
+    static std::vector<char> stack(std::max<std::size_t>(SIGSTKSZ, 64 * 1024));
+    stack_t ss{};
+    ss.ss_sp = stack.data();
+    ss.ss_size = stack.size();
+    ::sigaltstack(&ss, nullptr);
+    for (int sig : {SIGSEGV, SIGBUS, SIGABRT}) {  // LLVM (llvmpipe) aborts on a failed mmap
+      struct sigaction sa {};
+      sa.sa_handler = reportCrashUnderLimit;
+      sa.sa_flags = SA_ONSTACK;
+      sigemptyset(&sa.sa_mask);
+      ::sigaction(sig, &sa, nullptr);
+    }
+  });
+}
+
 void checkOutputPath(const fs::path& target) {
   if (target.empty()) throw makeError("output: empty file name");
   const fs::path dir = directoryOf(target);
@@ -246,45 +289,6 @@ void checkOutputPath(const fs::path& target) {
   if (target.filename().string().size() > 200) {
     throw makeError(target.string().substr(0, 60), "...: file name longer than 200 bytes");
   }
-}
-
-void checkInputFile(const fs::path& path, std::string_view what) {
-  std::error_code ec;
-  const fs::file_status s = fs::status(path, ec);
-  if (!fs::exists(s)) throw makeError(path.string(), ": no such file");
-  if (fs::is_directory(s)) throw makeError(path.string(), ": is a directory, expected ", what);
-  if (!fs::is_regular_file(s)) {
-    throw makeError(path.string(), ": not a regular file (a device, FIFO or socket); expected ", what);
-  }
-  if (fs::file_size(path, ec) == 0) throw makeError(path.string(), ": empty file");
-  if (::access(path.c_str(), R_OK) != 0) throw makeError(path.string(), ": cannot read: ", reason(errno));
-}
-
-std::string readFileBounded(const fs::path& path, std::uintmax_t max_bytes) {
-  checkInputFile(path, "a file");
-  std::error_code ec;
-  const std::uintmax_t size = fs::file_size(path, ec);
-  if (size > max_bytes) {
-    throw makeError(path.string(), ": ", size, " bytes; larger than the limit of ", max_bytes, " bytes");
-  }
-  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-  if (fd < 0) throw makeError(path.string(), ": cannot read: ", reason(errno));
-  std::string data(size, '\0');
-  std::size_t done = 0;
-  while (done < size) {
-    const ssize_t n = ::read(fd, data.data() + done, size - done);
-    if (n < 0 && errno == EINTR) continue;
-    if (n < 0) {
-      const int err = errno;
-      ::close(fd);
-      throw makeError(path.string(), ": cannot read: ", reason(err));
-    }
-    if (n == 0) break;
-    done += static_cast<std::size_t>(n);
-  }
-  ::close(fd);
-  data.resize(done);
-  return data;
 }
 
 void writeFileAtomically(const fs::path& target, std::string_view bytes) {
@@ -386,10 +390,46 @@ void OutputSet::stage(const fs::path& target, std::string_view bytes) {
   e.slot = registerTemp(e.staged);  // still removed on a signal until committed
 }
 
+namespace {
+
+// Exclusive flock()s on the directories of a set of outputs, released when it goes.
+class DirectoryLocks {
+ public:
+  template <typename Entries>
+  explicit DirectoryLocks(const Entries& entries) {
+    std::vector<std::string> dirs;
+    for (const auto& e : entries) dirs.push_back(comparable(directoryOf(e.target)).string());
+    std::sort(dirs.begin(), dirs.end());
+    dirs.erase(std::unique(dirs.begin(), dirs.end()), dirs.end());
+    for (const std::string& d : dirs) {
+      const int fd = ::open(d.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+      if (fd < 0) continue;  // the rename reports what is wrong with it
+      while (::flock(fd, LOCK_EX) != 0 && errno == EINTR) {
+      }
+      fds_.push_back(fd);
+    }
+  }
+  ~DirectoryLocks() {
+    for (int fd : fds_) ::close(fd);
+  }
+  DirectoryLocks(const DirectoryLocks&) = delete;
+  DirectoryLocks& operator=(const DirectoryLocks&) = delete;
+
+ private:
+  std::vector<int> fds_;
+};
+
+}  // namespace
+
 void OutputSet::commit() {
   for (const Entry& e : entries_) {
     if (e.staged.empty()) throw makeError(e.target.string(), ": internal error: output was not written");
   }
+  // Two runs committing into the same place must not interleave their renames (a sequence
+  // of frames half from one run, half from the other): the commit holds an exclusive lock
+  // on every directory it writes into, taken in one sorted order so that two runs cannot
+  // deadlock, and a second run waits for the first run's commit to end.
+  const DirectoryLocks locks(entries_);
   for (Entry& e : entries_) {
     renameOver(e.staged, e.target);
     e.staged.clear();

@@ -1,15 +1,20 @@
+#include <fcntl.h>
+#include <sys/file.h>
 #include <sys/resource.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <atomic>
+#include <chrono>
 #include <csignal>
 #include <fstream>
 #include <set>
+#include <thread>
 
 #include "shanshui/core/atomic_output.h"
 #include "shanshui/core/error.h"
+#include "shanshui/core/input.h"
 #include "shanshui/core/parallel_for.h"
 #include "shanshui/core/parse.h"
 #include "shanshui/core/random.h"
@@ -184,15 +189,89 @@ TEST(AtomicOutput, TemporariesOfDeadProcessesAreSweptOthersKept) {
   EXPECT_EQ(slurp(target), "new");
 }
 
+// Two runs writing the same outputs must not leave a mix: a commit holds a lock on its
+// directories, so while another process holds it the commit waits with everything staged.
+TEST(AtomicOutput, ACommitWaitsWhileAnotherRunCommitsIntoTheSameDirectory) {
+  test::TempDir dir;
+  const int lock = ::open(dir.path().c_str(), O_RDONLY | O_DIRECTORY);
+  ASSERT_GE(lock, 0);
+  ASSERT_EQ(::flock(lock, LOCK_EX), 0);
+  const pid_t child = ::fork();
+  if (child == 0) {
+    OutputSet out;
+    out.declare(dir / "a.txt", "-o");
+    out.declare(dir / "b.txt", "--report");
+    out.stage(dir / "a.txt", "A");
+    out.stage(dir / "b.txt", "B");
+    out.commit();
+    ::_exit(0);
+  }
+  auto staged = [&] {
+    int n = 0;
+    for (const auto& e : std::filesystem::directory_iterator(dir.path())) n += e.path().filename().string()[0] == '.';
+    return n;
+  };
+  for (int i = 0; i < 500 && staged() < 2; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  EXPECT_EQ(staged(), 2) << "the child staged both outputs";
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  EXPECT_FALSE(std::filesystem::exists(dir / "a.txt")) << "committed while another run held the directory";
+  EXPECT_FALSE(std::filesystem::exists(dir / "b.txt"));
+  ::flock(lock, LOCK_UN);
+  ::close(lock);
+  int status = 0;
+  ASSERT_EQ(::waitpid(child, &status, 0), child);
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0);
+  EXPECT_EQ(slurp(dir / "a.txt"), "A");
+  EXPECT_EQ(slurp(dir / "b.txt"), "B");
+  EXPECT_EQ(staged(), 0);
+}
+
 TEST(AtomicOutput, NonRegularInputsAreRefusedWithoutReading) {
   test::TempDir dir;
   std::filesystem::create_symlink("/dev/zero", dir / "zero.png");
   ASSERT_EQ(::mkfifo((dir / "fifo.obj").c_str(), 0600), 0);
   test::expectErrorNaming([&] { checkInputFile(dir / "zero.png", "an image"); }, "zero.png", "not a regular file");
   test::expectErrorNaming([&] { checkInputFile(dir / "fifo.obj", "a mesh"); }, "fifo.obj", "not a regular file");
-  test::expectErrorNaming([&] { readFileBounded(dir / "fifo.obj", 10); }, "fifo.obj", "not a regular file");
+  test::expectErrorNaming([&] { readInputFile(dir / "fifo.obj", "a mesh", 10); }, "fifo.obj", "not a regular file");
   std::ofstream(dir / "big.json") << std::string(100, ' ');
-  test::expectErrorNaming([&] { readFileBounded(dir / "big.json", 10); }, "big.json", "larger than the limit");
+  test::expectErrorNaming([&] { readInputFile(dir / "big.json", "a scene", 10); }, "big.json", "larger than the limit");
+}
+
+TEST(InputGate, StandardInputIsBoundedWhileItIsRead) {
+  std::FILE* zero = std::fopen("/dev/zero", "rb");
+  ASSERT_NE(zero, nullptr);
+  test::expectErrorNaming([&] { readInputStream(zero, "stdin", "a --manifest", 1 << 20); }, "stdin",
+                          "larger than the limit");
+  std::fclose(zero);
+  std::FILE* text = std::tmpfile();
+  std::fputs("a b\n", text);
+  std::rewind(text);
+  EXPECT_EQ(readInputStream(text, "stdin", "a --manifest", 1 << 20), "a b\n");
+  std::fclose(text);
+}
+
+TEST(InputGate, DirectoriesAndEmptyFilesAreRefusedByName) {
+  test::TempDir dir;
+  std::filesystem::create_directory(dir / "scene.json");
+  std::ofstream(dir / "empty.obj").flush();
+  test::expectErrorNaming([&] { readInputFile(dir / "scene.json", "a scene", 100); }, "scene.json", "is a directory");
+  test::expectErrorNaming([&] { checkInputFile(dir / "empty.obj", "a mesh"); }, "empty.obj", "empty file");
+  test::expectErrorNaming([&] { checkInputFile(dir / "gone.obj", "a mesh"); }, "gone.obj", "no such file");
+}
+
+TEST(MemoryBudget, SizesParseAndANeedAboveTheBudgetIsRefused) {
+  EXPECT_EQ(parseByteSize("512M", "--max-memory"), std::uintmax_t{512} << 20);
+  EXPECT_EQ(parseByteSize("2g", "--max-memory"), std::uintmax_t{2} << 30);
+  EXPECT_EQ(parseByteSize("4096", "--max-memory"), 4096u);
+  for (const char* bad : {"", "0", "-1", "12Q", "1.5G", "G", "99999999999999999999"}) {
+    test::expectErrorNaming([&] { parseByteSize(bad, "--max-memory"); }, "--max-memory", "not a memory size");
+  }
+  setMemoryBudget(1 << 20);
+  EXPECT_NO_THROW(checkMemoryNeed("dem.tif", "the grid", 1 << 20));
+  test::expectErrorNaming([&] { checkMemoryNeed("dem.tif", "the grid", (1 << 20) + 1); }, "dem.tif",
+                          "more than the memory budget of 1.0 MiB");
+  setMemoryBudget(0);
+  EXPECT_GT(memoryBudget(), std::uintmax_t{1} << 20) << "the default: half this machine's memory";
 }
 
 TEST(Parse, SizeAcceptsWxHAndRejectsEverythingElse) {

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "shanshui/core/error.h"
+#include "shanshui/core/input.h"
 #include "shanshui/image/image_io.h"
 
 namespace shanshui::image::detail {
@@ -21,12 +22,39 @@ struct Decoded {
   ImageInfo info;
 };
 
-//! Refuses width x height above kMaxImagePixels before anything is allocated, so a
-//! 100000 x 100000 header with a tiny body is an error naming the file, not bad_alloc.
-inline void checkPixelBudget(const std::string& name, long long width, long long height) {
+//! What decoding an image takes: its float pixels and `buffer_bytes` the decoder holds beside.
+inline std::uintmax_t decodedBytes(long long width, long long height, int channels, std::uintmax_t buffer_bytes) {
+  return static_cast<std::uintmax_t>(width) * static_cast<std::uintmax_t>(height) * channels * sizeof(float) +
+         buffer_bytes;
+}
+
+//! Refuses an image before anything is allocated: width x height above kMaxImagePixels, or
+//! decodedBytes() over `budget` (memoryBudget() in the programs; the OpenImageIO module gets it
+//! as an argument), so a 100000 x 100000 header with a tiny body is an error naming the
+//! file, not bad_alloc.
+inline void checkPixelBudget(const std::string& name, long long width, long long height, int channels,
+                             std::uintmax_t buffer_bytes, std::uintmax_t budget) {
   if (width * height > kMaxImagePixels) {
     throw makeError(name, ": ", width, "x", height, " pixels is more than the limit of ", kMaxImagePixels,
                     " (16384 x 16384)");
+  }
+  const std::uintmax_t need = decodedBytes(width, height, channels, buffer_bytes);
+  if (need > budget) {
+    throw makeError(name, ": decoding this image (", width, "x", height, ", ", channels, " channels) needs ",
+                    byteCount(need), ", more than the memory budget of ", byteCount(budget),
+                    " (--max-memory or SHANSHUI_MAX_MEMORY sets it)");
+  }
+}
+
+//! Refuses a file too short to hold the `raw_bytes` its header promises even at the
+//! format's best compression ratio (`max_ratio` bytes out per byte in): it must be cut
+//! short or corrupt, and saying so now saves allocating and inflating what is not there.
+inline void checkBodyCanHold(const std::string& name, std::uintmax_t file_bytes, std::uintmax_t raw_bytes,
+                             std::uintmax_t max_ratio, const char* format) {
+  if (file_bytes * max_ratio < raw_bytes) {
+    throw makeError(name, ": truncated or corrupt ", format, ": its header promises ", raw_bytes,
+                    " bytes of pixels, more than its ", file_bytes, " bytes can hold at ", max_ratio,
+                    " to 1 compression");
   }
 }
 
@@ -53,10 +81,10 @@ inline unsigned sampleCode(float v, unsigned max_code) {
 //! a message (empty on success), so no exception crosses the module boundary.
 struct OiioCodec {
   int abi_version;
-  std::string (*load)(const std::string& path, Decoded* out);
+  std::string (*load)(const std::string& path, std::uintmax_t memory_budget, Decoded* out);
   std::string (*encode)(const Image& img, const std::string& path, PixelDepth depth, bool smallest, std::string* bytes);
 };
-constexpr int kOiioCodecAbi = 1;
+constexpr int kOiioCodecAbi = 2;
 
 //! The module, loaded on first use; throws Error naming `name` and what it was for when
 //! the module cannot be found or loaded.

@@ -10,6 +10,7 @@
 #include "codecs.h"
 #include "shanshui/core/atomic_output.h"
 #include "shanshui/core/error.h"
+#include "shanshui/core/input.h"
 #include "shanshui/core/module.h"
 
 namespace shanshui::image {
@@ -173,7 +174,7 @@ Image loadImage(const fs::path& path, ImageInfo* info) {
       decoded = detail::readBinaryPnm(path);
       break;
     case Codec::Module: {
-      const std::string error = detail::oiioCodec(name, "reading this format").load(name, &decoded);
+      const std::string error = detail::oiioCodec(name, "reading this format").load(name, memoryBudget(), &decoded);
       if (!error.empty()) throw Error(error);
       // Integer codes decode to finite values; float formats (EXR, TIFF, HDR) may not.
       for (float v : decoded.image.pixels) {

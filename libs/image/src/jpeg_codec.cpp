@@ -138,11 +138,12 @@ Decoded readJpeg(const std::filesystem::path& path) {
     return makeError(name, ": cannot read JPEG ", stage, " (truncated or corrupt?): ", d.errors.message.data());
   };
   if (!readHeader(d)) throw fail("header");
-  checkPixelBudget(name, d.cinfo.image_width, d.cinfo.image_height);
+  checkPixelBudget(name, d.cinfo.image_width, d.cinfo.image_height, d.cinfo.num_components == 1 ? 1 : 3, 0,
+                   memoryBudget());
   const int components = d.cinfo.num_components;
   if (d.cinfo.jpeg_color_space == JCS_CMYK || d.cinfo.jpeg_color_space == JCS_YCCK) {
     Decoded out;  // libjpeg cannot convert CMYK to RGB; OpenImageIO can
-    const std::string error = oiioCodec(name, "reading a CMYK JPEG").load(name, &out);
+    const std::string error = oiioCodec(name, "reading a CMYK JPEG").load(name, memoryBudget(), &out);
     if (!error.empty()) throw Error(error);
     return out;
   }

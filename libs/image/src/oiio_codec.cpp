@@ -99,7 +99,7 @@ class QuietStderr {
   int saved_ = -1;
 };
 
-void load(const std::string& name, Decoded* out) {
+void load(const std::string& name, std::uintmax_t memory_budget, Decoded* out) {
   const QuietStderr quiet;
   // Keep straight alpha as stored (TIFF, GIF) instead of premultiplying on read.
   OIIO::ImageSpec config;
@@ -112,7 +112,7 @@ void load(const std::string& name, Decoded* out) {
   }
   if (spec.deep) throw makeError(name, ": deep images are not supported");
   if (spec.nchannels > 4) throw makeError(name, ": ", spec.nchannels, " channels; expected 1 to 4");
-  checkPixelBudget(name, spec.width, spec.height);
+  checkPixelBudget(name, spec.width, spec.height, spec.nchannels, 0, memory_budget);
   const int channels = spec.nchannels;
   Image& img = out->image;
   img.width = spec.width;
@@ -206,8 +206,8 @@ std::string guarded(const std::string& name, Work&& work) {
   }
 }
 
-std::string loadEntry(const std::string& path, Decoded* out) {
-  return guarded(path, [&] { load(path, out); });
+std::string loadEntry(const std::string& path, std::uintmax_t memory_budget, Decoded* out) {
+  return guarded(path, [&] { load(path, memory_budget, out); });
 }
 
 std::string encodeEntry(const Image& img, const std::string& path, PixelDepth depth, bool smallest,

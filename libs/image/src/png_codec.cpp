@@ -354,7 +354,17 @@ Decoded readPng(const std::filesystem::path& path) {
   if (!startRead(h.png, h.info, h.file)) throw fail("header");
   const long long width = png_get_image_width(h.png, h.info);
   const long long height = png_get_image_height(h.png, h.info);
-  checkPixelBudget(name, width, height);
+  if (width * height > kMaxImagePixels) checkPixelBudget(name, width, height, 1, 0, memoryBudget());
+  // Deflate packs at most 1032 bytes into one: a header promising more than the file can
+  // hold (a 74-byte file claiming 16384 x 16384 RGBA) is refused before anything is inflated.
+  {
+    const std::uintmax_t raw_row =
+        (static_cast<std::uintmax_t>(width) * png_get_channels(h.png, h.info) * png_get_bit_depth(h.png, h.info) + 7) /
+            8 +
+        1;
+    std::error_code ec;
+    checkBodyCanHold(name, std::filesystem::file_size(path, ec), raw_row * height, 1032, "PNG");
+  }
   int passes = 1;
   if (!configureRead(h.png, h.info, &passes)) throw fail("header");
   const int bits = png_get_bit_depth(h.png, h.info);
@@ -362,6 +372,8 @@ Decoded readPng(const std::filesystem::path& path) {
   if ((bits != 8 && bits != 16) || channels < 1 || channels > 4) {
     throw makeError(name, ": unsupported PNG layout (", bits, "-bit, ", channels, " channels)");
   }
+  const std::size_t interlaced_buffer = passes == 1 ? 0 : png_get_rowbytes(h.png, h.info) * height;
+  checkPixelBudget(name, width, height, channels, interlaced_buffer, memoryBudget());
 
   Decoded out;
   out.image = Image(static_cast<int>(width), static_cast<int>(height), channels);

@@ -31,10 +31,20 @@ Decoded readBinaryPnm(const std::filesystem::path& path) {
   if (maxval < 1 || maxval > 65535) {
     throw makeError(name, ": PNM maximum value ", maxval, " is outside 1..65535");
   }
-  checkPixelBudget(name, width, height);
   in.get();  // the single blank after maxval
   const int channels = magic == "P5" ? 1 : 3;
   const int bytes_per_sample = maxval > 255 ? 2 : 1;
+  if (width * height > kMaxImagePixels) checkPixelBudget(name, width, height, channels, 0, memoryBudget());
+  {
+    // Uncompressed: the body must hold every sample.
+    std::error_code ec;
+    const auto size = std::filesystem::file_size(path, ec);
+    const auto header = static_cast<std::uintmax_t>(in.tellg());
+    checkBodyCanHold(name, size > header ? size - header : 0,
+                     static_cast<std::uintmax_t>(width) * height * channels * bytes_per_sample, 1, "PNM");
+  }
+  checkPixelBudget(name, width, height, channels,
+                   static_cast<std::uintmax_t>(width) * height * channels * bytes_per_sample, memoryBudget());
   out.image = Image(static_cast<int>(width), static_cast<int>(height), channels);
   const std::size_t n = out.image.pixels.size();
   std::vector<unsigned char> raw(n * bytes_per_sample);

@@ -5,6 +5,7 @@
 #include <OpenImageIO/imagebufalgo.h>
 
 #include "shanshui/core/error.h"
+#include "shanshui/core/input.h"
 #include "shanshui/image/convert.h"
 #include "shanshui/image/image_io.h"
 #include "shanshui/image/opencv_interop.h"
@@ -231,6 +232,54 @@ TEST(ImageIo, ACutTiffIsRefusedNotReadAsBlackRows) {
   EXPECT_EQ(img.width, 40);
   EXPECT_NEAR(img.at(3, 0, 0), (3 * 7 % 256) / 255.0f, 1e-6f) << "the hand-made TIFF reads as written";
   test::expectErrorNaming([&] { loadImage(dir / "cut.tif"); }, "cut.tif", "truncated or corrupt");
+}
+
+// A PNG chunk: length, type, data and the CRC-32 libpng checks on every critical chunk.
+std::string pngChunk(const std::string& type, const std::string& data) {
+  auto be32 = [](std::uint32_t v) {
+    return std::string{static_cast<char>(v >> 24), static_cast<char>(v >> 16), static_cast<char>(v >> 8),
+                       static_cast<char>(v)};
+  };
+  std::uint32_t crc = 0xffffffffu;
+  for (unsigned char c : type + data) {
+    crc ^= c;
+    for (int k = 0; k < 8; ++k) crc = (crc >> 1) ^ (0xedb88320u & (0u - (crc & 1u)));
+  }
+  return be32(static_cast<std::uint32_t>(data.size())) + type + data + be32(~crc);
+}
+
+TEST(ImageIo, AHeaderPromisingMoreThanTheFileCanHoldIsRefusedBeforeDecoding) {
+  test::TempDir dir;
+  // The outside test's case: 16384 x 16384 16-bit RGBA (4 GiB as floats) in 74 bytes.
+  const std::string ihdr{0, 0, 0x40, 0, 0, 0, 0x40, 0, 16, 6, 0, 0, 0};
+  const std::string idat{0x78, static_cast<char>(0x9c), 0x63, 0x60, 0, 0, 0, 2, 0, 1};
+  const std::string png =
+      std::string("\x89PNG\r\n\x1a\n", 8) + pngChunk("IHDR", ihdr) + pngChunk("IDAT", idat) + pngChunk("IEND", "");
+  ASSERT_LT(png.size(), 80u);
+  std::ofstream(dir / "claims.png", std::ios::binary).write(png.data(), static_cast<std::streamsize>(png.size()));
+  test::expectErrorNaming([&] { loadImage(dir / "claims.png"); }, "claims.png", "truncated or corrupt PNG");
+  // An uncompressed PNM must hold every sample.
+  std::ofstream(dir / "short.ppm", std::ios::binary) << "P6\n4000 3000\n255\n" << std::string(100, 'x');
+  test::expectErrorNaming([&] { loadImage(dir / "short.ppm"); }, "short.ppm", "truncated or corrupt PNM");
+  // The same layout, whole, still reads: the bound is the format's, not a guess.
+  const Image small = randomImage(64, 48, 4, PixelDepth::UInt16, 5);
+  saveImage(small, dir / "whole.png", PixelDepth::UInt16);
+  EXPECT_EQ(loadImage(dir / "whole.png").width, 64);
+}
+
+TEST(ImageIo, TheMemoryBudgetRefusesAnImageByItsHeader) {
+  test::TempDir dir;
+  const Image img = randomImage(256, 128, 3, PixelDepth::UInt8, 6);
+  const std::uintmax_t need = 256 * 128 * 3 * sizeof(float);
+  for (const char* name : {"a.png", "a.jpg", "a.ppm", "a.tif"}) {
+    saveImage(img, dir / name);
+    setMemoryBudget(need * 2);  // room for a decoder's own buffer
+    EXPECT_EQ(loadImage(dir / name).height, 128) << name;
+    setMemoryBudget(need / 2);
+    test::expectErrorNaming([&] { loadImage(dir / name); }, name, "more than the memory budget");
+  }
+  setMemoryBudget(0);
+  EXPECT_GT(memoryBudget(), need) << "the default budget is restored";
 }
 
 TEST(Convert, GreyUsesStatedLumaWeightsAfterCompositingOverWhite) {

@@ -6,12 +6,13 @@
 // the scene's `up` decides.
 #include <cmath>
 
+#include <assimp/DefaultIOSystem.h>
 #include <assimp/Importer.hpp>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
-#include "shanshui/core/atomic_output.h"
 #include "shanshui/core/error.h"
+#include "shanshui/core/input.h"
 #include "shanshui/mesh/mesh_io.h"
 
 namespace shanshui::mesh {
@@ -61,18 +62,42 @@ void applyFbxAxesAndUnits(const aiScene* scene, PolygonSoup& soup) {
   scene->mRootNode->mTransformation = turn * scene->mRootNode->mTransformation;
 }
 
+// Assimp opens the files a mesh refers to itself (a glTF's .bin buffers, an OBJ's .mtl):
+// each goes through the input gate too, so a FIFO or /dev/zero named there cannot hang or
+// exhaust memory. A refused file is remembered to name it in the error.
+class GatedIoSystem : public Assimp::DefaultIOSystem {
+ public:
+  Assimp::IOStream* Open(const char* file, const char* mode) override {
+    std::error_code missing;  // a file that is not there is Assimp's to report
+    if (mode != nullptr && mode[0] == 'r' && fs::exists(file, missing)) {
+      try {
+        checkInputFile(file, "a file the mesh refers to", kMaxMeshBytes);
+      } catch (const Error& e) {
+        if (refused.empty()) refused = e.what();
+        return nullptr;
+      }
+    }
+    return DefaultIOSystem::Open(file, mode);
+  }
+  // The default opens the file to see whether it is there, which blocks on a FIFO.
+  bool Exists(const char* file) const override {
+    std::error_code ec;
+    return fs::exists(file, ec);
+  }
+  std::string refused;
+};
+
 }  // namespace
 
 PolygonSoup readAssimp(const fs::path& path) {
-  checkInputFile(path, "a mesh");
-  std::error_code ec;
-  if (fs::file_size(path, ec) > kMaxMeshBytes) {
-    throw makeError(path.string(), ": larger than ", kMaxMeshBytes >> 20, " MiB; refusing to read it");
-  }
+  checkInputFile(path, "a mesh", kMaxMeshBytes);
   Assimp::Importer importer;
+  auto* io = new GatedIoSystem;  // the importer owns it
+  importer.SetIOHandler(io);
   importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
   const aiScene* scene = importer.ReadFile(path.string(), aiProcess_SortByPType);
   if (scene == nullptr || scene->mRootNode == nullptr) {
+    if (!io->refused.empty()) throw makeError(path.string(), ": ", io->refused);
     throw makeError(path.string(), ": not a mesh Assimp can read (", importer.GetErrorString(), ")");
   }
   PolygonSoup soup;

@@ -12,6 +12,7 @@
 
 #include "shanshui/core/atomic_output.h"
 #include "shanshui/core/error.h"
+#include "shanshui/core/input.h"
 
 namespace shanshui::mesh {
 namespace fs = std::filesystem;
@@ -25,7 +26,7 @@ std::string lowerExtension(const fs::path& p) {
 }
 
 void checkReadable(const fs::path& path) {
-  checkInputFile(path, "a mesh");
+  checkInputFile(path, "a mesh", kMaxMeshBytes);
 }
 
 std::string firstLine(const std::string& s) {

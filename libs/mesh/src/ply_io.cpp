@@ -7,8 +7,8 @@
 #include <fstream>
 #include <sstream>
 
-#include "shanshui/core/atomic_output.h"
 #include "shanshui/core/error.h"
+#include "shanshui/core/input.h"
 #include "shanshui/mesh/mesh_io.h"
 
 namespace shanshui::mesh {
@@ -143,7 +143,7 @@ class BodyReader {
 }  // namespace
 
 PolygonSoup readPly(const fs::path& path) {
-  checkInputFile(path, "a mesh");
+  checkInputFile(path, "a mesh", kMaxMeshBytes);
   std::ifstream in(path, std::ios::binary);
   if (!in) throw makeError(path.string(), ": cannot open");
   auto bad = [&](const std::string& what) { return makeError(path.string(), ": malformed PLY: ", what); };

@@ -1,6 +1,8 @@
 // Meshes an artist exports, through Assimp: a box of known size written by Assimp's own
 // exporters in every format it writes, read back through shanshui's reader and repair; the
 // axes and units files declare; and normals split at creases like a modelling tool's.
+#include <sys/stat.h>
+
 #include <fstream>
 #include <memory>
 #include <regex>
@@ -129,6 +131,26 @@ TEST(AssimpIo, DeclaredUpAxisAndUnitsAreHonoured) {
   }
   std::ofstream(dir / "z_m.fbx") << fbx;
   expectBox(dir / "z_m.fbx", 1.0, "xzy");
+}
+
+// The files a mesh refers to pass the same input gate as the mesh: a glTF whose buffer is a
+// FIFO or a link to /dev/zero is refused by the buffer's name instead of blocking or being
+// read until memory runs out.
+TEST(AssimpIo, FilesAMeshRefersToPassTheInputGate) {
+  test::TempDir dir;
+  Assimp::Exporter exporter;
+  ASSERT_EQ(exporter.Export(boxScene().get(), "gltf2", (dir / "box.gltf").string()), AI_SUCCESS);
+  std::filesystem::path buffer;
+  for (const auto& e : std::filesystem::directory_iterator(dir.path()))
+    if (e.path().extension() == ".bin") buffer = e.path();
+  ASSERT_FALSE(buffer.empty()) << "the exporter writes its buffer beside the .gltf";
+  expectBox(dir / "box.gltf", 1.0);
+  std::filesystem::remove(buffer);
+  ASSERT_EQ(::mkfifo(buffer.c_str(), 0600), 0);
+  test::expectErrorNaming([&] { readPolygonSoup(dir / "box.gltf"); }, buffer.filename().string(), "not a regular file");
+  std::filesystem::remove(buffer);
+  std::filesystem::create_symlink("/dev/zero", buffer);
+  test::expectErrorNaming([&] { readPolygonSoup(dir / "box.gltf"); }, buffer.filename().string(), "not a regular file");
 }
 
 TEST(AssimpIo, RefusesWhatIsNotAMeshByName) {

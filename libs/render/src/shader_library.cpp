@@ -1,10 +1,9 @@
 #include "shanshui/render/shader_library.h"
 
-#include <fstream>
 #include <map>
-#include <sstream>
 
 #include "shanshui/core/error.h"
+#include "shanshui/core/input.h"
 
 namespace shanshui::render {
 
@@ -22,13 +21,11 @@ void setShaderDirectory(const std::filesystem::path& dir) {
 std::string_view shaderSource(std::string_view name) {
   if (!shaderDirectory().empty()) {
     const std::filesystem::path file = shaderDirectory() / std::string(name);
-    std::ifstream in(file);
-    if (in) {
+    std::error_code ec;
+    if (std::filesystem::exists(file, ec)) {  // through the input gate; absent: the embedded copy
       static std::map<std::string, std::string, std::less<>> loaded;  // keeps the views valid
-      std::ostringstream text;
-      text << in.rdbuf();
       std::string& slot = loaded[std::string(name)];
-      slot = text.str();
+      slot = readInputFile(file, "a GLSL shader", kMaxTextInputBytes);
       return slot;
     }
   }

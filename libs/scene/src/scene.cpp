@@ -10,6 +10,7 @@
 
 #include "shanshui/core/atomic_output.h"
 #include "shanshui/core/error.h"
+#include "shanshui/core/input.h"
 
 namespace shanshui::scene {
 
@@ -210,7 +211,7 @@ void applyOverride(json& j, const std::string& assignment) {
 }
 
 Scene loadScene(const std::filesystem::path& path, const std::vector<std::string>& overrides) {
-  json j = parseJsonText(readFileBounded(path, kMaxSceneBytes), path.string());
+  json j = parseJsonText(readInputFile(path, "a scene (JSON)", kMaxSceneBytes), path.string());
   if (!j.is_object()) {
     throw makeError(path.string(), ": a scene is a JSON object ({...}), found ", j.type_name());
   }

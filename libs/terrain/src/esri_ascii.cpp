@@ -9,8 +9,8 @@
 #include <map>
 #include <sstream>
 
-#include "shanshui/core/atomic_output.h"
 #include "shanshui/core/error.h"
+#include "shanshui/core/input.h"
 #include "shanshui/terrain/heightfield.h"
 
 namespace shanshui::terrain {
@@ -37,7 +37,7 @@ bool looksGeographic(const fs::path& path, double xll, double yll, double cell, 
   if (fs::exists(fs::symlink_status(prj, ec))) {
     // A sidecar is an input like any other: a regular file of sensible size, or an error
     // naming it (a FIFO would block, a link to /dev/zero would never end).
-    const std::string text = readFileBounded(prj, std::uintmax_t{1} << 20);
+    const std::string text = readInputFile(prj, "a projection (.prj) sidecar", kMaxSidecarInputBytes);
     const bool projected = text.find("PROJCS") != std::string::npos || text.find("PROJCRS") != std::string::npos;
     why = prj.filename().string() + (projected ? " says projected" : " says geographic");
     return !projected && (text.find("GEOGCS") != std::string::npos || text.find("GEOGCRS") != std::string::npos);
@@ -51,10 +51,7 @@ bool looksGeographic(const fs::path& path, double xll, double yll, double cell, 
 }  // namespace
 
 Heightfield loadEsriAscii(const fs::path& path, const HeightfieldOptions& options) {
-  checkInputFile(path, "an ESRI ASCII grid");
-  if (fs::file_size(path) > kMaxDemBytes) {
-    throw makeError(path.string(), ": ", fs::file_size(path), " bytes; larger than the limit of ", kMaxDemBytes);
-  }
+  checkInputFile(path, "an ESRI ASCII grid", kMaxDemBytes);
   std::ifstream in(path);
   if (!in) throw makeError(path.string(), ": cannot open");
 

@@ -88,7 +88,10 @@ std::string readRaster(const std::string& path, std::size_t max_samples, std::si
   const double keep = static_cast<double>(r.columns) * r.rows;
   if (keep > static_cast<double>(cap)) {
     return std::to_string(r.source_columns) + " x " + std::to_string(r.source_rows) + " samples would need " +
-           std::to_string(keep * 8 / (1u << 30)) + " GiB; give a vertex budget (--max-vertices) to read it decimated";
+           std::to_string(keep * 8 / (1u << 30)) +
+           " GiB, more than the limit or the memory budget (--max-memory) allows; give a vertex budget "
+           "(--max-vertices) "
+           "to read it decimated";
   }
   r.z.resize(static_cast<std::size_t>(keep));
   GDALRasterIOExtraArg extra;

@@ -8,8 +8,8 @@
 #include <cstdio>
 
 #include "gdal_module.h"
-#include "shanshui/core/atomic_output.h"
 #include "shanshui/core/error.h"
+#include "shanshui/core/input.h"
 #include "shanshui/core/module.h"
 #include "shanshui/terrain/heightfield.h"
 
@@ -63,12 +63,18 @@ std::string number(const char* fmt, double v) {
   return buf;
 }
 
+// The most samples a raster may keep: the grid limit, lowered to what the memory budget
+// holds at the 8 bytes a sample is read as plus the 4 it is stored as.
+std::size_t gridCap() {
+  return static_cast<std::size_t>(std::min<std::uintmax_t>(kMaxGridSamples, memoryBudget() / 12));
+}
+
 }  // namespace
 
 Heightfield loadGdalRaster(const fs::path& path, const HeightfieldOptions& options) {
   checkInputFile(path, "a raster DEM or height map");
   GdalRaster r;
-  if (const std::string error = gdalReader(path.string()).read(path.string(), options.max_samples, kMaxGridSamples, &r);
+  if (const std::string error = gdalReader(path.string()).read(path.string(), options.max_samples, gridCap(), &r);
       !error.empty()) {
     throw makeError(path.string(), ": ", error);
   }

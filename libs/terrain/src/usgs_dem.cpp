@@ -7,8 +7,8 @@
 #include <fstream>
 #include <sstream>
 
-#include "shanshui/core/atomic_output.h"
 #include "shanshui/core/error.h"
+#include "shanshui/core/input.h"
 #include "shanshui/terrain/heightfield.h"
 
 namespace shanshui::terrain {
@@ -84,7 +84,7 @@ std::string normaliseRecords(const std::string& raw) {
 }  // namespace
 
 Heightfield loadUsgsDem(const fs::path& path, const HeightfieldOptions& options) {
-  const std::string raw = readFileBounded(path, kMaxDemBytes);
+  const std::string raw = readInputFile(path, "a USGS DEM", kMaxDemBytes);
   const Records rec(normaliseRecords(raw), path);
   if (rec.size() < kBlock) {
     throw makeError(path.string(), ": ", rec.size(), " bytes is shorter than a DEM header record (1024)");

@@ -15,6 +15,8 @@
 #include <string_view>
 #include <vector>
 
+#include "shanshui/core/input.h"  // the input gate, used with every OutputSet
+
 namespace shanshui {
 
 //! Writes `bytes` to `target` atomically. Every write is checked (a full disk, a file size
@@ -33,17 +35,15 @@ void writeAtomically(const std::filesystem::path& target,
 //! is a directory or read-only), so a tool can refuse before a long computation.
 void checkOutputPath(const std::filesystem::path& target);
 
-//! Throws unless `path` names an existing regular file (or a link to one): directories,
-//! devices, FIFOs and sockets are refused, so an input can never be endless. `what` says
-//! what was expected ("an image", "a mesh").
-void checkInputFile(const std::filesystem::path& path, std::string_view what);
-
-//! Reads a whole regular file, refusing anything larger than `max_bytes`.
-std::string readFileBounded(const std::filesystem::path& path, std::uintmax_t max_bytes);
-
 //! Installs SIGINT/SIGTERM/SIGHUP handlers that remove this process's live temporaries and
 //! then end the process as the signal would have. Idempotent; every tool calls it.
 void installTempFileCleanup();
+
+//! Under an address-space limit (ulimit -v) a driver may crash instead of reporting that
+//! memory ran out: then a SIGSEGV, SIGBUS or SIGABRT removes this process's temporaries, prints one
+//! line naming `component` ("the GL driver") and the limit, and exits 1. Without a limit it
+//! does nothing, so a crash elsewhere stays a crash to be found.
+void guardCrashesUnderMemoryLimit(std::string_view component);
 
 //! Removes temporaries of `target` left by processes that no longer run (killed outright).
 //! Called by every write; public for tests.
@@ -79,7 +79,8 @@ class OutputSet {
   //! Writes the bytes into a hidden temporary beside `target` (checked, synced); the
   //! target is untouched until commit().
   void stage(const std::filesystem::path& target, std::string_view bytes);
-  //! Renames every staged temporary over its target, in declaration order.
+  //! Renames every staged temporary over its target, in declaration order, holding a lock on
+  //! their directories: a second run committing into them waits, so outputs never mix.
   void commit();
 
  private:
