@@ -38,7 +38,8 @@ struct Outcome {
 // Runs a program without a shell, with an optional file size limit (SIGXFSZ ignored, as the
 // issue's recipe has it), a time limit, and `during` called with its pid while it runs.
 Outcome runProgram(const std::vector<std::string>& args, std::optional<rlim_t> fileSizeLimit = {},
-                   double timeoutSeconds = 60, const std::function<void(pid_t)>& during = {}) {
+                   double timeoutSeconds = 60, const std::function<void(pid_t)>& during = {},
+                   std::optional<rlim_t> addressSpaceLimit = {}) {
   int pipeFds[2];
   if (::pipe(pipeFds) != 0) return {};
   const pid_t pid = ::fork();
@@ -52,6 +53,10 @@ Outcome runProgram(const std::vector<std::string>& args, std::optional<rlim_t> f
     if (fileSizeLimit) {
       const struct rlimit lim = {*fileSizeLimit, *fileSizeLimit};
       ::setrlimit(RLIMIT_FSIZE, &lim);
+    }
+    if (addressSpaceLimit) {
+      const struct rlimit lim = {*addressSpaceLimit, *addressSpaceLimit};
+      ::setrlimit(RLIMIT_AS, &lim);
     }
     std::vector<char*> argv;
     for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
@@ -332,6 +337,60 @@ TEST(Faults, InputsThatNeverEndAreRefused) {
   expectCleanFailure("render on /dev/zero as a scene",
                      {bin("shanshui-render"), (f / "zero.json").string(), "-o", o + ".png"}, f.dir.path(),
                      "zero.json: not a regular file");
+}
+
+// Under an address-space limit (ulimit -v) the GL driver fails in many ways as the limit
+// rises: it cannot start, reports GL_OUT_OF_MEMORY, or crashes inside llvmpipe. Every step
+// must end in a clean exit: rendered, or one line naming the limit, the target untouched.
+TEST(Faults, UnderAnAddressSpaceLimitTheRendererFinishesOrSaysWhy) {
+#ifdef __SANITIZE_ADDRESS__
+  GTEST_SKIP() << "AddressSanitizer reserves terabytes of address space: no limit leaves it room";
+#endif
+  Fixture f;
+  f.precious({"out.png"});
+  const fs::path scene = test::sourceDir() / "samples/scenes/default.json";
+  int rendered = 0;
+  for (rlim_t mib = 100; mib <= 1300; mib += 100) {
+    SCOPED_TRACE(std::to_string(mib) + " MiB");
+    const auto before = snapshot(f.dir.path());
+    const Outcome o =
+        runProgram({bin("shanshui-render"), scene.string(), "-o", (f / "out.png").string()}, {}, 120, {}, mib << 20);
+    EXPECT_FALSE(o.hung);
+    EXPECT_EQ(o.signal, 0) << o.err;
+    EXPECT_GE(o.exit_code, 0);
+    EXPECT_LT(o.exit_code, 128) << o.err;
+    if (o.exit_code == 0) {
+      ++rendered;
+      std::ofstream(f / "out.png") << "precious out.png";
+      continue;
+    }
+    const auto errors = errorLines(o.err);
+    ASSERT_FALSE(errors.empty()) << o.err;
+    EXPECT_NE(errors.back().find("address-space limit of"), std::string::npos) << o.err;
+    EXPECT_TRUE(snapshot(f.dir.path()) == before) << "files were created, changed or removed";
+  }
+  EXPECT_GT(rendered, 0) << "the sweep reaches a limit that lets the sample render";
+  table().push_back(
+      {"faults", "render under address-space limits 100 to 1300 MiB",
+       "clear error naming the limit below what it needs; " + std::to_string(rendered) + " renders above"});
+}
+
+// A memory budget, from --max-memory or the environment, refuses an input from its header.
+TEST(Faults, AnInputOverTheMemoryBudgetIsRefusedFromItsHeader) {
+  Fixture f;
+  f.precious({"out.png"});
+  const std::string o = (f / "out.png").string();
+  expectCleanFailure("enhance with --max-memory below the scan's size",
+                     {bin("shanshui-enhance"), (f / "in.png").string(), "-o", o, "--max-memory", "64K"}, f.dir.path(),
+                     "in.png: decoding this image");
+  expectCleanFailure("a --max-memory that is not a size",
+                     {bin("shanshui-enhance"), (f / "in.png").string(), "-o", o, "--max-memory", "lots"}, f.dir.path(),
+                     "--max-memory: 'lots' is not a memory size");
+  ::setenv("SHANSHUI_MAX_MEMORY", "64K", 1);
+  expectCleanFailure("quilt with SHANSHUI_MAX_MEMORY below the scan's size",
+                     {bin("shanshui-quilt"), (f / "in.png").string(), "-o", o, "--size", "64x64"}, f.dir.path(),
+                     "more than the memory budget of 64 KiB");
+  ::unsetenv("SHANSHUI_MAX_MEMORY");
 }
 
 // Waits until a hidden temporary of a frame appears in `dir` (the sequence is mid-write).

@@ -1,5 +1,8 @@
 #include "shanshui/render/gl_context.h"
 
+#include <dlfcn.h>
+#include <sys/resource.h>
+
 #include <mutex>
 #include <string>
 #include <utility>
@@ -9,7 +12,9 @@
 #include <epoxy/egl.h>
 #include <epoxy/gl.h>
 
+#include "shanshui/core/atomic_output.h"
 #include "shanshui/core/error.h"
+#include "shanshui/core/input.h"
 #include "shanshui/render/gl_check.h"
 
 namespace shanshui::render {
@@ -49,15 +54,42 @@ void requireVersion(const char* platform) {
   }
 }
 
+// libepoxy aborts the process when it cannot load the GL libraries at the first call: check
+// they load first, so a missing driver or a tight memory limit is one line, not SIGABRT.
+void requireGlLibraries(bool egl) {
+  static std::once_flag once;
+  static std::string missing;
+  std::call_once(once, [egl] {
+    auto loads = [](const char* name) {
+      void* h = ::dlopen(name, RTLD_LAZY | RTLD_LOCAL);
+      if (h == nullptr) return false;
+      ::dlclose(h);
+      return true;
+    };
+    if (egl && !loads("libEGL.so.1")) {
+      missing = "libEGL.so.1";
+    } else if (!loads("libOpenGL.so.0") && !loads("libGL.so.1")) {
+      missing = "libGL.so.1 (or libOpenGL.so.0)";
+    }
+  });
+  if (!missing.empty()) {
+    throw makeError("OpenGL: cannot load ", missing, addressSpaceLimitNote(),
+                    "; install the GL driver (Mesa's libegl1 and libgl1 on Debian)");
+  }
+}
+
 // ---- headless: EGL without a window system ------------------------------------------
 
 class EglContext final : public GlContext {
  public:
   explicit EglContext(const ContextOptions& options) {
+    requireGlLibraries(true);
+    guardCrashesUnderMemoryLimit("the GL driver");
     display_ = openDisplay();
     EGLint major = 0, minor = 0;
     if (!eglInitialize(display_, &major, &minor)) {
-      throw makeError("EGL: eglInitialize failed (error 0x", std::hex, eglGetError(), ")");
+      throw makeError("EGL: eglInitialize failed (error 0x", std::hex, eglGetError(), ")", std::dec,
+                      addressSpaceLimitNote());
     }
     if (!eglBindAPI(EGL_OPENGL_API)) throw makeError("EGL: desktop OpenGL is not available");
     const EGLint configAttribs[] = {EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_NONE};
@@ -138,6 +170,8 @@ class GlfwContext final : public GlContext {
  public:
   explicit GlfwContext(const ContextOptions& options) {
     glfwSetErrorCallback([](int, const char* message) { g_glfwError = message; });
+    requireGlLibraries(false);
+    guardCrashesUnderMemoryLimit("the GL driver");
     if (!glfwInit()) {
       throw makeError("GLFW: cannot initialise (", g_glfwError, "); is DISPLAY set? try xvfb-run");
     }
@@ -201,6 +235,13 @@ void checkGlError(const char* where) {
     }
     throw makeError("OpenGL error after ", where, ": ", glErrorName(e), " (0x", std::hex, e, ")");
   }
+}
+
+void checkGlAllocation(const char* what) {
+  GLenum e = glGetError();
+  bool out_of_memory = false;
+  for (; e != GL_NO_ERROR; e = glGetError()) out_of_memory = out_of_memory || e == GL_OUT_OF_MEMORY;
+  if (out_of_memory) throw makeError("OpenGL: out of memory allocating ", what, addressSpaceLimitNote());
 }
 
 std::unique_ptr<GlContext> GlContext::create(const ContextOptions& options) {

@@ -4,6 +4,7 @@
 #include <utility>
 
 #include "shanshui/core/error.h"
+#include "shanshui/core/input.h"
 #include "shanshui/image/convert.h"
 #include "shanshui/render/gl_check.h"
 
@@ -20,7 +21,7 @@ Texture2D::Texture2D(int width, int height, GLenum internal_format, int levels)
   glTextureParameteri(id_, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
   glTextureParameteri(id_, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
   glTextureParameteri(id_, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-  SHANSHUI_GL_CHECK("Texture2D create");
+  checkGlAllocation(("a " + std::to_string(width) + "x" + std::to_string(height) + " texture").c_str());
 }
 
 Texture2D Texture2D::fromImage(const image::Image& img, GLenum internal_format) {
@@ -109,7 +110,8 @@ Framebuffer::Framebuffer(int width, int height, const std::vector<GLenum>& colou
   }
   const GLenum status = glCheckNamedFramebufferStatus(id, GL_FRAMEBUFFER);
   if (status != GL_FRAMEBUFFER_COMPLETE) {
-    throw makeError("framebuffer ", width, "x", height, " is incomplete (status 0x", std::hex, status, ")");
+    throw makeError("framebuffer ", width, "x", height, " is incomplete (status 0x", std::hex, status, std::dec, ")",
+                    addressSpaceLimitNote());
   }
   SHANSHUI_GL_CHECK("Framebuffer create");
 }

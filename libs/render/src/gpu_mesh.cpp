@@ -28,6 +28,7 @@ GpuMesh::GpuMesh(const mesh::Mesh& m, const glm::dvec3& centre, const std::vecto
                        positions.data(), 0);
   glNamedBufferStorage(buffers_[1].id(), static_cast<GLsizeiptr>(normals.size() * sizeof(glm::vec3)), normals.data(),
                        0);
+  checkGlAllocation("the vertex buffers of a mesh");
   if (sorted_orders) {
     // The original order, then six orders for cameras looking along +x, −x, +y, −y, +z, −z:
     // the mesh's own order cut into chunks of kChunkTriangles, the chunks sorted by their

@@ -6,6 +6,10 @@ namespace shanshui::render {
 //! Throws Error naming `where` and the GL error if glGetError() reports one.
 void checkGlError(const char* where);
 
+//! After allocating GPU memory (in every build): throws one line naming `what` and, when one
+//! is set, the address-space limit, if the driver reported GL_OUT_OF_MEMORY.
+void checkGlAllocation(const char* what);
+
 }  // namespace shanshui::render
 
 #ifdef SHANSHUI_GL_DEBUG
