@@ -20,6 +20,7 @@
 #include <sstream>
 #include <thread>
 
+#include "bench_output.h"
 #include "stability_table.h"
 #include "test_support.h"
 
@@ -268,6 +269,41 @@ TEST(Faults, ABenchOnAFullDiskKeepsTheTablesOfTheRunBefore) {
   ASSERT_TRUE(fs::exists(out / "strokes_tradeoff.md"));
   expectCleanFailure("bench tables on a full disk", {program.string(), "--quick", "--out", out.string()}, out,
                      "strokes_tradeoff", 1000);
+}
+
+// A bench run's tables are replaced together when it ends well: a table that fails after
+// another was done leaves both as they were, and a run that fails later leaves all.
+TEST(Faults, ABenchRunsTablesAreReplacedTogetherOrNotAtAll) {
+  Fixture f;
+  f.precious({"small.csv", "big.md"});
+  auto child = [&](rlim_t limit, int status) {
+    const pid_t pid = ::fork();
+    if (pid == 0) {
+      const struct rlimit lim = {limit, limit};
+      ::setrlimit(RLIMIT_FSIZE, &lim);
+      ::signal(SIGXFSZ, SIG_IGN);
+      {
+        bench::OutputFile small(f / "small.csv");
+        small << "a,b\n1,2\n";
+        small.commit();  // staged first, and small enough
+        bench::OutputFile big(f / "big.md");
+        big << std::string(4000, 'x') << "\n";
+      }
+      std::exit(status);
+    }
+    int st = 0;
+    ::waitpid(pid, &st, 0);
+    return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+  };
+  const auto before = snapshot(f.dir.path());
+  EXPECT_EQ(child(1000, 0), 1) << "the big table cannot be written";
+  EXPECT_TRUE(snapshot(f.dir.path()) == before) << "the small table was replaced alone";
+  EXPECT_EQ(child(RLIM_INFINITY, 3), 3);
+  EXPECT_TRUE(snapshot(f.dir.path()) == before) << "a run that failed replaced its tables";
+  EXPECT_EQ(child(RLIM_INFINITY, 0), 0);
+  EXPECT_EQ(slurp(f / "small.csv"), "a,b\n1,2\n");
+  EXPECT_EQ(slurp(f / "big.md").size(), 4001u);
+  EXPECT_EQ(snapshot(f.dir.path()).size(), before.size()) << "no temporary left";
 }
 
 TEST(Faults, ReadOnlyTargetsAndDirectoriesAreRefusedBeforeAnyWork) {
