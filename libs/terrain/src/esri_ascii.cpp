@@ -101,6 +101,9 @@ Heightfield loadEsriAscii(const fs::path& path, const HeightfieldOptions& option
   const double yll = header.count("yllcenter") ? header["yllcenter"] : need("yllcorner");
   const double noData = header.count("nodata_value") ? header["nodata_value"] : -9999.0;
 
+  checkMemoryNeed(path.string(),
+                  "the grid its header promises (" + std::to_string(cols) + " x " + std::to_string(rows) + ")",
+                  static_cast<std::uintmax_t>(cols) * rows * sizeof(decltype(Heightfield::elevation)::value_type));
   Heightfield h;
   h.columns = cols;
   h.rows = rows;

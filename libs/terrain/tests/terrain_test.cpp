@@ -4,6 +4,7 @@
 
 #include "mesh_checks.h"
 #include "shanshui/core/error.h"
+#include "shanshui/core/input.h"
 #include "shanshui/image/image_io.h"
 #include "shanshui/terrain/heightfield.h"
 #include "shanshui/terrain/terrain_mesh.h"
@@ -116,6 +117,20 @@ TEST(EsriAscii, TooTallGeographicGridIsRefused) {
   HeightfieldOptions o;
   o.cell_size = 100;  // the user says what a cell is: accepted
   EXPECT_EQ(loadHeightfield(dir / "tall.asc", o).cell_x, 100.0);
+}
+
+// The grid a header promises is weighed against the memory budget before it is read.
+TEST(EsriAscii, AGridOverTheMemoryBudgetIsRefusedFromItsHeader) {
+  test::TempDir dir;
+  std::ofstream f(dir / "wide.asc");
+  f << "ncols 600\nnrows 500\nxllcorner 0\nyllcorner 0\ncellsize 10\n";
+  for (int i = 0; i < 600 * 500; ++i) f << (i % 7) << (i % 600 == 599 ? "\n" : " ");
+  f.close();
+  setMemoryBudget(600 * 500 * sizeof(double) * 2);
+  EXPECT_EQ(loadHeightfield(dir / "wide.asc").columns, 600);
+  setMemoryBudget(600 * 500);
+  test::expectErrorNaming([&] { loadHeightfield(dir / "wide.asc"); }, "wide.asc", "more than the memory budget");
+  setMemoryBudget(0);
 }
 
 // The .prj beside an ESRI grid is read like any input: a FIFO, a directory or an endless
