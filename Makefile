@@ -31,7 +31,7 @@ test-asan:
 
 # What .ci/run checks under AddressSanitizer + UBSan on every submission: every library's
 # unit and GL tests, the parsers' fuzz replays and the stability suite (which runs every
-# tool on stiff input and faults), in build-asan/ at -O1 with line tables only, so that it
+# tool on stiff input and faults), in build-sanitizers/ at -O1 with line tables only, so that it
 # fits beside the Release suite. Left to make test-asan: the end-to-end CLI tests, the three
 # tests that repeat the CGAL stages over every sample mesh, and the parameterisation tests
 # that judge its time budget (a sanitizer's slowdown changes what the budget allows).
@@ -40,11 +40,11 @@ SANITIZER_TESTS = test_core test_image test_mesh test_terrain test_render test_t
   $(foreach f,obj ply off dem asc scene manifest png jpg tif pgm,fuzz_replay_$(f))
 SANITIZER_SKIP = _NOT_BUILT|EveryCgalTestMesh|Charts.CowMeetsTheAtlasTargets|Parameterize.Auto|Parameterize.ClosedSphere
 test-sanitizers:
-	$(MAKE) configure BUILD=build-asan BUILD_TYPE=RelWithDebInfo CMAKE_FLAGS="-DSHANSHUI_SANITIZE=ON \
+	$(MAKE) configure BUILD=build-sanitizers BUILD_TYPE=RelWithDebInfo CMAKE_FLAGS="-DSHANSHUI_SANITIZE=ON \
 	  -DSHANSHUI_BUILD_BENCH=OFF -DCMAKE_CXX_FLAGS_RELWITHDEBINFO='-O1 -g1 -DNDEBUG' \
 	  -DCMAKE_C_FLAGS_RELWITHDEBINFO='-O1 -g1 -DNDEBUG'"
-	cmake --build build-asan -j $(JOBS) --target $(SANITIZER_TESTS)
-	ctest --test-dir build-asan --output-on-failure -j $(JOBS) -LE 'e2e|style' -E '$(SANITIZER_SKIP)'
+	cmake --build build-sanitizers -j $(JOBS) --target $(SANITIZER_TESTS)
+	ctest --test-dir build-sanitizers --output-on-failure -j $(JOBS) -LE 'e2e|style' -E '$(SANITIZER_SKIP)'
 
 # Each parser's libFuzzer target for FUZZ_SECONDS (default 30) with clang, ASan and UBSan, in
 # build-fuzz/; the test suite replays fuzz/corpus and fuzz/regressions on every run.
