@@ -30,8 +30,7 @@ std::uintmax_t checkInputFile(const fs::path& path, std::string_view what, std::
   if (ec) throw makeError(path.string(), ": cannot read its size: ", ec.message());
   if (size == 0) throw makeError(path.string(), ": empty file; expected ", what);
   if (size > max_bytes) {
-    throw makeError(path.string(), ": ", size, " bytes is larger than the limit of ", max_bytes, " bytes for ",
-                    what);
+    throw makeError(path.string(), ": ", size, " bytes is larger than the limit of ", max_bytes, " bytes for ", what);
   }
   if (::access(path.c_str(), R_OK) != 0) throw makeError(path.string(), ": cannot read: ", std::strerror(errno));
   return size;
@@ -91,7 +90,8 @@ std::uintmax_t g_budget = 0;  // 0: not set
 std::uintmax_t defaultBudget() {
   const long pages = ::sysconf(_SC_PHYS_PAGES);
   const long page = ::sysconf(_SC_PAGESIZE);
-  std::uintmax_t budget = pages > 0 && page > 0 ? static_cast<std::uintmax_t>(pages) * page / 2 : std::uintmax_t{4} << 30;
+  std::uintmax_t budget =
+      pages > 0 && page > 0 ? static_cast<std::uintmax_t>(pages) * page / 2 : std::uintmax_t{4} << 30;
   rlimit lim{};
   if (::getrlimit(RLIMIT_AS, &lim) == 0 && lim.rlim_cur != RLIM_INFINITY) {
     // What the address-space limit leaves beyond what the process already maps, with a
@@ -118,15 +118,29 @@ std::uintmax_t parseByteSize(std::string_view text, std::string_view source) {
   std::uintmax_t scale = 1;
   if (ec == std::errc() && p + 1 == e) {
     switch (*p) {
-      case 'K': case 'k': scale = std::uintmax_t{1} << 10; break;
-      case 'M': case 'm': scale = std::uintmax_t{1} << 20; break;
-      case 'G': case 'g': scale = std::uintmax_t{1} << 30; break;
-      case 'T': case 't': scale = std::uintmax_t{1} << 40; break;
-      default: scale = 0;
+      case 'K':
+      case 'k':
+        scale = std::uintmax_t{1} << 10;
+        break;
+      case 'M':
+      case 'm':
+        scale = std::uintmax_t{1} << 20;
+        break;
+      case 'G':
+      case 'g':
+        scale = std::uintmax_t{1} << 30;
+        break;
+      case 'T':
+      case 't':
+        scale = std::uintmax_t{1} << 40;
+        break;
+      default:
+        scale = 0;
     }
   }
   if (ec != std::errc() || (p != e && scale <= 1) || v == 0 || v > (~std::uintmax_t{0}) / scale) {
-    throw makeError(source, ": '", text, "' is not a memory size; expected bytes, or a number with K, M or G (e.g. 512M)");
+    throw makeError(source, ": '", text,
+                    "' is not a memory size; expected bytes, or a number with K, M or G (e.g. 512M)");
   }
   return v * scale;
 }
@@ -157,9 +171,8 @@ std::string addressSpaceLimitNote() {
 void checkMemoryNeed(std::string_view name, std::string_view what, std::uintmax_t bytes) {
   const std::uintmax_t budget = memoryBudget();
   if (bytes <= budget) return;
-  throw makeError(name, ": ", what, " needs ", byteCount(bytes), ", more than the memory budget of ",
-                  byteCount(budget), " (--max-memory or SHANSHUI_MAX_MEMORY sets it)");
+  throw makeError(name, ": ", what, " needs ", byteCount(bytes), ", more than the memory budget of ", byteCount(budget),
+                  " (--max-memory or SHANSHUI_MAX_MEMORY sets it)");
 }
-
 
 }  // namespace shanshui

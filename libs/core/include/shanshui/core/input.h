@@ -58,8 +58,8 @@ inline std::string byteCount(std::uintmax_t bytes) {
   if (bytes < (std::uintmax_t{1} << 20)) return std::to_string((bytes + 512) >> 10) + " KiB";
   const bool gib = bytes >= (std::uintmax_t{1} << 30);
   char text[32];
-  std::snprintf(text, sizeof text, "%.1f %s", static_cast<double>(bytes) / static_cast<double>(gib ? 1u << 30 : 1u << 20),
-                gib ? "GiB" : "MiB");
+  std::snprintf(text, sizeof text, "%.1f %s",
+                static_cast<double>(bytes) / static_cast<double>(gib ? 1u << 30 : 1u << 20), gib ? "GiB" : "MiB");
   return text;
 }
 
