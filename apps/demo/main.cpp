@@ -28,6 +28,14 @@ std::string readFile(const fs::path& p) {
   return shanshui::readInputFile(p, "a file the demo reads", shanshui::kMaxMediaInputBytes);
 }
 
+// A file copied into the assets (the scan, the reference): read through the input gate and
+// written atomically, left alone when the copy is already there.
+void copyAsset(const fs::path& from, const fs::path& to) {
+  const std::string bytes = readFile(from);
+  if (fs::exists(to) && readFile(to) == bytes) return;
+  shanshui::writeFileAtomically(to, bytes);
+}
+
 // FNV-1a, 64 bits: enough to notice a changed input (not meant against tampering).
 std::uint64_t fnv1a(const std::string& bytes, std::uint64_t h = 1469598103934665603ull) {
   for (unsigned char c : bytes) {
@@ -243,7 +251,7 @@ int main(int argc, char** argv) {
     std::vector<Result> results;
     for (const Stage& st : stages) results.push_back(runner.run(st));
     // The report shows the scan beside what became of it.
-    fs::copy_file(s / "textures/rain_strokes_scan.png", assets / "scan.png", fs::copy_options::overwrite_existing);
+    copyAsset(s / "textures/rain_strokes_scan.png", assets / "scan.png");
     writeScene(s / "scenes/default.json", assets / "scene.json", quick);
     const std::vector<fs::path> scene_inputs = {assets / "scene.json", assets / "st_helens_uv.obj",
                                                 assets / "wrinkle.png"};
@@ -386,8 +394,7 @@ int main(int argc, char** argv) {
       stages.push_back(st);
     }
     if (!reference.empty()) {
-      fs::copy_file(reference, assets / ("reference" + fs::path(reference).extension().string()),
-                    fs::copy_options::overwrite_existing);
+      copyAsset(reference, assets / ("reference" + fs::path(reference).extension().string()));
     }
 
     // The stability suite (built with the tests), its table for the report; keyed by the

@@ -74,8 +74,10 @@ inline int runTool(CLI::App& app, int argc, char** argv, const std::function<voi
     body();
     return 0;
   } catch (const std::bad_alloc&) {
-    std::fprintf(stderr, "%s: error: out of memory%s: the input or the requested size is too large (--max-memory)\n",
-                 app.get_name().c_str(), addressSpaceLimitNote().c_str());
+    const std::string last = lastInputFile();
+    std::fprintf(stderr,
+                 "%s: error: %s%sout of memory%s: the input or the requested size is too large (--max-memory)\n",
+                 app.get_name().c_str(), last.c_str(), last.empty() ? "" : ": ", addressSpaceLimitNote().c_str());
     return 1;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "%s: error: %s\n", app.get_name().c_str(), e.what());

@@ -18,6 +18,16 @@
 namespace shanshui {
 namespace fs = std::filesystem;
 
+namespace {
+std::mutex g_last_mutex;
+std::string g_last_input;
+}  // namespace
+
+std::string lastInputFile() {
+  std::lock_guard lock(g_last_mutex);
+  return g_last_input;
+}
+
 std::uintmax_t checkInputFile(const fs::path& path, std::string_view what, std::uintmax_t max_bytes) {
   std::error_code ec;
   const fs::file_status s = fs::status(path, ec);
@@ -33,6 +43,10 @@ std::uintmax_t checkInputFile(const fs::path& path, std::string_view what, std::
     throw makeError(path.string(), ": ", size, " bytes is larger than the limit of ", max_bytes, " bytes for ", what);
   }
   if (::access(path.c_str(), R_OK) != 0) throw makeError(path.string(), ": cannot read: ", std::strerror(errno));
+  {
+    std::lock_guard lock(g_last_mutex);
+    g_last_input = path.string();
+  }
   return size;
 }
 

@@ -27,6 +27,10 @@ inline constexpr std::uintmax_t kMaxSidecarInputBytes = std::uintmax_t{1} << 20;
 std::uintmax_t checkInputFile(const std::filesystem::path& path, std::string_view what,
                               std::uintmax_t max_bytes = kMaxMediaInputBytes);
 
+//! The last file that passed checkInputFile in this process (empty if none): what an
+//! allocation failure is most likely about, for its message.
+std::string lastInputFile();
+
 //! Reads a whole file that passes checkInputFile(path, what, max_bytes).
 std::string readInputFile(const std::filesystem::path& path, std::string_view what, std::uintmax_t max_bytes);
 
