@@ -202,10 +202,12 @@ TEST(Parameterize, AutoStopsAtTheFirstNearIsometricMethod) {
 }
 
 // The refinement is anytime: it stops at the budget whatever the size, lowering the
-// stretch of the map it starts from, and the time it takes grows with the mesh up to the
-// budget. (A steep mountain: the projection's L2 stretch is about 1.03, and the early stop
-// is put out of reach.)
-TEST(Parameterize, AutoRefinesWithinItsBudgetAndTheTimeGrowsWithSize) {
+// stretch of the map it starts from. A small mesh stops because the rounds stop gaining;
+// a round that stops for the budget has spent the share it was given. (A steep mountain:
+// the projection's L2 stretch is about 1.03, and the early stop is put out of reach.)
+// Nothing here compares two run times: on a loaded machine the trials of 900 vertices
+// once took longer than those of 14 400, so how the time grows is the benchmark's.
+TEST(Parameterize, AutoRefinesWithinItsBudgetAndStopsWhenTheRoundsStopGaining) {
   auto mountain = [](int n) {
     return test::heightGrid(n, n, 14000.0 / (n - 1), [](double x, double y) {
       const double dx = x - 7000, dy = y - 7500;
@@ -216,7 +218,6 @@ TEST(Parameterize, AutoRefinesWithinItsBudgetAndTheTimeGrowsWithSize) {
   ParamOptions o;
   o.budget_seconds = 0.4;
   o.auto_accept_stretch = 1.0001;  // out of reach here: the rounds go on to convergence or the budget
-  std::vector<double> seconds;
   for (const int n : {30, 60, 120}) {
     SCOPED_TRACE(n);
     ParamReport r;
@@ -228,9 +229,16 @@ TEST(Parameterize, AutoRefinesWithinItsBudgetAndTheTimeGrowsWithSize) {
     EXPECT_LT(f.distortion.l2_stretch, r.trials.front().distortion.l2_stretch);
     EXPECT_EQ(f.distortion.flipped, 0);
     EXPECT_LE(r.seconds, o.budget_seconds + 0.2) << trialTable(r);
-    seconds.push_back(r.seconds);
+    // 900 vertices converge in about 20 rounds and 0.04 s, a tenth of the budget.
+    if (n == 30) {
+      EXPECT_TRUE(f.converged) << trialTable(r);
+    }
+    // Stopped neither by convergence nor by the early stop: the budget ended it, after
+    // at least half of what was left to the refinement deadline (93% of the budget).
+    if (!f.converged && !f.enough) {
+      EXPECT_GE(r.seconds, 0.5 * 0.93 * o.budget_seconds - 1e-3) << trialTable(r);
+    }
   }
-  EXPECT_LT(seconds[0], seconds[2]) << "900 vertices converge long before 14400 run out of budget";
 }
 
 TEST(Parameterize, AutoOnEveryRealDemIsNearIsometricWithoutFlips) {
