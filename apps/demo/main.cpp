@@ -218,6 +218,9 @@ int main(int argc, char** argv) {
       throw shanshui::makeError("--reference: ", reference, ": not found (expected an image file)");
     }
     fs::create_directories(assets);
+    // Stages commit one by one: a second demo into the same --out waits for this one to end,
+    // then finds every stage up to date, instead of mixing its stages with this run's.
+    const shanshui::RunLock lock(o / ".demo.lock", "shanshui-demo");
     const fs::path bin = fs::canonical("/proc/self/exe").parent_path();
     Runner runner(bin, o, force);
     const std::string size = quick ? "128x128" : "1024x1024";

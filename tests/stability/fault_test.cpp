@@ -7,6 +7,7 @@
 #include <fcntl.h>
 #include <poll.h>
 #include <signal.h>
+#include <sys/file.h>
 #include <sys/resource.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
@@ -304,6 +305,42 @@ TEST(Faults, ABenchRunsTablesAreReplacedTogetherOrNotAtAll) {
   EXPECT_EQ(slurp(f / "small.csv"), "a,b\n1,2\n");
   EXPECT_EQ(slurp(f / "big.md").size(), 4001u);
   EXPECT_EQ(snapshot(f.dir.path()).size(), before.size()) << "no temporary left";
+}
+
+// The demo writes its outputs stage by stage, so two demos into one --out would mix their
+// stages: the second waits for the first to end. The test holds the demo's run lock as a
+// first run would; the demo's first stage (a stand-in that leaves a mark and fails) must not
+// start until the lock is let go.
+TEST(Faults, TwoDemosIntoOneOutputTakeTurns) {
+  test::TempDir dir;
+  const fs::path bin_dir = dir / "bin", out = dir / "out", mark = dir / "enhance_ran";
+  fs::create_directories(bin_dir);
+  fs::create_directories(out);
+  fs::copy_file(test::binDir() / "shanshui-demo", bin_dir / "shanshui-demo");
+  std::ofstream(bin_dir / "shanshui-enhance")
+      << "#!/bin/sh\ntouch " << test::quote(mark) << "\necho 'stand-in stage'\nexit 1\n";
+  fs::permissions(bin_dir / "shanshui-enhance", fs::perms::owner_all);
+  const int lock = ::open((out / ".demo.lock").c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+  ASSERT_GE(lock, 0);
+  ASSERT_EQ(::flock(lock, LOCK_EX), 0);
+  bool startedWhileLocked = true;
+  const Outcome o = runProgram({(bin_dir / "shanshui-demo").string(), "--quick", "--samples",
+                                (test::sourceDir() / "samples").string(), "--out", out.string()},
+                               {}, 60, [&](pid_t) {
+                                 std::this_thread::sleep_for(std::chrono::milliseconds(1500));
+                                 startedWhileLocked = fs::exists(mark);
+                                 ::flock(lock, LOCK_UN);
+                               });
+  ::close(lock);
+  EXPECT_FALSE(o.hung);
+  EXPECT_FALSE(startedWhileLocked) << "a stage ran while another demo held " << out << ": " << o.err;
+  EXPECT_NE(o.err.find("another run holds"), std::string::npos) << o.err;
+  EXPECT_TRUE(fs::exists(mark)) << "the stage ran once the lock was free: " << o.err;
+  EXPECT_EQ(o.exit_code, 1) << o.err;
+  EXPECT_NE(o.err.find("stage enhance failed: stand-in stage"), std::string::npos) << o.err;
+  table().push_back({"faults", "a second demo into the same --out while one runs",
+                     !startedWhileLocked && fs::exists(mark) ? "waits for the first to end, then runs"
+                                                             : "STAGES MIXED: ran while the other held the lock"});
 }
 
 TEST(Faults, ReadOnlyTargetsAndDirectoriesAreRefusedBeforeAnyWork) {

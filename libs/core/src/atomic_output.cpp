@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cctype>
+#include <cerrno>
 #include <csignal>
 #include <cstdio>
 #include <cstring>
@@ -420,6 +421,31 @@ class DirectoryLocks {
 };
 
 }  // namespace
+
+RunLock::RunLock(const fs::path& file, std::string_view who) {
+  fd_ = ::open(file.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+  if (fd_ < 0) throw makeError(file.string(), ": cannot open the run lock: ", std::strerror(errno));
+  if (::flock(fd_, LOCK_EX | LOCK_NB) == 0) return;
+  if (errno != EWOULDBLOCK) {
+    const int err = errno;
+    ::close(fd_);
+    throw makeError(file.string(), ": cannot take the run lock: ", std::strerror(err));
+  }
+  waited_ = true;
+  std::fprintf(stderr, "%.*s: another run holds %s; waiting for it to end\n", static_cast<int>(who.size()), who.data(),
+               file.c_str());
+  std::fflush(stderr);
+  while (::flock(fd_, LOCK_EX) != 0) {
+    if (errno == EINTR) continue;
+    const int err = errno;
+    ::close(fd_);
+    throw makeError(file.string(), ": cannot take the run lock: ", std::strerror(err));
+  }
+}
+
+RunLock::~RunLock() {
+  if (fd_ >= 0) ::close(fd_);
+}
 
 void OutputSet::commit() {
   for (const Entry& e : entries_) {

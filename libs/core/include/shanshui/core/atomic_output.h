@@ -52,6 +52,26 @@ void sweepStaleTemporaries(const std::filesystem::path& target);
 //! The hidden temporary name for `target` of process `pid`, attempt `n`.
 std::filesystem::path temporaryPath(const std::filesystem::path& target, long pid, unsigned n);
 
+//! An exclusive lock held for a whole run of a program whose outputs are written stage by
+//! stage (the demo): a second run into the same place waits until the first has ended, saying
+//! once on stderr what it waits for, so two runs never interleave their stages. The lock is
+//! on `file` (created if missing, left in place: removing a lock file races with the next
+//! run), not on a directory, so the programs a run starts still commit into it.
+class RunLock {
+ public:
+  //! `who` names the program in the waiting message ("shanshui-demo").
+  RunLock(const std::filesystem::path& file, std::string_view who);
+  ~RunLock();
+  RunLock(const RunLock&) = delete;
+  RunLock& operator=(const RunLock&) = delete;
+  //! Whether this run had to wait for another one.
+  bool waited() const { return waited_; }
+
+ private:
+  int fd_ = -1;
+  bool waited_ = false;
+};
+
 //! The outputs of one run, declared before any work and committed together at the end:
 //!   OutputSet out({input});
 //!   out.declare(output, "-o", {".png", ".jpg"});
