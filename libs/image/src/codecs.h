@@ -81,10 +81,12 @@ inline unsigned sampleCode(float v, unsigned max_code) {
 //! a message (empty on success), so no exception crosses the module boundary.
 struct OiioCodec {
   int abi_version;
-  std::string (*load)(const std::string& path, std::uintmax_t memory_budget, Decoded* out);
+  //! `format`: the OpenImageIO reader the file's first bytes named ("tiff", "openexr"), or
+  //! empty for the one its extension names; no other reader is tried.
+  std::string (*load)(const std::string& path, const std::string& format, std::uintmax_t memory_budget, Decoded* out);
   std::string (*encode)(const Image& img, const std::string& path, PixelDepth depth, bool smallest, std::string* bytes);
 };
-constexpr int kOiioCodecAbi = 2;
+constexpr int kOiioCodecAbi = 3;
 
 //! The module, loaded on first use; throws Error naming `name` and what it was for when
 //! the module cannot be found or loaded.

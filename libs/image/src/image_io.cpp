@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
+#include <string_view>
 
 #include "codecs.h"
 #include "shanshui/core/atomic_output.h"
@@ -110,16 +111,35 @@ namespace {
 
 enum class Codec { Png, Jpeg, Pnm, Module };
 
-// The codec for a file's first bytes.
-Codec sniff(const fs::path& path) {
-  std::array<unsigned char, 4> magic{};
+struct Sniffed {
+  Codec codec = Codec::Module;
+  std::string format;  //!< the module's reader the first bytes name; empty: the extension's
+};
+
+// The codec for a file's first bytes; a format without a signature (Targa) goes by its
+// extension.
+Sniffed sniff(const fs::path& path) {
+  std::array<unsigned char, 4> m{};
   std::ifstream in(path, std::ios::binary);
-  in.read(reinterpret_cast<char*>(magic.data()), magic.size());
+  in.read(reinterpret_cast<char*>(m.data()), m.size());
   const auto got = in.gcount();
-  if (got >= 4 && magic[0] == 0x89 && magic[1] == 'P' && magic[2] == 'N' && magic[3] == 'G') return Codec::Png;
-  if (got >= 3 && magic[0] == 0xFF && magic[1] == 0xD8 && magic[2] == 0xFF) return Codec::Jpeg;
-  if (got >= 2 && magic[0] == 'P' && (magic[1] == '5' || magic[1] == '6')) return Codec::Pnm;
-  return Codec::Module;
+  auto is = [&](std::string_view sig) {
+    if (got < static_cast<std::streamsize>(sig.size())) return false;
+    for (std::size_t i = 0; i < sig.size(); ++i)
+      if (m[i] != static_cast<unsigned char>(sig[i])) return false;
+    return true;
+  };
+  using namespace std::string_view_literals;
+  if (is("\x89PNG"sv)) return {Codec::Png, {}};
+  if (is("\xFF\xD8\xFF"sv)) return {Codec::Jpeg, {}};
+  if (is("P5"sv) || is("P6"sv)) return {Codec::Pnm, {}};
+  if (is("II*\0"sv) || is("MM\0*"sv)) return {Codec::Module, "tiff"};
+  if (is("\x76\x2F\x31\x01"sv)) return {Codec::Module, "openexr"};
+  if (is("GIF8"sv)) return {Codec::Module, "gif"};
+  if (is("BM"sv)) return {Codec::Module, "bmp"};
+  if (is("#?"sv)) return {Codec::Module, "hdr"};
+  if (is("P1"sv) || is("P2"sv) || is("P3"sv) || is("P4"sv)) return {Codec::Module, "pnm"};
+  return {};
 }
 
 std::string lowerExtension(const fs::path& path) {
@@ -163,7 +183,8 @@ Image loadImage(const fs::path& path, ImageInfo* info) {
   const std::string name = path.string();
   checkInputFile(path, "an image");
   detail::Decoded decoded;
-  switch (sniff(path)) {
+  const Sniffed sniffed = sniff(path);
+  switch (sniffed.codec) {
     case Codec::Png:
       decoded = detail::readPng(path);
       break;
@@ -174,7 +195,8 @@ Image loadImage(const fs::path& path, ImageInfo* info) {
       decoded = detail::readBinaryPnm(path);
       break;
     case Codec::Module: {
-      const std::string error = detail::oiioCodec(name, "reading this format").load(name, memoryBudget(), &decoded);
+      const std::string error =
+          detail::oiioCodec(name, "reading this format").load(name, sniffed.format, memoryBudget(), &decoded);
       if (!error.empty()) throw Error(error);
       // Integer codes decode to finite values; float formats (EXR, TIFF, HDR) may not.
       for (float v : decoded.image.pixels) {

@@ -143,7 +143,7 @@ Decoded readJpeg(const std::filesystem::path& path) {
   const int components = d.cinfo.num_components;
   if (d.cinfo.jpeg_color_space == JCS_CMYK || d.cinfo.jpeg_color_space == JCS_YCCK) {
     Decoded out;  // libjpeg cannot convert CMYK to RGB; OpenImageIO can
-    const std::string error = oiioCodec(name, "reading a CMYK JPEG").load(name, memoryBudget(), &out);
+    const std::string error = oiioCodec(name, "reading a CMYK JPEG").load(name, "jpeg", memoryBudget(), &out);
     if (!error.empty()) throw Error(error);
     return out;
   }

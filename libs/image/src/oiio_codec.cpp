@@ -99,12 +99,25 @@ class QuietStderr {
   int saved_ = -1;
 };
 
-void load(const std::string& name, std::uintmax_t memory_budget, Decoded* out) {
+void load(const std::string& name, const std::string& format, std::uintmax_t memory_budget, Decoded* out) {
   const QuietStderr quiet;
+  // One reader: the one the first bytes named, else the extension's. OpenImageIO would
+  // otherwise try every reader it has on a file its extension's reader refused, each
+  // reading what it likes of a file that may be gigabytes of something else.
+  static const bool one_reader = OIIO::attribute("try_all_readers", 0);
+  (void)one_reader;
   // Keep straight alpha as stored (TIFF, GIF) instead of premultiplying on read.
   OIIO::ImageSpec config;
   config.attribute("oiio:UnassociatedAlpha", 1);
-  auto in = OIIO::ImageInput::open(name, &config);
+  std::unique_ptr<OIIO::ImageInput> in;
+  if (format.empty()) {
+    in = OIIO::ImageInput::open(name, &config);
+  } else if ((in = OIIO::ImageInput::create(format, false, &config))) {
+    OIIO::ImageSpec opened;
+    if (!in->open(name, opened, config)) {
+      throw makeError(name, ": cannot read image as ", format, ": ", oneLine(in->geterror()));
+    }
+  }
   if (!in) throw makeError(name, ": cannot read image: ", oneLine(OIIO::geterror()));
   const OIIO::ImageSpec& spec = in->spec();
   if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0) {
@@ -206,8 +219,8 @@ std::string guarded(const std::string& name, Work&& work) {
   }
 }
 
-std::string loadEntry(const std::string& path, std::uintmax_t memory_budget, Decoded* out) {
-  return guarded(path, [&] { load(path, memory_budget, out); });
+std::string loadEntry(const std::string& path, const std::string& format, std::uintmax_t memory_budget, Decoded* out) {
+  return guarded(path, [&] { load(path, format, memory_budget, out); });
 }
 
 std::string encodeEntry(const Image& img, const std::string& path, PixelDepth depth, bool smallest,
