@@ -27,7 +27,10 @@ bool grainHere(const scene::Scene& s) {
 
 // Variants both image passes share: how objects are indexed and what the atmosphere needs.
 void addSurfaceDefines(const scene::Scene& s, std::vector<std::string>& d) {
-  if (s.objects.size() == 1) d.emplace_back("SINGLE_OBJECT");
+  if (s.objects.size() == 1)
+    d.emplace_back("SINGLE_OBJECT");
+  else
+    d.push_back("OBJECTS=" + std::to_string(s.objects.size()));
   if (s.dissolvesBorders()) d.emplace_back("BORDER");
   if (s.mist.enabled()) d.emplace_back("MIST");
 }
@@ -77,10 +80,19 @@ class InkPass final : public RenderPass {
 
   void buildPrograms() override {
     std::vector<std::string> defines = inkDefines(scene_, debug_outputs_);
+    // The objects' parameters in a uniform block when they fit this driver's (ink_objects.glsl).
+    GLint max_block = 0;
+    glGetIntegerv(GL_MAX_UNIFORM_BLOCK_SIZE, &max_block);
+    const bool in_storage = scene_.objects.size() * sizeof(gpu::ObjectParams) > static_cast<std::size_t>(max_block);
+    auto toStorage = [&](std::vector<std::string>& d) {
+      if (in_storage) std::erase_if(d, [](const std::string& w) { return w.starts_with("OBJECTS="); });
+    };
+    toStorage(defines);
     std::optional<Program> lines;
     std::vector<std::string> line_defines;
     if (scene_.usesStrokes()) {
       addSurfaceDefines(scene_, line_defines);
+      toStorage(line_defines);
       if (scene_.usesShading()) line_defines.emplace_back("SHADING");  // it samples the shading's noise
       if (scene_.usesSuggestiveContours()) line_defines.emplace_back("SUGGESTIVE");
       lines.emplace(Program({"fullscreen.vert", "ink_lines.frag"}, line_defines));
@@ -93,6 +105,7 @@ class InkPass final : public RenderPass {
     lines_ = std::move(lines);
     defines_ = std::move(defines);
     line_defines_ = std::move(line_defines);
+    objects_in_storage_ = in_storage;
   }
 
   std::vector<std::string> variants() const override {
@@ -345,11 +358,8 @@ class InkPass final : public RenderPass {
       capacity_ = bytes;
     }
     glNamedBufferSubData(params_.id(), 0, static_cast<GLsizeiptr>(bytes), params.data());
-    // One object: a uniform block (see shaders/ink_objects.glsl); more: a storage buffer.
-    if (in.objects.size() == 1)
-      glBindBufferBase(GL_UNIFORM_BUFFER, 0, params_.id());
-    else
-      glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, params_.id());
+    // A uniform block unless there are more objects than one holds (shaders/ink_objects.glsl).
+    glBindBufferBase(objects_in_storage_ ? GL_SHADER_STORAGE_BUFFER : GL_UNIFORM_BUFFER, 0, params_.id());
   }
 
   scene::Scene scene_;
@@ -362,6 +372,7 @@ class InkPass final : public RenderPass {
   VertexArray vao_;
   Buffer params_;
   std::size_t capacity_ = 0;
+  bool objects_in_storage_ = false;  //!< more objects than a uniform block holds
   Framebuffer target_;
   Framebuffer strokes_;   //!< the lines stage's target: RGBA16, presence and shading noise per surface pixel
   Texture2D stroke_ink_;  //!< R32UI: the strokes' ink × 255, by atomic max

@@ -782,16 +782,21 @@ TEST_F(Ink, SampleSceneWithTreesAndDotsMatchesItsGoldenImage) {
 }
 
 // The per-object block: every member at the offset C++ writes it to, as the driver lays
-// it out, in both the uniform-block (one object) and storage-buffer variants.
+// it out, in the uniform-block variants (one object; OBJECTS of them) and in the storage
+// buffer used when more objects than a uniform block holds are drawn.
 class ObjectBlock : public test::HeadlessGl {};
 
 TEST_F(ObjectBlock, DriverOffsetsAreTheCppOffsets) {
-  for (const bool single : {true, false}) {
-    SCOPED_TRACE(single ? "uniform block" : "storage buffer");
+  enum class Layout { Single, Block, Storage };
+  for (const Layout layout : {Layout::Single, Layout::Block, Layout::Storage}) {
+    SCOPED_TRACE(layout == Layout::Single  ? "one object"
+                 : layout == Layout::Block ? "uniform block"
+                                           : "storage buffer");
     std::vector<std::string> defines = {"LINES", "SHADING", "WRINKLE"};
-    if (single) defines.emplace_back("SINGLE_OBJECT");
+    if (layout == Layout::Single) defines.emplace_back("SINGLE_OBJECT");
+    if (layout == Layout::Block) defines.emplace_back("OBJECTS=3");
     const Program p({"fullscreen.vert", "ink.frag"}, defines);
-    const GLenum interface = single ? GL_UNIFORM : GL_BUFFER_VARIABLE;
+    const GLenum interface = layout == Layout::Storage ? GL_BUFFER_VARIABLE : GL_UNIFORM;
     int found = 0;
     for (const gpu::FieldOffset& f : gpu::kObjectParamsFields) {
       // Drivers name block members with or without the block's name.
@@ -809,15 +814,15 @@ TEST_F(ObjectBlock, DriverOffsetsAreTheCppOffsets) {
     }
     // std140 and std430 blocks keep every member active, read or not.
     EXPECT_GE(found, static_cast<int>(std::size(gpu::kObjectParamsFields)) - 1);
-    if (!single) {
-      const GLuint block = glGetProgramResourceIndex(p.id(), GL_SHADER_STORAGE_BLOCK, "Objects");
-      ASSERT_NE(block, GL_INVALID_INDEX);
-      const GLenum property = GL_BUFFER_DATA_SIZE;
-      GLint size = 0;
-      glGetProgramResourceiv(p.id(), GL_SHADER_STORAGE_BLOCK, block, 1, &property, 1, nullptr, &size);
-      // An unsized array: the block's size is one element's stride.
-      EXPECT_EQ(static_cast<std::size_t>(size), sizeof(gpu::ObjectParams));
-    }
+    const GLenum block_interface = layout == Layout::Storage ? GL_SHADER_STORAGE_BLOCK : GL_UNIFORM_BLOCK;
+    const GLuint block = glGetProgramResourceIndex(p.id(), block_interface, "Objects");
+    ASSERT_NE(block, GL_INVALID_INDEX);
+    const GLenum property = GL_BUFFER_DATA_SIZE;
+    GLint size = 0;
+    glGetProgramResourceiv(p.id(), block_interface, block, 1, &property, 1, nullptr, &size);
+    // The block is the array: one element's stride per object (an unsized array: one).
+    const std::size_t elements = layout == Layout::Block ? 3 : 1;
+    EXPECT_EQ(static_cast<std::size_t>(size), elements * sizeof(gpu::ObjectParams));
   }
 }
 
@@ -895,10 +900,12 @@ TEST_F(Variants, EveryCombinationTheSceneKeysCanProduceCompiles) {
   // Strokes: the ink pass reading them, and the lines stage with one or many objects.
   ASSERT_NO_THROW(
       Program({"fullscreen.vert", "ink.frag"}, {"LINES", "STROKES", "SHADING", "BORDER", "MIST", "DEBUG_OUTPUTS"}));
-  ASSERT_NO_THROW(Program({"fullscreen.vert", "ink_lines.frag"}, {"BORDER", "MIST"}));
+  ASSERT_NO_THROW(Program({"fullscreen.vert", "ink_lines.frag"}, {"OBJECTS=2", "BORDER", "MIST"}));
+  ASSERT_NO_THROW(Program({"fullscreen.vert", "ink_lines.frag"}, {"BORDER", "MIST"}));  // in a storage buffer
   ASSERT_NO_THROW(Program({"fullscreen.vert", "ink_lines.frag"}, {"SINGLE_OBJECT"}));
-  ASSERT_NO_THROW(Program({"fullscreen.vert", "ink_lines.frag"}, {"SUGGESTIVE", "BORDER", "MIST"}));
-  ASSERT_NO_THROW(Program({"fullscreen.vert", "ink_lines.frag"}, {"SHADING", "BORDER", "MIST"}));  // the noise, indexed
+  ASSERT_NO_THROW(Program({"fullscreen.vert", "ink_lines.frag"}, {"SUGGESTIVE", "OBJECTS=2", "BORDER", "MIST"}));
+  ASSERT_NO_THROW(Program({"fullscreen.vert", "ink_lines.frag"},
+                          {"SHADING", "OBJECTS=2", "BORDER", "MIST"}));  // the noise, indexed
   // G-buffer: SURFACE × WRINKLE × curvature kinds; ink: LINES × SHADING × WRINKLE ×
   // SINGLE_OBJECT × CANVAS; canvas: two patterns × tiles (one or more objects) or splat,
   // and static's two; diffusion: one.
