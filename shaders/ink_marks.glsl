@@ -29,14 +29,17 @@ float marksOctave(vec2 q, vec2 dir, float density, uint style, uint seed) {
     for (int i = 0; i <= 1; ++i) {
       ivec2 c = base + ivec2(i, j);
       uint h = cellHash(uvec2(c + 32768) ^ uvec2(seed, seed * 0x9e3779b9u));
-      vec4 a = unpack4(h), b = unpack4(cellHash(uvec2(h, seed + 7u)));
+      vec4 a = unpack4(h);
       float keep = smoothstep(a.z - 0.06, a.z + 0.06, density);
       if (keep <= 0.0) continue;
+      vec4 b = unpack4(cellHash(uvec2(h, seed + 7u)));
       vec2 d = q - (vec2(c) + a.xy);
       float cover;
       if (style == kMarksAxe) {
         // A wedge turned up to ±25 degrees: its point uphill, its broad end downhill.
-        float turn = (b.x - 0.5) * 0.87, cs = cos(turn), sn = sin(turn);
+        // cos and sin to the cubic and quadratic terms: within 0.3 % at 25 degrees.
+        float turn = (b.x - 0.5) * 0.87, turn2 = turn * turn;
+        float cs = 1.0 - 0.5 * turn2, sn = turn * (1.0 - turn2 / 6.0);
         vec2 along_dir = cs * dir + sn * perp;
         float along = dot(d, along_dir), across = dot(d, vec2(-along_dir.y, along_dir.x));
         float half_length = 0.3 + 0.12 * b.y;  // with the ±25° turn, at most half a cell along x or y
@@ -68,13 +71,18 @@ float textureMarks(vec2 uv, vec2 duv_dx, vec2 duv_dy, vec2 down, float spacing_p
   if (!(det > 1e-30)) return 0.0;
   vec2 dir = length(down) > 1e-6 ? normalize(down) : vec2(0.0, 1.0);
   float scale = log2(max(spacing_px * sqrt(det), 1e-30));  // log2 of a cell's size in model units
-  float level = floor(scale), blend = scale - level;
+  float level = floor(scale);
   float size0 = exp2(level);
+  // One octave holds the marks over most of a zoom step (cells 0.7-1.4 times the size asked
+  // for), the two cross-fading only over the middle fifth of it: a pixel computes one
+  // lattice most of the time, and a mark is drawn at full strength instead of as the
+  // half-faded sum of two.
+  float blend = smoothstep(0.4, 0.6, scale - level);
   // Each octave its own lattice (a different seed), so the coarser one's marks are not
   // the finer one's doubled.
   int octave = int(level);
-  float a = blend < 0.98 ? marksOctave(uv / size0, dir, density, style, seed + uint(octave & 1023) * 131u) : 0.0;
-  float b = blend > 0.02 ? marksOctave(uv / (2.0 * size0), dir, density, style, seed + uint((octave + 1) & 1023) * 131u)
-                         : 0.0;
+  float a = blend < 1.0 ? marksOctave(uv / size0, dir, density, style, seed + uint(octave & 1023) * 131u) : 0.0;
+  float b = blend > 0.0 ? marksOctave(uv / (2.0 * size0), dir, density, style, seed + uint((octave + 1) & 1023) * 131u)
+                        : 0.0;
   return mix(a, b, blend);
 }
