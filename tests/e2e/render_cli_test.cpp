@@ -52,6 +52,11 @@ TEST(RenderCli, BenchmarkTimesEveryPassOverFramesBackToBack) {
     EXPECT_GE(b["pass_gpu_ms"][pass]["p90"].get<double>(), b["pass_gpu_ms"][pass]["median"].get<double>()) << pass;
   }
   EXPECT_GE(b["frame_wall_ms"]["median"].get<double>(), b["passes_gpu_ms"]["median"].get<double>() * 0.5);
+  // Frames in flight, their times read late: every counted frame's passes came back.
+  EXPECT_EQ(b["frames_in_flight"], 2);
+  EXPECT_GT(b["fps"].get<double>(), 0.0);
+  EXPECT_GT(b["submit_cpu_ms"]["median"].get<double>(), 0.0);
+  EXPECT_LE(b["submit_cpu_ms"]["median"].get<double>(), b["frame_wall_ms"]["p90"].get<double>() * 1.5);
   EXPECT_GT(b["elements"][0]["count"].get<int>(), 0);
   EXPECT_LT(b["elements"][0]["place_seconds"].get<double>(), 5.0);
   EXPECT_FALSE(std::filesystem::exists(dir / "b.png"));

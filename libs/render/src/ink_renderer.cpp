@@ -408,14 +408,25 @@ const Framebuffer& InkRenderer::render(const OrbitCamera& camera, int width, int
   FrameStats out;
   out.submit = std::move(submit);
   out.redrawn = region ? static_cast<double>(region->z - region->x) * (region->w - region->y) / (width * height) : 1.0;
-  if (timing)
-    out.passes = timer_.collect();
-  else
+  if (timing && late_timing_) {
+    timer_.endFrame();
     glFlush();
+  } else if (timing) {
+    out.passes = timer_.collect();
+  } else {
+    glFlush();
+  }
   out.frame_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   if (stats) *stats = std::move(out);
   last_key_ = std::move(key);
   return *last_output_;
+}
+
+void InkRenderer::setLateTiming(bool on) {
+  if (!on)
+    while (timer_.collectLate(true)) {
+    }
+  late_timing_ = on;
 }
 
 image::Image InkRenderer::worldPositions() const {

@@ -125,6 +125,49 @@ TEST_F(Headless, WorkBetweenPassesCountsInTheNextPassUnlessMarkedAsAGap) {
   EXPECT_LT(second(true), 30.0);
 }
 
+// Late reading: frames closed without waiting come back in order, each with its own
+// passes; a 40 ms pause inside the second frame's pass is that frame's, not another's.
+TEST_F(Headless, FramesTimedLateComeBackInOrderWithTheirOwnPasses) {
+  GpuTimer timer;
+  for (int frame = 0; frame < 3; ++frame) {
+    timer.begin("a" + std::to_string(frame));
+    timer.end();
+    glFlush();
+    timer.begin("b" + std::to_string(frame));
+    if (frame == 1) {
+      glFlush();
+      std::this_thread::sleep_for(std::chrono::milliseconds(40));
+    }
+    timer.end();
+    timer.endFrame();
+  }
+  EXPECT_EQ(timer.framesLate(), 3u);
+  std::vector<std::vector<PassTime>> frames;
+  for (int i = 0; i < 1000 && frames.size() < 3; ++i) {
+    glFlush();
+    // Without waiting: a frame the GPU has not reached yet is left for later.
+    if (auto t = timer.collectLate(i > 500)) frames.push_back(std::move(*t));
+  }
+  ASSERT_EQ(frames.size(), 3u);
+  EXPECT_EQ(timer.framesLate(), 0u);
+  EXPECT_FALSE(timer.collectLate(true).has_value());
+  for (int frame = 0; frame < 3; ++frame) {
+    ASSERT_EQ(frames[frame].size(), 2u);
+    EXPECT_EQ(frames[frame][0].name, "a" + std::to_string(frame));
+    EXPECT_EQ(frames[frame][1].name, "b" + std::to_string(frame));
+    for (const PassTime& p : frames[frame]) EXPECT_GE(p.gpu_ms, 0.0) << p.name;
+  }
+  EXPECT_GE(frames[1][1].gpu_ms, 30.0);
+  EXPECT_LT(frames[0][1].gpu_ms, 30.0);
+  EXPECT_LT(frames[2][1].gpu_ms, 30.0);
+  // Reading at once still works between late frames, and its queries are reused.
+  timer.begin("now");
+  timer.end();
+  const std::vector<PassTime> now = timer.collect();
+  ASSERT_EQ(now.size(), 1u);
+  EXPECT_EQ(now[0].name, "now");
+}
+
 TEST_F(Headless, DriverErrorsAreMappedToFileAndLine) {
   // Preprocess a real shader, then break it at a known line of a known file.
   PreprocessedShader pre = preprocessShader("mesh_preview.frag", {"SOME_VARIANT", "LEVEL=3"});

@@ -80,6 +80,15 @@ class InkRenderer {
   const Framebuffer& render(const OrbitCamera& camera, int width, int height, FrameStats* stats = nullptr,
                             bool timing = true, double time = 0.0, const OrbitCamera* previous_camera = nullptr);
 
+  //! With late timing on, render() with timing does not wait for the GPU: it closes the
+  //! frame's timestamps and returns (stats->passes empty), and lateTimes() reads them a few
+  //! frames later, in order, so a benchmark can keep frames in flight. Turning it off waits
+  //! for and drops the frames not read.
+  void setLateTiming(bool on);
+  //! The passes of the oldest frame rendered with late timing and not read yet: nothing
+  //! when there is none, or (unless `wait`) when the GPU has not finished it.
+  std::optional<std::vector<PassTime>> lateTimes(bool wait) { return timer_.collectLate(wait); }
+
   //! Renders a frame of the scene's own camera (key) at the scene's output size and reads it
   //! back: RGB, row 0 at the top.
   image::Image renderImage(const scene::CameraKey& key, FrameStats* stats = nullptr, double time = 0.0,
@@ -164,6 +173,7 @@ class InkRenderer {
   int width_ = 0, height_ = 0;
   const Framebuffer* last_output_ = nullptr;  //!< the picture's framebuffer
   GpuTimer timer_;
+  bool late_timing_ = false;
   std::string last_key_;
   std::string last_static_key_;            //!< the last frame's request less its time
   std::optional<glm::ivec4> last_moving_;  //!< the animated objects' region in the last frame
