@@ -196,8 +196,7 @@ void InkDiffusionPass::run(const Texture2D& colour, const PaperTexture& texture,
     columns_.set("u_ring_steps", o.ring_steps);
     std::vector<float> ring_ink(static_cast<std::size_t>(o.ring_steps) + 1);
     for (int r = 0; r <= o.ring_steps; ++r) ring_ink[r] = static_cast<float>(std::pow(o.attenuation, r));
-    glProgramUniform1fv(columns_.id(), glGetUniformLocation(columns_.id(), "u_ring_ink"), o.ring_steps + 1,
-                        ring_ink.data());
+    glProgramUniform1fv(columns_.id(), columns_.location("u_ring_ink"), o.ring_steps + 1, ring_ink.data());
     bindImage(3, main_, GL_READ_WRITE);
     bindImage(4, near_, GL_READ_ONLY);
     glDispatchCompute(groups(packedWidth(size.x), kLineGroup), 1, 1);

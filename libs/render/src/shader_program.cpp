@@ -1,5 +1,7 @@
 #include "shanshui/render/shader_program.h"
 
+#include <algorithm>
+#include <cstring>
 #include <regex>
 #include <sstream>
 
@@ -134,15 +136,18 @@ Program::~Program() {
   if (id_) glDeleteProgram(id_);
 }
 
-Program::Program(Program&& other) noexcept : id_(other.id_) {
+Program::Program(Program&& other) noexcept : id_(other.id_), locations_(std::move(other.locations_)) {
   other.id_ = 0;
+  other.locations_.clear();
 }
 
 Program& Program::operator=(Program&& other) noexcept {
   if (this != &other) {
     if (id_) glDeleteProgram(id_);
     id_ = other.id_;
+    locations_ = std::move(other.locations_);
     other.id_ = 0;
+    other.locations_.clear();
   }
   return *this;
 }
@@ -151,7 +156,13 @@ void Program::use() const {
   glUseProgram(id_);
 }
 GLint Program::location(const char* name) const {
-  return glGetUniformLocation(id_, name);
+  const auto at = std::lower_bound(locations_.begin(), locations_.end(), name, [](const auto& entry, const char* n) {
+    return std::strcmp(entry.first.c_str(), n) < 0;
+  });
+  if (at != locations_.end() && at->first == name) return at->second;
+  const GLint l = glGetUniformLocation(id_, name);
+  locations_.insert(at, {name, l});
+  return l;
 }
 void Program::set(const char* name, int v) const {
   glProgramUniform1i(id_, location(name), v);

@@ -168,6 +168,30 @@ TEST_F(Headless, FramesTimedLateComeBackInOrderWithTheirOwnPasses) {
   EXPECT_EQ(now[0].name, "now");
 }
 
+// A program keeps the locations it was asked for: the same as the driver's for every
+// active uniform (array elements and unknown names too), asked in any order, twice.
+TEST_F(Headless, KeptUniformLocationsAreTheDriversOwn) {
+  Program p({"fullscreen.vert", "ink.frag"}, {"LINES", "SHADING", "WRINKLE", "CANVAS", "BORDER", "MIST", "OBJECTS=2"});
+  GLint count = 0;
+  glGetProgramInterfaceiv(p.id(), GL_UNIFORM, GL_ACTIVE_RESOURCES, &count);
+  std::vector<std::string> names;
+  for (GLint i = 0; i < count; ++i) {
+    char name[256];
+    glGetProgramResourceName(p.id(), GL_UNIFORM, static_cast<GLuint>(i), sizeof name, nullptr, name);
+    if (std::string(name).find('.') == std::string::npos) names.push_back(name);  // not a block member
+  }
+  ASSERT_GE(names.size(), 5u);
+  names.insert(names.end(), {"u_not_there", "u_fade_range[0]", "u_eye"});
+  for (int round = 0; round < 2; ++round) {
+    for (auto it = names.rbegin(); it != names.rend(); ++it) {
+      EXPECT_EQ(p.location(it->c_str()), glGetUniformLocation(p.id(), it->c_str())) << *it;
+    }
+  }
+  // A moved program keeps them, and stays right.
+  Program q = std::move(p);
+  for (const std::string& n : names) EXPECT_EQ(q.location(n.c_str()), glGetUniformLocation(q.id(), n.c_str())) << n;
+}
+
 TEST_F(Headless, DriverErrorsAreMappedToFileAndLine) {
   // Preprocess a real shader, then break it at a known line of a known file.
   PreprocessedShader pre = preprocessShader("mesh_preview.frag", {"SOME_VARIANT", "LEVEL=3"});

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <epoxy/gl.h>
@@ -49,10 +50,14 @@ class Program {
   void set(const char* name, const glm::vec4& v) const;
   void set(const char* name, const glm::mat3& v) const;
   void set(const char* name, const glm::mat4& v) const;
+  //! A uniform's location, asked of the driver once per name and program and then kept:
+  //! passes set their uniforms by name every frame (issue 47: CPU submission).
+  GLint location(const char* name) const;
 
  private:
-  GLint location(const char* name) const;
   GLuint id_ = 0;
+  //! Names asked for and their locations (-1: not active), sorted by name.
+  mutable std::vector<std::pair<std::string, GLint>> locations_;
 };
 
 }  // namespace shanshui::render
