@@ -56,6 +56,7 @@ TEST(RenderCli, BenchmarkTimesEveryPassOverFramesBackToBack) {
   EXPECT_EQ(b["frames_in_flight"], 2);
   EXPECT_GT(b["fps"].get<double>(), 0.0);
   EXPECT_GT(b["submit_cpu_ms"]["median"].get<double>(), 0.0);
+  EXPECT_GT(b["frame_cpu_ms"].get<double>(), 0.0);
   EXPECT_LE(b["submit_cpu_ms"]["median"].get<double>(), b["frame_wall_ms"]["p90"].get<double>() * 1.5);
   EXPECT_GT(b["elements"][0]["count"].get<int>(), 0);
   EXPECT_LT(b["elements"][0]["place_seconds"].get<double>(), 5.0);
