@@ -10,12 +10,14 @@ uniform float u_water_bank;  // bank line width, pixels
 uniform float u_pixel_angle; // a pixel's width at distance 1, world units
 uniform vec4 u_water_extent; // the open water's rectangle in world xy (min, max): the land's bounds
 
-// Where this pixel's view ray meets the water's surface; false when it does not (looking up).
-bool onWaterPlane(ivec2 p, out vec3 w) {
+// Where this pixel's view ray meets the water's surface: the point w, the ray's parameter t
+// and unit direction d; false when it does not (looking up or along the surface).
+bool waterHit(ivec2 p, out vec3 w, out float t, out vec3 d) {
   vec2 ndc = (vec2(p) + 0.5) / vec2(textureSize(u_depth, 0)) * 2.0 - 1.0;
   vec4 a = u_inverse_view_projection * vec4(ndc, -1.0, 1.0), b = u_inverse_view_projection * vec4(ndc, 1.0, 1.0);
-  vec3 o = a.xyz / a.w, d = normalize(b.xyz / b.w - o);
-  float t = (u_water.x - o.z) / (abs(d.z) > 1e-6 ? d.z : -1e-6);
+  vec3 o = a.xyz / a.w;
+  d = normalize(b.xyz / b.w - o);
+  t = (u_water.x - o.z) / (abs(d.z) > 1e-6 ? d.z : -1e-6);
   w = o + t * d;
   return t > 0.0;
 }
@@ -24,14 +26,10 @@ bool underWater(vec3 position) {
   return position.z < u_water.x;
 }
 
-// The wave strokes' ink where this pixel's view ray meets the water, in [0, 1].
-float waveInk(ivec2 p) {
-  vec2 ndc = (vec2(p) + 0.5) / vec2(textureSize(u_depth, 0)) * 2.0 - 1.0;
-  vec4 a = u_inverse_view_projection * vec4(ndc, -1.0, 1.0), b = u_inverse_view_projection * vec4(ndc, 1.0, 1.0);
-  vec3 o = a.xyz / a.w, d = normalize(b.xyz / b.w - o);
-  float t = (u_water.x - o.z) / (abs(d.z) > 1e-6 ? d.z : -1e-6);
-  if (t <= 0.0 || u_water.z <= 0.0) return 0.0;
-  vec3 w = o + t * d;
+// The wave strokes' ink at w, where a view ray of direction d meets the water at parameter
+// t (waterHit), in [0, 1].
+float waveInkAt(vec3 w, float t, vec3 d) {
+  if (u_water.z <= 0.0) return 0.0;
   // A pixel on the water, in cells: across (u) as it is, along the view foreshortened.
   float pixel = t * u_pixel_angle / u_water.y, graze = max(abs(d.z), 0.02);
   float cell_px = graze / pixel;  // a cell's height on the picture, pixels
@@ -63,13 +61,21 @@ float waveInk(ivec2 p) {
   return ink * visible * u_water.w;
 }
 
+// The wave strokes' ink where this pixel's view ray meets the water, in [0, 1].
+float waveInk(ivec2 p) {
+  vec3 w, d;
+  float t;
+  return waterHit(p, w, t, d) ? waveInkAt(w, t, d) : 0.0;
+}
+
 // Open water where no land was drawn (between ranges, in front of a near bank): the wave
 // strokes where the view ray meets the water inside the land's rectangle, fading out over
 // its outer fifth as a dissolving border does, with the distance fade and the mist at the
 // water's height. Needs presence's uniforms (ink_surface.glsl).
 float openWaterInk(ivec2 p) {
-  vec3 w;
-  if (!onWaterPlane(p, w)) return 0.0;
+  vec3 w, d;
+  float t;
+  if (!waterHit(p, w, t, d)) return 0.0;
   vec2 size = u_water_extent.zw - u_water_extent.xy;
   vec2 inside = min(w.xy - u_water_extent.xy, u_water_extent.zw - w.xy) / max(0.2 * min(size.x, size.y), 1e-6);
   float f = smoothstep(0.0, 1.0, min(inside.x, inside.y));
@@ -78,7 +84,7 @@ float openWaterInk(ivec2 p) {
 #ifdef MIST
   f *= 1.0 - mistAt(w);
 #endif
-  return f * waveInk(p);
+  return f * waveInkAt(w, t, d);
 }
 
 // 1 on the land's side of a bank: a neighbour within the line's width is under water. z is
