@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <atomic>
+#include <cctype>
 #include <cerrno>
 #include <charconv>
 #include <cstdlib>
@@ -129,32 +130,16 @@ std::uintmax_t parseByteSize(std::string_view text, std::string_view source) {
   const char* b = text.data();
   const char* e = b + text.size();
   const auto [p, ec] = std::from_chars(b, e, v);
+  // A unit letter after the number: K, M, G or T (any case), powers of 1024; 0: not a unit.
   std::uintmax_t scale = 1;
   if (ec == std::errc() && p + 1 == e) {
-    switch (*p) {
-      case 'K':
-      case 'k':
-        scale = std::uintmax_t{1} << 10;
-        break;
-      case 'M':
-      case 'm':
-        scale = std::uintmax_t{1} << 20;
-        break;
-      case 'G':
-      case 'g':
-        scale = std::uintmax_t{1} << 30;
-        break;
-      case 'T':
-      case 't':
-        scale = std::uintmax_t{1} << 40;
-        break;
-      default:
-        scale = 0;
-    }
+    constexpr std::string_view kUnits = "kmgt";
+    const std::size_t unit = kUnits.find(static_cast<char>(std::tolower(static_cast<unsigned char>(*p))));
+    scale = unit == std::string_view::npos ? 0 : std::uintmax_t{1} << (10 * (unit + 1));
   }
   if (ec != std::errc() || (p != e && scale <= 1) || v == 0 || v > (~std::uintmax_t{0}) / scale) {
     throw makeError(source, ": '", text,
-                    "' is not a memory size; expected bytes, or a number with K, M or G (e.g. 512M)");
+                    "' is not a memory size; expected bytes, or a number with K, M, G or T (e.g. 512M)");
   }
   return v * scale;
 }
