@@ -28,12 +28,18 @@ std::string readFile(const fs::path& p) {
   return shanshui::readInputFile(p, "a file the demo reads", shanshui::kMaxMediaInputBytes);
 }
 
+// Whether `path` already holds exactly `bytes` (a missing, empty or different file does not):
+// a file the demo writes is left alone then.
+bool holds(const fs::path& path, const std::string& bytes) {
+  std::error_code ec;
+  return fs::is_regular_file(path, ec) && fs::file_size(path, ec) == bytes.size() && !ec && readFile(path) == bytes;
+}
+
 // A file copied into the assets (the scan, the reference): read through the input gate and
 // written atomically, left alone when the copy is already there.
 void copyAsset(const fs::path& from, const fs::path& to) {
   const std::string bytes = readFile(from);
-  if (fs::exists(to) && readFile(to) == bytes) return;
-  shanshui::writeFileAtomically(to, bytes);
+  if (!holds(to, bytes)) shanshui::writeFileAtomically(to, bytes);
 }
 
 // FNV-1a, 64 bits: enough to notice a changed input (not meant against tampering).
@@ -140,7 +146,7 @@ void writeScene(const fs::path& sample_scene, const fs::path& out, bool quick) {
   j["diffusion"]["iterations"] = 5;
   if (quick) j["output"] = {{"width", 160}, {"height", 120}};
   const std::string text = j.dump(2) + "\n";
-  if (fs::exists(out) && readFile(out) == text) return;  // same content: nothing to do
+  if (holds(out, text)) return;  // same content: nothing to do
   shanshui::writeFileAtomically(out, text);
 }
 
@@ -167,7 +173,7 @@ void writePainting(const fs::path& sample_scene, const fs::path& out, bool quick
   far["transform"]["scale"][2] = far["transform"]["scale"][2].get<double>() / 1.5;
   if (quick) j["output"] = {{"width", 120}, {"height", 160}};
   const std::string text = j.dump(2) + "\n";
-  if (fs::exists(out) && readFile(out) == text) return;
+  if (holds(out, text)) return;
   shanshui::writeFileAtomically(out, text);
 }
 

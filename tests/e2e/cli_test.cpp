@@ -480,10 +480,13 @@ TEST(Cli, DemoRunsTheChainThenReusesWhatIsUpToDate) {
   EXPECT_NE(report.find("| curvature | a single triangle | finite result"), std::string::npos) << report;
   EXPECT_TRUE(std::filesystem::exists(out / "stability/stability.csv"));
 
-  // Nothing changed: every stage is reused.
+  // Nothing changed: every stage is reused. A copied asset left empty (a run killed by an
+  // older demo) is written again, not refused as an empty input.
+  std::ofstream(out / "assets/scan.png", std::ios::trunc).close();
   r = run(demo);
   ASSERT_EQ(r.exit_code, 0) << r.output;
   for (const auto& [name, what] : demoStages(r.output)) EXPECT_EQ(what, "reused") << name;
+  EXPECT_EQ(readBytes(out / "assets/scan.png"), readBytes(samples / "textures/rain_strokes_scan.png"));
 
   // A new scan: its texture stages and the paintings run again, the mesh stages do not.
   image::Image scan = image::loadImage(samples / "textures/rain_strokes_scan.png");
