@@ -298,7 +298,10 @@ class InkPass final : public RenderPass {
       // Projected area of the bounding sphere decides the small-object path.
       const double d = std::max(glm::length(in.camera.eye() - g.centre), 1e-12);
       const double r_px = g.radius / d * pixels_per_unit_at_1;
-      const bool small = std::numbers::pi * r_px * r_px < l.small_object_px;
+      // Lengths are pixels at 1024 high (areas their square), so a frame of any height is the
+      // same picture.
+      const double per_1024 = in.height / 1024.0;
+      const bool small = std::numbers::pi * r_px * r_px < l.small_object_px * per_1024 * per_1024;
       gpu::ObjectParams& p = params[i];
       p.line_color = glm::vec3(l.line_color);
       p.curve_factor = static_cast<float>(l.curve_factor);
@@ -309,7 +312,7 @@ class InkPass final : public RenderPass {
       p.depth_edges = static_cast<float>(l.depth_edges);
       p.line_flags = (l.enabled ? gpu::kLinesOn : 0u) | (small ? gpu::kNormalOnly : 0u) |
                      (l.thin ? gpu::kThinLines : 0u) | (l.strokes() ? gpu::kStrokes : 0u);
-      p.stroke_half_width = l.strokes() ? static_cast<float>(0.5 * l.width) : 0.0f;
+      p.stroke_half_width = l.strokes() ? static_cast<float>(0.5 * l.width * per_1024) : 0.0f;
       p.stroke_taper = static_cast<float>(l.taper);
       p.stroke_far = static_cast<float>(l.far_width);
       p.valley_ink = static_cast<float>(l.valley_ink);

@@ -159,7 +159,7 @@ class StrokesPass final : public RenderPass {
       vo.near = in.camera.near_plane;
       vo.far = in.camera.far_plane;
       const auto seen = strokes::visibleSegments(edges, sm.graph, sm.mesh, vp * model, ref, vo);
-      const auto chains = strokes::linkSegments(seen, {p.max_turn_deg, p.max_gap_px});
+      const auto chains = strokes::linkSegments(seen, {p.max_turn_deg, p.max_gap_px * h / 1024.0});
       const strokes::BrushOptions bo = brushOptions(p, h);
       const glm::vec3 colour(scene_.objects[sm.object].lines.line_color);
       for (std::size_t c = 0; c < chains.size(); ++c) {

@@ -237,7 +237,7 @@ Scene loadSceneInput(const std::filesystem::path& path, const std::vector<std::s
   // for millions (objects.0.trees.enabled=true adds them).
   json object = {{mesh ? "mesh" : "dem", path.string()},
                  {"name", path.stem().string()},
-                 {"lines", {{"width", 3.5}}},
+                 {"lines", {{"width", 4.67}}},  // 3.5 pixels at the default 768 high
                  {"shading", {{"tones", {0.5, 0.66, 0.8, 0.92, 1.0}}}}};
   json j = {{"objects", json::array({object})}, {"canvas", {{"type", "rice_paper"}}}, {"output", {{"fade", 0.6}}}};
   if (mesh) {

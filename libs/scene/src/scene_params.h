@@ -149,7 +149,7 @@ void describe(V& v, LineParams& p) {
   v.number({"small_object_px",
             "objects whose bounding sphere covers fewer pixels get N·V and depth-edge lines only (the paper's "
             "trees and pavilions)",
-            Effect::Uniform, "pixels"},
+            Effect::Uniform, "pixels at 1024 high"},
            p.small_object_px, {0, kBig});
   v.boolean({"thin",
              "keep only the crest of each band past the threshold (curvature peaks across it): strokes, not "
@@ -163,8 +163,8 @@ void describe(V& v, LineParams& p) {
   v.number({"width",
             "strokes instead of Eq. 1's bands: crests of the curvature (ridges, valleys), outlines and thinned "
             "silhouettes drawn this wide near the camera at full strength; 0 = Eq. 1",
-            Effect::Uniform, "pixels"},
-           p.width, {0, 12});
+            Effect::Uniform, "pixels at 1024 high"},
+           p.width, {0, 32});
   v.number({"taper", "width of a crest just past the threshold, relative to one of twice its curvature"}, p.taper,
            kUnit);
   v.number({"far_width", "stroke width at the far side of the scene, relative to the near side"}, p.far_width, kUnit);
@@ -304,8 +304,9 @@ void describe(V& v, BrushStrokeParams& p) {
   v.number(
       {"max_turn", "linking: largest turn where two visible pieces join (seed 002: 45)", Effect::Uniform, "degrees"},
       p.max_turn_deg, {0, 180});
-  v.number({"max_gap", "linking: largest gap bridged between pieces (seed 002: 5)", Effect::Uniform, "pixels"},
-           p.max_gap_px, {0, 1000});
+  v.number(
+      {"max_gap", "linking: largest gap bridged between pieces (seed 002: 5)", Effect::Uniform, "pixels at 1024 high"},
+      p.max_gap_px, {0, 1000});
   v.number({"tension", "Cardinal spline tension: 0 Catmull-Rom, 1 straight between the pieces' ends"}, p.tension,
            {-1, 1});
   v.number({"short",
