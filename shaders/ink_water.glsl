@@ -55,8 +55,11 @@ float waveInkAt(vec3 w, float t, vec3 d) {
     float bend = ((g >> 24) & 1u) == 0u ? 1.0 : -1.0;
     float v = centre_v + bend * 0.08 * sin(3.14159265 * s);
     float thick = half_thick * (1.0 - 0.6 * s * s);
-    float across = abs(q.y - v) / max(thick, 1e-6);
-    ink = max(ink, (1.0 - smoothstep(0.6, 1.0, across)) * (1.0 - smoothstep(0.75, 1.0, abs(s))));
+    // Coverage of this pixel by the stroke, in pixels across it (cell_px to a cell): a line
+    // under two pixels thick stays one line instead of breaking into the dashes a test of
+    // the pixel's centre alone leaves where it bends across rows.
+    float cover = clamp((thick - abs(q.y - v)) * cell_px + 0.5, 0.0, 1.0);
+    ink = max(ink, cover * (1.0 - smoothstep(0.75, 1.0, abs(s))));
   }
   return ink * visible * u_water.w;
 }

@@ -3,6 +3,7 @@
 // it, and a scene without water builds none of it.
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -110,6 +111,52 @@ TEST_F(Water, WavesAreHorizontalStrokesAndTheBankIsALine) {
   EXPECT_GT(across, 3.0 * up) << "mean run " << across << " px across, " << up << " px up";
   ASSERT_GT(shore, 50);
   EXPECT_GT(static_cast<double>(bank) / static_cast<double>(shore), 0.9) << "the shore is drawn";
+}
+
+// A wave thinner than two pixels is one stroke, not a row of dashes. The strokes are
+// 0.7-1.6 cells long, over 10 pixels at this framing, and each is one 8-connected dark mark:
+// few dark pixels lie in marks under 6 pixels across. (A test of each pixel's centre alone
+// broke a thin wave wherever it bent across a row: 66 % of the dark pixels were in such
+// dashes; drawn by coverage 13 %, the far strokes that are short on screen.)
+TEST_F(Water, AThinWaveIsOneStrokeNotDashes) {
+  const mesh::Mesh m = ramp();
+  // bank 0: the strokes' least thickness, 1.6 pixels.
+  const scene::Scene s =
+      waterScene({{"enabled", true}, {"level", 0.5}, {"waves", 0.6}, {"ink", 1.0}, {"bank", 0.0}, {"spacing", 0.08}},
+                 {{"shading", {{"enabled", false}}}});
+  const Picture p = paint(s, m, 200.0, 1.8);
+  std::vector<char> dark(static_cast<std::size_t>(kWidth) * kHeight, 0);
+  for (int y = 0; y < kHeight; ++y)
+    for (int x = 0; x < kWidth; ++x)
+      dark[static_cast<std::size_t>(y) * kWidth + x] = p.position.at(x, y, 3) > 0.5f &&
+                                                       p.position.at(x, y, 2) < -2.0f &&
+                                                       p.colour.at(x, y, 0) < s.output.paper.x - 0.2;
+  int in_dashes = 0, all = 0;
+  std::vector<int> stack;
+  for (int i = 0; i < kWidth * kHeight; ++i) {
+    if (!dark[i]) continue;
+    dark[i] = 0;
+    stack.push_back(i);
+    int left = kWidth, right = -1, pixels = 0;
+    while (!stack.empty()) {
+      const int j = stack.back();
+      stack.pop_back();
+      left = std::min(left, j % kWidth);
+      right = std::max(right, j % kWidth);
+      ++pixels;
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          const int x = j % kWidth + dx, y = j / kWidth + dy;
+          if (x < 0 || y < 0 || x >= kWidth || y >= kHeight || !dark[y * kWidth + x]) continue;
+          dark[y * kWidth + x] = 0;
+          stack.push_back(y * kWidth + x);
+        }
+    }
+    all += pixels;
+    if (right - left < 6) in_dashes += pixels;
+  }
+  ASSERT_GT(all, 300) << "waves are drawn";
+  EXPECT_LT(in_dashes, 0.3 * all) << in_dashes << " of " << all << " dark pixels in marks under 6 pixels across";
 }
 
 TEST_F(Water, ASceneWithoutWaterBuildsNoWaterCode) {
