@@ -9,6 +9,9 @@
 #include <filesystem>
 #include <map>
 #include <memory>
+#include <optional>
+#include <string>
+#include <vector>
 
 #include <GLFW/glfw3.h>
 #include <backends/imgui_impl_glfw.h>
@@ -112,6 +115,9 @@ int main(int argc, char** argv) {
                                                     .vsync = frames == 0});
     GLFWwindow* window = context->window();
     auto renderer = std::make_unique<render::InkRenderer>(sc, objects);
+    // Pass times are read when the GPU has reached them, a frame or two later, so the
+    // viewer never waits for the GPU inside a frame.
+    renderer->setLateTiming(true);
 
     ViewState state;
     auto resetCamera = [&](int width, int height) {
@@ -171,7 +177,8 @@ int main(int argc, char** argv) {
 
     json edited = scene::toJson(sc);
     std::string scene_error, status;
-    render::FrameStats stats, last_drawn;
+    render::FrameStats stats;
+    std::vector<render::PassTime> last_passes;  //!< the GPU times of the last frame it finished
     auto shader_stamp = shader_dir.empty() ? std::filesystem::file_time_type{} : newestShader(shader_dir);
     double last_poll = glfwGetTime();
     // Frame rate: smoothed for the panel; for a scripted run, over every frame after the
@@ -205,7 +212,7 @@ int main(int argc, char** argv) {
         // Spinning objects run on the clock (scripted runs: 1/24 s per frame).
         const double time = frames > 0 ? frame / 24.0 : glfwGetTime();
         const render::Framebuffer& fb = renderer->render(state.camera, width, height, &stats, true, time);
-        if (!stats.cached) last_drawn = stats;
+        while (std::optional<std::vector<render::PassTime>> t = renderer->lateTimes(false)) last_passes = std::move(*t);
         glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
         glBlitNamedFramebuffer(fb.id(), 0, 0, 0, width, height, 0, 0, width, height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
         const bool last = frames > 0 && frame >= frames;
@@ -227,7 +234,7 @@ int main(int argc, char** argv) {
           ImGui::Text("%zu triangles, %dx%d", renderer->triangleCount(), width, height);
           ImGui::Text("%s, %.1f fps", stats.cached ? "frame: cached (nothing re-rendered)" : "frame: rendered", fps);
           double total = 0;
-          for (const auto& p : last_drawn.passes) {
+          for (const auto& p : last_passes) {
             ImGui::Text("  %-10s %7.2f ms", p.name.c_str(), p.gpu_ms);
             total += p.gpu_ms;
           }
@@ -256,6 +263,7 @@ int main(int argc, char** argv) {
               } else {
                 auto loaded = cache.getAll(next);
                 renderer = std::make_unique<render::InkRenderer>(next, loaded);
+                renderer->setLateTiming(true);
               }
               sc = std::move(next);
               if (camera_changed) resetCamera(width, height);

@@ -5,7 +5,6 @@
 #include <cmath>
 #include <map>
 #include <numbers>
-#include <sstream>
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -163,7 +162,7 @@ void CanvasPass::reloadShaders() {
   switch (method_) {
     case Method::Static:
       static_ = Program({"fullscreen.vert", "canvas_static.frag"}, definesFor(1));
-      static_key_.clear();
+      static_key_.reset();
       return;
     case Method::Tiles: {
       Program synthesis({"fullscreen.vert", "canvas_static.frag"}, definesFor(1));
@@ -174,7 +173,7 @@ void CanvasPass::reloadShaders() {
       tiles_ = std::move(surfaces);
       tiles_background_ = std::move(background);
       if (canvas_.hasMottle()) mottle_ = Program({"fullscreen.vert", "canvas_mottle.frag"}, kMottleDefines);
-      tile_key_.clear();
+      tile_key_.reset();
       return;
     }
     case Method::Splat:
@@ -213,7 +212,7 @@ void CanvasPass::setParams(const scene::Canvas& canvas, std::uint64_t seed) {
   SHANSHUI_CHECK(canvas.method == canvas_.method || method_ == Method::Static);
   canvas_ = canvas;
   seed_ = canvasSeed(seed);
-  static_key_.clear();
+  static_key_.reset();
 }
 
 noise::CanvasNoiseOptions CanvasPass::noiseOptions(int height) const {
@@ -232,13 +231,17 @@ noise::CanvasNoiseOptions CanvasPass::noiseOptions(int height) const {
 
 void CanvasPass::setKernel(const Program& p, const noise::CanvasNoiseOptions& o) const {
   // σ is a quadrature over the disc: computed once per parameter set.
-  static std::map<std::string, double> sigmas;
-  std::ostringstream key;
-  key.precision(17);
-  key << o.silk << "," << o.radius << "," << o.F0 << "," << o.omega0 << "," << o.isotropic << "," << o.mix << ","
-      << o.perlin_frequency << "," << o.impulses;
-  auto it = sigmas.find(key.str());
-  if (it == sigmas.end()) it = sigmas.emplace(key.str(), noise::canvasSigma(o)).first;
+  static std::map<std::array<double, 8>, double> sigmas;
+  const std::array<double, 8> key{static_cast<double>(o.silk),
+                                  o.radius,
+                                  o.F0,
+                                  o.omega0,
+                                  static_cast<double>(o.isotropic),
+                                  o.mix,
+                                  o.perlin_frequency,
+                                  static_cast<double>(o.impulses)};
+  auto it = sigmas.find(key);
+  if (it == sigmas.end()) it = sigmas.emplace(key, noise::canvasSigma(o)).first;
   p.set("u_kernel", glm::vec4(o.radius, noise::canvasBandwidth(o), o.F0, o.omega0));
   p.set("u_kernel_misc",
         glm::vec4(o.mix, o.perlin_frequency / o.radius, o.isotropic ? 1.0f : 0.0f, 1.0 / std::max(it->second, 1e-30)));
@@ -251,11 +254,11 @@ const Texture2D& CanvasPass::run(const std::vector<Item>& items, const Framebuff
                                  GpuTimer* timer) {
   if (target_.width() != width || target_.height() != height) {
     target_ = Framebuffer(width, height, {GL_RG16F}, false);
-    static_key_.clear();
+    static_key_.reset();
   }
   const noise::CanvasNoiseOptions o = noiseOptions(height);
   if (method_ == Method::Static) {
-    const std::string key = std::to_string(width) + "x" + std::to_string(height);
+    const std::array<int, 2> key{width, height};
     if (key == static_key_) return target_.colour(0);
     if (timer) timer->begin(passName());
     target_.bind();
@@ -310,11 +313,16 @@ void CanvasPass::updateTile(const noise::CanvasNoiseOptions& pixels) {
   texels.radius = radius;
   texels.F0 = pixels.F0 * pixels.radius / radius;
   texels_per_pixel_ = static_cast<float>(radius / pixels.radius);
-  std::ostringstream key;
-  key.precision(17);
-  key << texels.silk << "," << texels.F0 << "," << texels.omega0 << "," << texels.isotropic << "," << texels.mix << ","
-      << texels.perlin_frequency << "," << texels.impulses << "," << radius << "," << seed_;
-  if (key.str() == tile_key_) return;
+  const std::array<double, 9> key{static_cast<double>(texels.silk),
+                                  texels.F0,
+                                  texels.omega0,
+                                  static_cast<double>(texels.isotropic),
+                                  texels.mix,
+                                  texels.perlin_frequency,
+                                  static_cast<double>(texels.impulses),
+                                  static_cast<double>(radius),
+                                  static_cast<double>(seed_)};
+  if (key == tile_key_) return;
   tile_options_ = texels;
   // The copies' spectrum is the tile's, lines 1 / size apart: silk's narrow ring gets twice
   // the cells (at 16 its peak wandered by 6 % through a dolly, CanvasGl.ContrastAndGrain-
@@ -366,7 +374,7 @@ void CanvasPass::updateTile(const noise::CanvasNoiseOptions& pixels) {
   glTextureBuffer(tile_.id(), GL_R8I, tile_bytes_.id());
   tile_size_ = size;
   SHANSHUI_GL_CHECK("canvas tile upload");
-  tile_key_ = key.str();
+  tile_key_ = key;
 }
 
 void CanvasPass::runTiles(const std::vector<Item>& items, const Framebuffer& gbuffer, const Texture2D& attachable_depth,
@@ -491,10 +499,8 @@ CanvasPass::MarkSizes CanvasPass::markSizes(double fibre_length, int height) {
 
 void CanvasPass::updateMarkSprites(int height) {
   const auto [half_length, half_width, spot_radius] = markSizes(canvas_.fibre_length, height);
-  std::ostringstream key;
-  key.precision(17);
-  key << half_length << "," << half_width << "," << spot_radius;
-  if (key.str() == marks_key_) return;
+  const std::array<double, 3> key{half_length, half_width, spot_radius};
+  if (key == marks_key_) return;
   mark_texels_ = markTexelsPerPixel(kMarkSprite, half_length, half_width, spot_radius);
   const std::size_t texels = static_cast<std::size_t>(kMarkSprite) * kMarkSprite;
   std::vector<std::int8_t> bytes(2 * texels * kMarkVariants);
@@ -510,7 +516,7 @@ void CanvasPass::updateMarkSprites(int height) {
   marks_ = BufferTexture::create();
   glTextureBuffer(marks_.id(), GL_RG8I, mark_bytes_.id());
   SHANSHUI_GL_CHECK("canvas mark sprites");
-  marks_key_ = key.str();
+  marks_key_ = key;
 }
 
 void CanvasPass::setMarks(const Program& p, int height, double lattice_pixels) const {

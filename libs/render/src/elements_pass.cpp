@@ -133,12 +133,12 @@ class ElementsPass final : public RenderPass {
   std::vector<std::string> variants() const override { return {joined(defines())}; }
   void setScene(const scene::Scene& s) override {
     scene_ = s;
-    key_.clear();
+    key_ = 0;
   }
   void resize(int width, int height) override {
     target_ = Framebuffer(width, height, {nearness_ ? GLenum(GL_RG32F) : GLenum(GL_R8)}, false);
     attached_ = 0;
-    key_.clear();
+    key_ = 0;
   }
   const Framebuffer* target() const override { return &target_; }
 
@@ -279,7 +279,7 @@ class ElementsPass final : public RenderPass {
   VertexArray vao_;
   Buffer marks_, templates_, instances_, frame_instances_, entries_, indirect_;
   Framebuffer target_;
-  std::string key_;
+  std::uint64_t key_ = 0;  //!< FrameInputs::static_key of the cached layer (0: none)
 };
 
 }  // namespace

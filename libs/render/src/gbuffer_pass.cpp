@@ -80,7 +80,7 @@ class GbufferPass final : public RenderPass {
     gbuffer_ = Framebuffer(width, height, formats, true);
     attachable_depth_ = Texture2D(width, height, GL_DEPTH_COMPONENT32F);
     if (animated_) static_gbuffer_ = Framebuffer(width, height, formats, true);
-    static_key_.clear();
+    static_key_ = 0;
   }
 
   void run(const FrameInputs& in, FrameImages& images) override {
@@ -188,8 +188,8 @@ class GbufferPass final : public RenderPass {
   std::optional<Texture2D> noise_;
   std::optional<std::uint64_t> seed_;
   Framebuffer gbuffer_, static_gbuffer_;
-  Texture2D attachable_depth_;  //!< FrameImages::attachable_depth
-  std::string static_key_;      //!< request the static layer was drawn for
+  Texture2D attachable_depth_;    //!< FrameImages::attachable_depth
+  std::uint64_t static_key_ = 0;  //!< FrameInputs::static_key the static layer was drawn for (0: none)
 };
 
 }  // namespace

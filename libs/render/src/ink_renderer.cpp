@@ -233,21 +233,17 @@ const CanvasPass* InkRenderer::canvas() const {
 void InkRenderer::collectVariants() {
   variants_.clear();
   for (const Built& b : passes_) variants_[b.pass->name()] = b.pass->variants();
-  last_key_.clear();
+  invalidate();
 }
 
 void InkRenderer::setDebugOutputs(bool on) {
   for (Built& b : passes_) b.pass->setDebugOutputs(on);
-  collectVariants();
-  last_key_.clear();
-  last_static_key_.clear();  // the next frame draws everything again
+  collectVariants();  // the next frame draws everything again
 }
 
 void InkRenderer::reloadShaders() {
   for (Built& b : passes_) b.pass->buildPrograms();
   collectVariants();
-  last_key_.clear();
-  last_static_key_.clear();
 }
 
 void InkRenderer::setScene(const scene::Scene& s) {
@@ -257,7 +253,7 @@ void InkRenderer::setScene(const scene::Scene& s) {
   scene_ = s;
   setObjects(s);
   for (Built& b : passes_) b.pass->setScene(s);
-  last_key_.clear();
+  invalidate();
 }
 
 void InkRenderer::setObjects(const scene::Scene& s) {
@@ -325,13 +321,20 @@ void InkRenderer::setObjects(const scene::Scene& s) {
   relief_ = Relief(points);
 }
 
-std::string InkRenderer::requestKey(const OrbitCamera& c, int width, int height) const {
-  std::ostringstream k;
-  k.precision(17);
-  k << width << "x" << height << "|" << c.target.x << "," << c.target.y << "," << c.target.z << "," << c.distance << ","
-    << c.azimuth_deg << "," << c.elevation_deg << "," << c.fov_y_deg << "," << c.near_plane << "," << c.far_plane << "|"
-    << scene::parameterHash(scene_);
-  return k.str();
+InkRenderer::Request InkRenderer::request(const OrbitCamera& camera, const OrbitCamera* previous, int width,
+                                          int height) const {
+  Request r;
+  r.width = width;
+  r.height = height;
+  r.version = version_;
+  std::size_t i = 0;
+  for (const OrbitCamera* c : {&camera, previous}) {
+    if (!c) break;
+    for (const double v : {c->target.x, c->target.y, c->target.z, c->distance, c->azimuth_deg, c->elevation_deg,
+                           c->fov_y_deg, c->near_plane, c->far_plane})
+      r.cameras[i++] = v;
+  }
+  return r;
 }
 
 const Framebuffer& InkRenderer::render(const OrbitCamera& camera, int width, int height, FrameStats* stats, bool timing,
@@ -341,15 +344,12 @@ const Framebuffer& InkRenderer::render(const OrbitCamera& camera, int width, int
     for (Built& b : passes_) b.pass->resize(width, height);
     width_ = width;
     height_ = height;
-    last_key_.clear();
+    invalidate();
   }
-  std::string static_key = requestKey(camera, width, height);
   // With motion blur the velocities depend on where the camera was a frame ago too.
-  if (scene_.motion_blur.enabled && previous_camera)
-    static_key += "|from " + requestKey(*previous_camera, width, height);
-  std::string key = static_key;
-  if (scene_.hasAnimation()) key += "|t=" + std::to_string(time);
-  if (key == last_key_) {
+  const Request now = request(camera, scene_.motion_blur.enabled ? previous_camera : nullptr, width, height);
+  const bool same_static = last_request_ && *last_request_ == now;
+  if (same_static && (!scene_.hasAnimation() || time == last_time_)) {
     if (stats)
       *stats = FrameStats{true,
                           std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count(),
@@ -358,6 +358,7 @@ const Framebuffer& InkRenderer::render(const OrbitCamera& camera, int width, int
                           {}};
     return *last_output_;
   }
+  if (!same_static) ++static_key_;
   const FrameInputs in{scene_,
                        objects_,
                        world_bounds_,
@@ -365,7 +366,7 @@ const Framebuffer& InkRenderer::render(const OrbitCamera& camera, int width, int
                        width,
                        height,
                        time,
-                       static_key,
+                       static_key_,
                        timing ? &timer_ : nullptr,
                        scene_.motion_blur.enabled ? previous_camera : nullptr};
   // Seed 002's state C for every pass: when only animated objects changed since the last
@@ -374,7 +375,7 @@ const Framebuffer& InkRenderer::render(const OrbitCamera& camera, int width, int
   // are), grown by how far a pass reads around a pixel.
   std::optional<glm::ivec4> region;
   const std::optional<glm::ivec4> moving = scene_.hasAnimation() ? animatedRegion(in) : std::nullopt;
-  if (moving && static_key == last_static_key_ && last_moving_ && !scene_.usesShadow()) {
+  if (moving && same_static && last_moving_ && !scene_.usesShadow()) {
     const glm::ivec4 r(glm::min(glm::ivec2(*moving), glm::ivec2(*last_moving_)),
                        glm::max(glm::ivec2(moving->z, moving->w), glm::ivec2(last_moving_->z, last_moving_->w)));
     // On whole 2×2 quads: shaders that sample with implicit derivatives (the border's and the
@@ -400,7 +401,8 @@ const Framebuffer& InkRenderer::render(const OrbitCamera& camera, int width, int
     if (images.picture != before) last_output_ = b.pass->target();
   }
   glDisable(GL_SCISSOR_TEST);
-  last_static_key_ = static_key;
+  last_request_ = now;
+  last_time_ = time;
   last_moving_ = moving;
   const double aspect = static_cast<double>(width) / height;
   last_inverse_view_projection_ = glm::inverse(glm::dmat4(camera.projection(aspect)) * glm::dmat4(camera.view()));
@@ -418,7 +420,6 @@ const Framebuffer& InkRenderer::render(const OrbitCamera& camera, int width, int
   }
   out.frame_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   if (stats) *stats = std::move(out);
-  last_key_ = std::move(key);
   return *last_output_;
 }
 

@@ -3,7 +3,9 @@
 // surface is hidden from the light (shaders/shadow_wash.frag). The map is drawn again only
 // when the light, the objects' poses or its size change. Built only when shadow.pigment
 // names a pigment.
-#include <sstream>
+
+#include <array>
+#include <optional>
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -43,7 +45,7 @@ class ShadowPass final : public RenderPass {
   void setScene(const scene::Scene& s) override {
     scene_ = s;
     coefficients_ = pigment::coefficients(objectPigment(s.shadow.pigment), "shadow.pigment");
-    map_key_.clear();  // transforms may have moved: draw the map again
+    map_key_.reset();  // transforms may have moved: draw the map again
     if (map_.width() != s.shadow.resolution) {
       map_ = Framebuffer(s.shadow.resolution, s.shadow.resolution, {}, true);
       const GLuint t = map_.depth().id();
@@ -53,7 +55,7 @@ class ShadowPass final : public RenderPass {
       glTextureParameteri(t, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
       glTextureParameteri(t, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
       glTextureParameteri(t, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-      map_key_.clear();
+      map_key_.reset();
     }
   }
 
@@ -65,11 +67,8 @@ class ShadowPass final : public RenderPass {
     if (in.timer) in.timer->begin("shadow");
     const glm::dmat4 light = lightViewProjection(in.scene.light.direction, in.world_bounds);
     // The map depends on the light and the objects' poses, not on the camera.
-    std::ostringstream k;
-    k.precision(17);
-    k << in.scene.light.direction.x << "," << in.scene.light.direction.y << "," << in.scene.light.direction.z;
-    if (in.scene.hasAnimation()) k << "|t=" << in.time;
-    const std::string key = k.str();
+    const glm::dvec3& l = in.scene.light.direction;
+    const std::array<double, 4> key{l.x, l.y, l.z, in.scene.hasAnimation() ? in.time : 0.0};
     if (key != map_key_) {
       drawMap(in, light);
       map_key_ = key;
@@ -121,7 +120,7 @@ class ShadowPass final : public RenderPass {
   VertexArray vao_;
   pigment::Coefficients coefficients_;
   Framebuffer map_, target_;
-  std::string map_key_;  //!< what map_ was drawn for
+  std::optional<std::array<double, 4>> map_key_;  //!< the light and time map_ was drawn for
 };
 
 }  // namespace

@@ -87,7 +87,7 @@ class StrokesPass final : public RenderPass {
   void resize(int width, int height) override {
     target_ = Framebuffer(width, height, {GL_RGBA8}, false);
     if (static_strokes_) layer_ = Framebuffer(width, height, {GL_RGBA8}, false);
-    layer_key_.clear();
+    layer_key_ = 0;
   }
   const Framebuffer* target() const override { return &target_; }
 
@@ -260,7 +260,7 @@ class StrokesPass final : public RenderPass {
   VertexArray vao_;
   Buffer vbo_;
   Framebuffer target_, layer_;
-  std::string layer_key_;  //!< request layer_ was drawn for
+  std::uint64_t layer_key_ = 0;  //!< FrameInputs::static_key layer_ was drawn for (0: none)
 };
 
 }  // namespace

@@ -541,6 +541,14 @@ TEST_F(Ink, UnchangedFramesArePresentedFromTheCache) {
   EXPECT_FALSE(st.cached) << "the camera moved";
   r.render(cam, 64, 48, &st);
   EXPECT_FALSE(st.cached) << "the size changed";
+  r.render(cam, 64, 48, &st);
+  ASSERT_TRUE(st.cached);
+  r.reloadShaders();
+  r.render(cam, 64, 48, &st);
+  EXPECT_FALSE(st.cached) << "the shaders were built again";
+  r.setScene(changed);
+  r.render(cam, 64, 48, &st);
+  EXPECT_FALSE(st.cached) << "a scene was set, even an equal one";
   // A change of variant is not a parameter change.
   changed.objects[0].lines.enabled = false;
   EXPECT_THROW(r.setScene(changed), Error);
@@ -596,6 +604,10 @@ TEST_F(Ink, AnimatedObjectsAreDrawnOverACachedStaticLayer) {
   EXPECT_NE(t0.pixels, t1.pixels) << "the patch turned";
   r.render(cam, 128, 128, &st, true, 0.25);
   EXPECT_TRUE(st.cached) << "same time, same view";
+  r.setScene(s);
+  r.render(cam, 128, 128, &st, true, 0.25);
+  EXPECT_EQ(names(st), (std::vector<std::string>{"gbuffer_static", "gbuffer_animated", "ink"}))
+      << "a scene set again draws the static layer again";
   // Oracle: the same picture from a scene where the patch is simply placed at the angle
   // it has reached (22.5 degrees), drawn without the layer.
   json still = j;

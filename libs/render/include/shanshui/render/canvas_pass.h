@@ -7,7 +7,9 @@
 // the diffusion into absorbency.
 #pragma once
 
+#include <array>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -154,8 +156,9 @@ class CanvasPass {
   Buffer mark_bytes_;         //!< kMarkVariants sprites of kMarkSprite² texels (fibre, spot: signed bytes)
   BufferTexture marks_;       //!< mark_bytes_ as RG8I texels
   double mark_texels_ = 1.0;  //!< sprite texels per pixel
-  std::string marks_key_;     //!< the sizes the sprites were drawn for
-  std::string tile_key_;      //!< the options the tile was drawn for
+  // What the sprites and the tile were drawn for, compared number by number each frame.
+  std::optional<std::array<double, 3>> marks_key_;
+  std::optional<std::array<double, 9>> tile_key_;
   noise::CanvasNoiseOptions tile_options_;
   int tile_cells_ = kTileCells;
   float texels_per_pixel_ = 1.0f;
@@ -169,7 +172,7 @@ class CanvasPass {
   Framebuffer target_;
   Framebuffer splat_sums_;  //!< the splatted kernels' sums (RG32F), copied into target_
   VertexArray empty_vao_;
-  std::string static_key_;
+  std::optional<std::array<int, 2>> static_key_;  //!< the size the static canvas was drawn at
 
  public:
   CanvasPass(const CanvasPass&) = delete;

@@ -3,6 +3,8 @@
 // variants the scene uses. The headless renderer and the viewer both draw through it.
 #pragma once
 
+#include <array>
+#include <cstdint>
 #include <map>
 #include <memory>
 #include <optional>
@@ -152,7 +154,19 @@ class InkRenderer {
   //! Model matrices, bounding spheres and the world bounds from the scene's transforms.
   void setObjects(const scene::Scene& s);
   void collectVariants();
-  std::string requestKey(const OrbitCamera& camera, int width, int height) const;
+  //! What a frame depends on besides its time: the size, the camera (and the one a frame
+  //! ago, with motion blur) and `version_`. Compared field by field: nothing formatted or
+  //! hashed per frame.
+  struct Request {
+    int width = 0, height = 0;
+    std::array<double, 18> cameras{};  //!< this frame's camera, then the previous one's (or zeros)
+    std::uint64_t version = 0;
+    bool operator==(const Request&) const = default;
+  };
+  Request request(const OrbitCamera& camera, const OrbitCamera* previous, int width, int height) const;
+  //! Something besides the camera and the size changed (the scene, the shaders, the debug
+  //! outputs): the next frame is drawn in full.
+  void invalidate() { ++version_; }
   //! Where the animated objects are, in GL pixels (x0, y0, x1, y1), grown by what the passes
   //! read around a pixel; none without animated objects.
   std::optional<glm::ivec4> animatedRegion(const FrameInputs& in) const;
@@ -174,8 +188,10 @@ class InkRenderer {
   const Framebuffer* last_output_ = nullptr;  //!< the picture's framebuffer
   GpuTimer timer_;
   bool late_timing_ = false;
-  std::string last_key_;
-  std::string last_static_key_;            //!< the last frame's request less its time
+  std::uint64_t version_ = 1;              //!< Request::version: bumped by invalidate()
+  std::optional<Request> last_request_;    //!< the last frame's, none before the first
+  double last_time_ = 0.0;                 //!< the last frame's time
+  std::uint64_t static_key_ = 0;           //!< FrameInputs::static_key: counts the requests seen
   std::optional<glm::ivec4> last_moving_;  //!< the animated objects' region in the last frame
   glm::dmat4 last_inverse_view_projection_{1.0};
 };

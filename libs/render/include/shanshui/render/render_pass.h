@@ -5,6 +5,7 @@
 // its keys in the scene's parameter description, its tests (docs/render.md, "Adding a pass").
 #pragma once
 
+#include <cstdint>
 #include <memory>
 #include <optional>
 #include <string>
@@ -44,8 +45,10 @@ struct FrameInputs {
   const mesh::Bounds& world_bounds;
   const OrbitCamera& camera;
   int width = 0, height = 0;
-  double time = 0.0;          //!< seconds, for spinning objects
-  std::string static_key;     //!< changes when anything but the time changes
+  double time = 0.0;  //!< seconds, for spinning objects
+  //! Changes when anything but the time changes (the camera, the size, the scene, the
+  //! shaders); never 0, so a pass may keep 0 for "nothing drawn".
+  std::uint64_t static_key = 0;
   GpuTimer* timer = nullptr;  //!< time each pass under its name when set
   //! The camera a frame ago (motion blur's velocities); null: the same as now.
   const OrbitCamera* previous_camera = nullptr;
