@@ -137,7 +137,7 @@ CurvatureRow measureCurvature(const Surface& s, const char* source, int size) {
   return row;
 }
 
-double cdfAs(double x) {  // shaders/ink_gaussian_cdf.glsl, default
+double cdfAs(double x) {  // shaders/ink/ink_gaussian_cdf.glsl, default
   const double z = std::abs(x) * 0.70710678;
   const double t = 1.0 / (1.0 + 0.3275911 * z);
   const double poly = t * (0.254829592 + t * (-0.284496736 + t * (1.421413741 + t * (-1.453152027 + t * 1.061405429))));

@@ -1,8 +1,17 @@
 # Build-time script: writes a C++ file with every shader under shaders/ as a string.
-#   cmake -DOUTPUT=<file.cpp> -DSHADER_DIR=<dir> -DSHADERS="a.vert;b.frag" -P EmbedShaders.cmake
+#   cmake -DOUTPUT=<file.cpp> -DSHADER_DIR=<dir> -DSHADERS="ink/ink.frag;common/fullscreen.vert" -P EmbedShaders.cmake
+# A shader is named by its file name alone, whichever folder of shaders/ holds it: the
+# passes and #include name them so, and a name in two folders is an error.
 set(body "")
-foreach(name IN LISTS SHADERS)
-  file(READ "${SHADER_DIR}/${name}" text)
+set(seen "")
+foreach(path IN LISTS SHADERS)
+  get_filename_component(name "${path}" NAME)
+  list(FIND seen "${name}" earlier)
+  if(NOT earlier EQUAL -1)
+    message(FATAL_ERROR "two shaders are named ${name} (shaders/${path} and another): names must be unique")
+  endif()
+  list(APPEND seen "${name}")
+  file(READ "${SHADER_DIR}/${path}" text)
   string(FIND "${text}" ")shanshui_glsl\"" clash)
   if(NOT clash EQUAL -1)
     message(FATAL_ERROR "${name} contains the raw-string delimiter )shanshui_glsl\"")

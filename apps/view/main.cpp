@@ -59,7 +59,9 @@ struct ViewState {
 std::filesystem::file_time_type newestShader(const std::filesystem::path& dir) {
   std::filesystem::file_time_type newest{};
   std::error_code ec;
-  for (const auto& f : std::filesystem::directory_iterator(dir, ec)) newest = std::max(newest, f.last_write_time(ec));
+  // Every folder below it too: shaders/ has a folder per pass.
+  for (std::filesystem::recursive_directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec))
+    newest = std::max(newest, it->last_write_time(ec));
   return newest;
 }
 

@@ -71,7 +71,7 @@ double variance(const image::Image& img) {
   return s2 / n - (s / n) * (s / n);
 }
 
-// shaders/canvas_static.frag on the CPU: cells of the radius, impulses from the same
+// shaders/canvas/canvas_static.frag on the CPU: cells of the radius, impulses from the same
 // hashes, libs/noise's kernel, divided by σ; with `cells` > 0 the cells' seeds repeat with
 // that period (the tiles canvas's tile).
 double staticCanvas(const noise::CanvasNoiseOptions& o, std::uint32_t seed, double x, double y, int cells = 0) {

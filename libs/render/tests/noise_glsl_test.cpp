@@ -1,4 +1,4 @@
-// The GLSL noises (shaders/noise_perlin.glsl, noise_gabor.glsl) against the CPU references
+// The GLSL noises (shaders/common/noise_perlin.glsl, noise_gabor.glsl) against the CPU references
 // in libs/noise, evaluated at the same points by a compute shader.
 #include <algorithm>
 #include <cmath>
@@ -15,7 +15,7 @@ namespace {
 
 using NoiseGlsl = test::HeadlessGl;
 
-// Runs shaders/noise_probe.comp over `points` (xyz) with kind 0 (Perlin) or 1 (Gabor).
+// Runs shaders/common/noise_probe.comp over `points` (xyz) with kind 0 (Perlin) or 1 (Gabor).
 std::vector<float> probe(const std::vector<glm::vec4>& points, int kind, const noise::GaborOptions& g = {}) {
   Program program({"noise_probe.comp"});
   GLuint buffers[2];

@@ -15,7 +15,7 @@
 
 namespace shanshui::elements {
 
-//! How a mark's ink is laid between its two ends (shaders/elements.frag draws them).
+//! How a mark's ink is laid between its two ends (shaders/elements/elements.frag draws them).
 enum class Shape : std::uint8_t {
   Dab,     //!< a round-ended blot along a → b, edge broken by noise
   Leaf,    //!< pointed at both ends, widest in the middle (needles, leaves, vertical dots)

@@ -2,7 +2,7 @@
 // surface with a size and an orientation, placed on load from the terrain's slope, height
 // and form (ridges, hollows, valley floors), in groves rather than an even scatter, and the
 // same for a seed. Geometry only: no GL, so it is tested on the CPU; the renderer's
-// elements pass draws them (libs/render/src/elements_pass.cpp).
+// elements pass draws them (libs/render/src/passes/elements_pass.cpp).
 #pragma once
 
 #include <array>

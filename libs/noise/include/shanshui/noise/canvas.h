@@ -1,6 +1,6 @@
 // The paper canvas's noise kernel (seed 001 Eqs. 9-17, SPEC.md section 8) and its
 // statistics: one kernel per impulse, rice paper (a Perlin-textured Gaussian) or silk (a
-// Gabor kernel mixed with its twin at ω + 90°, the weft). shaders/canvas_kernel.glsl is the
+// Gabor kernel mixed with its twin at ω + 90°, the weft). shaders/canvas/canvas_kernel.glsl is the
 // GLSL twin; the canvas pass divides by canvasSigma() so the paper has unit variance.
 #pragma once
 

@@ -34,7 +34,7 @@ class GaborNoise {
   //! |d| below the truncation radius. Cells have the size of that radius; each cell's
   //! impulses (impulseCount() of mean λ r², uniform positions, weights U[−1, 1]) come from
   //! a stream seeded by a hash of the cell and the seed, so the noise is the same wherever
-  //! and in whatever order it is evaluated. shaders/noise_gabor.glsl draws the same
+  //! and in whatever order it is evaluated. shaders/common/noise_gabor.glsl draws the same
   //! impulses from the same 32-bit hashes.
   double operator()(double x, double y) const;
 

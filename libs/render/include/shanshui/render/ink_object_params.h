@@ -1,5 +1,5 @@
 // The ink pass's per-object parameter block in C++: the members and flag bits come from
-// shaders/ink_object_params.glsl, the one definition GLSL reads too.
+// shaders/ink/ink_object_params.glsl, the one definition GLSL reads too.
 #pragma once
 
 #include <cstddef>
@@ -14,7 +14,7 @@ using vec3 = glm::vec3;
 using vec4 = glm::vec4;
 using uint = std::uint32_t;
 
-#include "ink_object_params.glsl"
+#include "ink/ink_object_params.glsl"
 
 #define SHANSHUI_DECLARE_FIELD(type, name) type name;
 struct ObjectParams {

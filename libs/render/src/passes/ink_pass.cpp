@@ -1,6 +1,6 @@
 // The ink pass: feature lines (seed 001 Eq. 1, or strokes from the centres that
-// shaders/ink_lines.frag finds first), interior shading (Eqs. 2, 3, 5) and the composite on
-// paper in one image pass over the G-buffer (shaders/ink.frag), with the per-object
+// shaders/ink/ink_lines.frag finds first), interior shading (Eqs. 2, 3, 5) and the composite on
+// paper in one image pass over the G-buffer (shaders/ink/ink.frag), with the per-object
 // parameters in the block of shaders/ink_object_params.glsl.
 #include <algorithm>
 #include <cmath>
@@ -9,7 +9,7 @@
 
 #include <glm/gtc/matrix_access.hpp>
 
-#include "atmosphere.h"
+#include "frame/atmosphere.h"
 #include "shanshui/noise/value_noise.h"
 #include "shanshui/render/gl_check.h"
 #include "shanshui/render/ink_object_params.h"
@@ -361,7 +361,7 @@ class InkPass final : public RenderPass {
       capacity_ = bytes;
     }
     glNamedBufferSubData(params_.id(), 0, static_cast<GLsizeiptr>(bytes), params.data());
-    // A uniform block unless there are more objects than one holds (shaders/ink_objects.glsl).
+    // A uniform block unless there are more objects than one holds (shaders/ink/ink_objects.glsl).
     glBindBufferBase(objects_in_storage_ ? GL_SHADER_STORAGE_BUFFER : GL_UNIFORM_BUFFER, 0, params_.id());
   }
 

@@ -1,6 +1,6 @@
 // The pigment pass (issue 25; seeds 000 and 003): objects with a pigment get a wash of it,
 // composited by Kubelka–Munk over the picture the ink and strokes passes made
-// (shaders/pigment_wash.frag). Built only when some object has a pigment; a scene without
+// (shaders/pigment/pigment_wash.frag). Built only when some object has a pigment; a scene without
 // one draws exactly as before.
 #include "shanshui/core/error.h"
 #include "shanshui/pigment/kubelka_munk.h"

@@ -1,6 +1,6 @@
 // The atmosphere and the dissolving border on the CPU, for marks drawn from points the
 // passes know (brush strokes, elements) rather than from the G-buffer: what
-// shaders/ink_surface.glsl's presence() leaves of the ink at a world point, with its noise
+// shaders/ink/ink_surface.glsl's presence() leaves of the ink at a world point, with its noise
 // at its mean (a mark is small; the surface beside it carries the noise).
 #pragma once
 

@@ -5,12 +5,12 @@
 //
 // The elements and the brushwork grown for each kind (16 variants a kind, marks sorted by
 // level of detail) are uploaded once. Each frame that the camera, size or parameters change,
-// shaders/elements_expand.comp runs one thread per element: it culls what is out of view,
+// shaders/elements/elements_expand.comp runs one thread per element: it culls what is out of view,
 // weighs the levels of detail by the element's height on screen (far dab, middle strokes,
 // full brushwork, cross-faded as elements::levelWeights), takes the ink the distance fade,
 // mist and border leave at its foot, and appends an entry per mark of the active levels.
 // One indirect draw then stands each mark on an upright billboard through the element's foot
-// facing the camera (shaders/elements.vert), depth-tested against the G-buffer and nudged
+// facing the camera (shaders/elements/elements.vert), depth-tested against the G-buffer and nudged
 // towards the eye along each vertex's own ray, which keeps its place on screen, so the
 // ground it stands on does not hide its foot. The layer (R8) keeps the largest ink. With
 // animated objects it also keeps the nearness of what drew it (RG32F, NEARNESS): it is then
@@ -23,7 +23,7 @@
 
 #include <glm/gtc/matrix_access.hpp>
 
-#include "atmosphere.h"
+#include "frame/atmosphere.h"
 #include "shanshui/core/error.h"
 #include "shanshui/elements/brushwork.h"
 #include "shanshui/render/gl_check.h"
@@ -34,7 +34,7 @@ namespace shanshui::render {
 
 namespace {
 
-// shaders/elements_expand.comp's and elements.vert's blocks (std430).
+// shaders/elements/elements_expand.comp's and elements.vert's blocks (std430).
 struct GpuInstance {
   glm::vec4 position_size;  //!< uploaded coordinates; height (trees) or size factor (dots)
   glm::vec4 lean_seed;      //!< lean, seed in [0, 1), mirrored, template index

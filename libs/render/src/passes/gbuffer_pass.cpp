@@ -72,7 +72,7 @@ class GbufferPass final : public RenderPass {
 
   void resize(int width, int height) override {
     // Normal and curvature in 16-bit unsigned normalised channels (encoded in
-    // shaders/ink_gbuffer.frag): llvmpipe converts to half floats in software, and an
+    // shaders/gbuffer/ink_gbuffer.frag): llvmpipe converts to half floats in software, and an
     // RGBA16F target cost ~10 ms more a frame at 1024² (measured side by side).
     // Motion blur adds the velocity (pixels per interval, and 1 where a surface is).
     std::vector<GLenum> formats{GL_RGBA16, GL_RGBA8};

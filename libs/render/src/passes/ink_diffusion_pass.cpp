@@ -37,7 +37,7 @@ int packedWidth(int width) {
   return (width + 1) / 2;
 }
 
-// The boundary iterations' work groups (shaders/ink_diffusion_boundary.comp): 8
+// The boundary iterations' work groups (shaders/ink_diffusion/ink_diffusion_boundary.comp): 8
 // invocations of kBlock columns each, walking kStripRows rows — an area of 64 × 16 pixels.
 // Wider blocks and taller strips reload fewer neighbours ((kBlock + 6) / kBlock texel reads
 // per pixel, (kStripRows + 6) / kStripRows rows) but hold more registers, give fewer work
@@ -180,7 +180,7 @@ void InkDiffusionPass::run(const Texture2D& colour, const PaperTexture& texture,
   // than a store per pixel), and the columns raise the extracted ink only where a ring does.
   if (o.ring_steps > 0) {
     reach(strokes_, near_, glm::ivec2(kMarkBlock), o.ring_steps, glm::ivec4(blocks_lo, blocks_hi));
-    const GLuint far = 0xFFFFFFFFu;  // kFar of shaders/ink_diffusion_nearest.glsl
+    const GLuint far = 0xFFFFFFFFu;  // kFar of shaders/ink_diffusion/ink_diffusion_nearest.glsl
     glClearTexSubImage(nearest_.id(), 0, lo.x, lo.y, 0, size.x, size.y, 1, GL_RED_INTEGER, GL_UNSIGNED_INT, &far);
     rows_.use();
     window(rows_);

@@ -1,4 +1,4 @@
-#include "atmosphere.h"
+#include "frame/atmosphere.h"
 
 #include <algorithm>
 #include <limits>

@@ -1,6 +1,8 @@
 #include "shanshui/render/shader_library.h"
 
+#include <filesystem>
 #include <map>
+#include <string>
 
 #include "shanshui/core/error.h"
 #include "shanshui/core/input.h"
@@ -12,6 +14,18 @@ std::filesystem::path& shaderDirectory() {
   static std::filesystem::path dir;
   return dir;
 }
+
+// The file of shader `name` under `dir`: dir/name (a flat copy), else the file of that name
+// in a folder below dir (the repository's shaders/ has a folder per pass); empty if none.
+std::filesystem::path findShaderFile(const std::filesystem::path& dir, std::string_view name) {
+  std::error_code ec;
+  const std::filesystem::path flat = dir / std::string(name);
+  if (std::filesystem::is_regular_file(flat, ec)) return flat;
+  for (std::filesystem::recursive_directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+    if (it->path().filename() == name && it->is_regular_file(ec)) return it->path();
+  }
+  return {};
+}
 }  // namespace
 
 void setShaderDirectory(const std::filesystem::path& dir) {
@@ -20,9 +34,8 @@ void setShaderDirectory(const std::filesystem::path& dir) {
 
 std::string_view shaderSource(std::string_view name) {
   if (!shaderDirectory().empty()) {
-    const std::filesystem::path file = shaderDirectory() / std::string(name);
-    std::error_code ec;
-    if (std::filesystem::exists(file, ec)) {  // through the input gate; absent: the embedded copy
+    const std::filesystem::path file = findShaderFile(shaderDirectory(), name);
+    if (!file.empty()) {  // through the input gate; absent: the embedded copy
       static std::map<std::string, std::string, std::less<>> loaded;  // keeps the views valid
       std::string& slot = loaded[std::string(name)];
       slot = readInputFile(file, "a GLSL shader", kMaxTextInputBytes);

@@ -1,5 +1,5 @@
 #version 450 core
-// The elements' marks (libs/render/src/elements_pass.cpp): one instance of a four-vertex strip
+// The elements' marks (libs/render/src/passes/elements_pass.cpp): one instance of a four-vertex strip
 // per entry that elements_expand.comp appended, each a quad around the template mark's segment a → b (round
 // caps and a pixel of room for the edge's smoothing) on an upright billboard through the
 // element's foot that faces the camera.

@@ -1,6 +1,6 @@
 // The shadow pass (issue 25; seed 003 lays shadows as a layer of paint): the scene's depth
 // from the light into a shadow map, then a wash of the shadow's pigment wherever a visible
-// surface is hidden from the light (shaders/shadow_wash.frag). The map is drawn again only
+// surface is hidden from the light (shaders/shadow/shadow_wash.frag). The map is drawn again only
 // when the light, the objects' poses or its size change. Built only when shadow.pigment
 // names a pigment.
 

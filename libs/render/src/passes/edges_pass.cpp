@@ -1,6 +1,6 @@
 // The edges pass (issue 25; seed 003 §4.2): where a wash ends — another object, a jump in
 // depth, the edge of a cast shadow — its pigment is denser, and the edges wander with a
-// smooth noise (shaders/edge_darkening.frag). Built when edges.enabled, after the pigment
+// smooth noise (shaders/edges/edge_darkening.frag). Built when edges.enabled, after the pigment
 // and shadow washes it darkens.
 #include "shanshui/core/error.h"
 #include "shanshui/noise/value_noise.h"

@@ -9,7 +9,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "atmosphere.h"
+#include "frame/atmosphere.h"
 #include "shanshui/core/error.h"
 #include "shanshui/render/gl_check.h"
 #include "shanshui/render/render_pass.h"

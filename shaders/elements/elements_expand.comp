@@ -1,5 +1,5 @@
 #version 450 core
-// The elements pass's first step (libs/render/src/elements_pass.cpp): one thread per element
+// The elements pass's first step (libs/render/src/passes/elements_pass.cpp): one thread per element
 // of an object. It places the element in the world, culls what is out of view, weighs the
 // levels of detail by its height on screen (elements::levelWeights), finds the ink the
 // distance fade, the mist and the border leave at its foot (atmosphere.cpp's presence(), the

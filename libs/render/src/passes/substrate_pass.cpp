@@ -1,6 +1,6 @@
 // The substrate pass (issue 25; seed 000): the paper's relief — a scanned paper when the
 // scene names one, the canvas's grain when it has a canvas, else a tile of value noise — acts on the finished picture:
-// dry brush, granulation, lighting and distortion (shaders/substrate.frag has the equations). Built when
+// dry brush, granulation, lighting and distortion (shaders/substrate/substrate.frag has the equations). Built when
 // substrate.enabled; last in the list, on the dried paint.
 #include <algorithm>
 

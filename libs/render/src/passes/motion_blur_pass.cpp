@@ -1,9 +1,9 @@
 // The motion blur pass (issue 26; seed 004): the G-buffer's velocity target (its VELOCITY
 // variant, built only with motion blur) says how far each surface moved on screen since the
 // previous frame; behind whatever moves, paint is dragged over the picture
-// (shaders/motion_blur.frag has the equations and how the seed's garbled ones are read).
+// (shaders/motion_blur/motion_blur.frag has the equations and how the seed's garbled ones are read).
 // Where to look for what passed over a pixel comes from the fastest velocity per 16 px tile
-// and within reach of each tile (shaders/motion_blur_tiles.frag).
+// and within reach of each tile (shaders/motion_blur/motion_blur_tiles.frag).
 #include <algorithm>
 #include <cmath>
 

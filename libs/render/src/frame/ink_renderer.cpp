@@ -449,7 +449,7 @@ image::Image InkRenderer::worldPositions() const {
 
 image::Image InkRenderer::normalsAndCurvature() const {
   image::Image out = passTarget("gbuffer")->colour(0).download(4);
-  for (std::size_t i = 0; i < out.pixels.size(); i += 4) {  // as shaders/ink_gbuffer.frag encodes
+  for (std::size_t i = 0; i < out.pixels.size(); i += 4) {  // as shaders/gbuffer/ink_gbuffer.frag encodes
     for (std::size_t c = 0; c < 3; ++c) out.pixels[i + c] = out.pixels[i + c] * 2.0f - 1.0f;
     const float w = std::min(out.pixels[i + 3], 65534.0f / 65535.0f);
     out.pixels[i + 3] = w / (1.0f - w);
