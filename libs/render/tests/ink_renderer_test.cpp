@@ -689,9 +689,13 @@ TEST_F(Ink, SmallObjectsGetNormalLinesOnly) {
 }
 
 TEST_F(Ink, ShadersReloadFromADirectoryAndABrokenOneKeepsTheOld) {
+  // The directory as the repository lays it out for the ink pass (shaders/ink/ink.frag),
+  // the rest flat: a shader is found either way.
   test::TempDir dir;
+  std::filesystem::create_directories(dir / "ink");
+  const std::filesystem::path ink_frag = dir / "ink" / "ink.frag";
   for (const std::string& name : shaderNames()) {
-    std::ofstream(dir / name) << shaderSource(name);
+    std::ofstream(name == "ink.frag" ? ink_frag : dir / name) << shaderSource(name);
   }
   setShaderDirectory(dir.path());
   const scene::Scene s = sceneWith({{"lines", {{"enabled", false}}}, {"shading", {{"enabled", false}}}});
@@ -707,11 +711,11 @@ TEST_F(Ink, ShadersReloadFromADirectoryAndABrokenOneKeepsTheOld) {
   const std::string tail = "#endif\n}\n#endif\n";  // the end of the surfaces' main (not PAPER's)
   ASSERT_EQ(text.rfind(tail), text.size() - tail.size());
   text.insert(text.size() - std::string("}\n#endif\n").size(), "  o_colour = vec4(1.0, 0.0, 0.0, 1.0);\n");
-  std::ofstream(dir / "ink.frag") << text;
+  std::ofstream(ink_frag) << text;
   r.reloadShaders();
   EXPECT_EQ(centre(), glm::vec3(1, 0, 0));
   // A broken edit: the error names the file, and the last good programs keep drawing.
-  std::ofstream(dir / "ink.frag") << "#version 450 core\nvoid main() { this is not glsl; }\n";
+  std::ofstream(ink_frag) << "#version 450 core\nvoid main() { this is not glsl; }\n";
   try {
     r.reloadShaders();
     ADD_FAILURE() << "a broken shader compiled";
