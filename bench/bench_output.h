@@ -31,6 +31,14 @@ class RunOutputs {
   }
   //! Removes what was staged (before an exit that skips the handler).
   void discard() { set_.reset(); }
+  //! Ends the process with `status` as exit() would for the run's outputs (committed when 0,
+  //! removed otherwise) but without the process's other exit handlers and destructors: a
+  //! forked child of a process with threads must not run them (Mesa's, for one, waits for
+  //! its worker threads, which the child does not have).
+  [[noreturn]] void endNow(int status) {
+    atExit(status, this);
+    std::_Exit(status);
+  }
 
  private:
   RunOutputs() : set_(std::in_place) {
