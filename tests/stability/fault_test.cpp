@@ -51,6 +51,12 @@ Outcome runProgram(const std::vector<std::string>& args, std::optional<rlim_t> f
     ::dup2(null, 0);
     ::dup2(null, 1);
     ::close(pipeFds[0]);
+    // The signals the tests send reach the program as a terminal's would: a suite started in
+    // the background or under nohup has them ignored, and ignoring is inherited across exec.
+    for (const int sig : {SIGINT, SIGTERM, SIGHUP, SIGQUIT}) ::signal(sig, SIG_DFL);
+    sigset_t none;
+    ::sigemptyset(&none);
+    ::sigprocmask(SIG_SETMASK, &none, nullptr);
     ::signal(SIGXFSZ, SIG_IGN);
     if (fileSizeLimit) {
       const struct rlimit lim = {*fileSizeLimit, *fileSizeLimit};
