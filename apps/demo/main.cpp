@@ -71,7 +71,8 @@ struct Result {
 
 class Runner {
  public:
-  Runner(fs::path bin_dir, fs::path out, bool force) : bin_(std::move(bin_dir)), out_(std::move(out)), force_(force) {
+  Runner(fs::path bin_dir, fs::path out, bool force, double stage_limit_s)
+      : bin_(std::move(bin_dir)), out_(std::move(out)), force_(force), stage_limit_s_(stage_limit_s) {
     fs::create_directories(out_ / ".cache");
     fs::create_directories(out_ / "logs");
   }
@@ -101,8 +102,14 @@ class Runner {
     std::printf("%-8s running %s\n", s.name.c_str(), s.tool.c_str());
     std::fflush(stdout);
     const auto start = std::chrono::steady_clock::now();
-    const shanshui::tools::ProgramRun run = shanshui::tools::runProgram(tool, s.args, log);
+    const shanshui::tools::ProgramRun run = shanshui::tools::runProgram(tool, s.args, log, {}, stage_limit_s_);
     r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (run.timed_out) {
+      fs::remove(cache);
+      throw shanshui::makeError("stage ", s.name, " (", s.tool, ") was still running after --stage-limit ",
+                                stage_limit_s_, " s and was stopped; its last line: ", run.last_line,
+                                " (log: ", log.string(), ")");
+    }
     if (!run.ok) {
       fs::remove(cache);
       throw shanshui::makeError("stage ", s.name, " failed: ", run.last_line, " (log: ", log.string(), ")");
@@ -116,6 +123,7 @@ class Runner {
  private:
   fs::path bin_, out_;
   bool force_;
+  double stage_limit_s_;
 };
 
 // A sample scene's JSON, or an error naming the file and where the text breaks (the
@@ -204,10 +212,16 @@ int main(int argc, char** argv) {
   std::string samples = "samples", out = "out";
   bool force = false, quick = false;
   int frames = 12;
+  double stage_limit_s = 1800;
   app.add_option("--samples", samples, "the samples directory (scan, DEM, scene)")->capture_default_str();
   app.add_option("--out", out, "output directory")->capture_default_str();
   app.add_option("--frames", frames, "frames of the orbit sequence")->check(CLI::Range(1, 3600))->capture_default_str();
   app.add_flag("--force", force, "run every stage even when its inputs are unchanged");
+  app.add_option("--stage-limit", stage_limit_s,
+                 "seconds a stage may run before it is stopped with everything it started and the demo "
+                 "fails naming it (the slowest takes about a minute here)")
+      ->check(CLI::Range(1.0, 86400.0))
+      ->capture_default_str();
   app.add_flag("--quick", quick, "small sizes everywhere (for tests)");
   std::string reference;
   app.add_option("--reference", reference,
@@ -228,7 +242,7 @@ int main(int argc, char** argv) {
     // then finds every stage up to date, instead of mixing its stages with this run's.
     const shanshui::RunLock lock(o / ".demo.lock", "shanshui-demo");
     const fs::path bin = fs::canonical("/proc/self/exe").parent_path();
-    Runner runner(bin, o, force);
+    Runner runner(bin, o, force, stage_limit_s);
     const std::string size = quick ? "128x128" : "1024x1024";
     const std::string max_vertices = quick ? "4000" : "250000";
     const std::string orbit_size = quick ? "96x72" : "640x480";

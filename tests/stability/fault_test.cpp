@@ -352,6 +352,61 @@ TEST(Faults, TwoDemosIntoOneOutputTakeTurns) {
                                                              : "STAGES MIXED: ran while the other held the lock"});
 }
 
+// A stage that never ends (here a stand-in that starts a child holding its output, as the
+// stability suite's forked child did when it hung) is stopped at --stage-limit with
+// everything it started, and the demo fails naming it; a TERM sent to the demo reaches the
+// stage's process group too and ends the demo as TERM does.
+TEST(Faults, AStageThatHangsIsStoppedWithWhatItStarted) {
+  test::TempDir dir;
+  const fs::path bin_dir = dir / "bin", out = dir / "out", pids = dir / "pids";
+  fs::create_directories(bin_dir);
+  fs::copy_file(test::binDir() / "shanshui-demo", bin_dir / "shanshui-demo");
+  std::ofstream(bin_dir / "shanshui-enhance")
+      << "#!/bin/sh\necho 'stand-in stage, hanging'\nsleep 600 &\necho $$ $! > " << test::quote(pids) << "\nwait\n";
+  fs::permissions(bin_dir / "shanshui-enhance", fs::perms::owner_all);
+  auto alive = [&] {
+    std::ifstream in(pids);
+    int running = 0;
+    for (pid_t p; in >> p;) {
+      // Ended but not reaped yet (the sleep's parent was the stage): "Z" in /proc/PID/stat.
+      std::ifstream stat("/proc/" + std::to_string(p) + "/stat");
+      std::string pid_field, name, state;
+      running += stat >> pid_field >> name >> state && state != "Z" && state != "X";
+    }
+    return running;
+  };
+  const std::vector<std::string> demo = {(bin_dir / "shanshui-demo").string(),     "--quick", "--samples",
+                                         (test::sourceDir() / "samples").string(), "--out",   out.string()};
+  std::vector<std::string> limited = demo;
+  limited.insert(limited.end(), {"--stage-limit", "1"});
+  const auto start = std::chrono::steady_clock::now();
+  const Outcome o = runProgram(limited, {}, 60);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  EXPECT_FALSE(o.hung);
+  EXPECT_EQ(o.exit_code, 1) << o.err;
+  EXPECT_NE(o.err.find("stage enhance (shanshui-enhance) was still running after --stage-limit 1 s"), std::string::npos)
+      << o.err;
+  EXPECT_NE(o.err.find("stand-in stage, hanging"), std::string::npos) << "its last line: " << o.err;
+  EXPECT_LT(seconds, 20.0);
+  ASSERT_TRUE(fs::exists(pids));
+  EXPECT_EQ(alive(), 0) << "the stage or its child still runs";
+  fs::remove(pids);
+  // TERM to the demo while the stage hangs (no limit to speak of).
+  limited.back() = "600";
+  const Outcome t = runProgram(limited, {}, 60, [&](pid_t pid) {
+    for (int i = 0; i < 500 && !fs::exists(pids); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    ::kill(pid, SIGTERM);
+  });
+  EXPECT_FALSE(t.hung);
+  EXPECT_EQ(t.signal, SIGTERM) << t.err;
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  EXPECT_EQ(alive(), 0) << "TERM did not reach the stage's group";
+  table().push_back({"faults", "a demo stage that never ends",
+                     o.exit_code == 1 && alive() == 0 ? "clear error: stopped at --stage-limit, naming the stage"
+                                                      : "HANGS or leaves the stage running"});
+}
+
 TEST(Faults, ReadOnlyTargetsAndDirectoriesAreRefusedBeforeAnyWork) {
   Fixture f;
   f.precious({"ro.png"});
