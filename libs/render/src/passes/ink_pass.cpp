@@ -1,7 +1,7 @@
 // The ink pass: feature lines (seed 001 Eq. 1, or strokes from the centres that
 // shaders/ink/ink_lines.frag finds first), interior shading (Eqs. 2, 3, 5) and the composite on
 // paper in one image pass over the G-buffer (shaders/ink/ink.frag), with the per-object
-// parameters in the block of shaders/ink_object_params.glsl.
+// parameters in the block of shaders/ink/ink_object_params.glsl.
 #include <algorithm>
 #include <cmath>
 #include <numbers>
