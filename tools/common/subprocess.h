@@ -180,7 +180,7 @@ inline ProgramRun runProgram(const std::filesystem::path& program, const std::ve
       wait_ms = static_cast<int>(std::chrono::duration_cast<std::chrono::milliseconds>(until - now).count()) + 1;
     }
     struct pollfd p = {fds[0], POLLIN, 0};
-    const int ready = ::poll(&p, 1, std::max(wait_ms, -1));
+    const int ready = ::poll(&p, 1, wait_ms);
     if (ready < 0 && errno != EINTR) break;
     if (ready <= 0) continue;  // the time to check the limit, or a signal
     const ssize_t n = ::read(fds[0], buffer, sizeof buffer);
