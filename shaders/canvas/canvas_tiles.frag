@@ -20,8 +20,12 @@
 // for every pixel; the depth test skips the other program's pixels before they are shaded.
 // PAPER_MARKS adds rice paper's fibres and spots in the second channel as a change of
 // brightness, MOTTLE its mottle (canvas_mottle.frag's image); GRAIN_ON_SURFACE lets the grain
-// grow and shrink with the surface between octaves.
+// grow and shrink with the surface between octaves. With PIXEL_COMPUTE it is a compute
+// shader instead (pixel_main.glsl), each program testing the depth itself.
+#include "pixel_stage.glsl"
+#ifndef PIXEL_COMPUTE
 layout(early_fragment_tests) in;
+#endif
 #include "canvas_lattice.glsl"
 
 #ifndef BACKGROUND
@@ -42,7 +46,14 @@ uniform float u_tile_scale;    // tile bytes to unit variance
 layout(binding = 1, r32f) readonly uniform image2D u_mottle_image;  // canvas_mottle.frag's
 uniform float u_mottle_texels;                                      // texels per pixel of the view
 #endif
+#ifdef PIXEL_COMPUTE
+layout(binding = 2, rg16f) writeonly uniform image2D u_canvas_out;
+vec2 o_canvas;
+void pixelOutputsClear() { o_canvas = vec2(0.0); }
+void pixelStore(ivec2 p) { imageStore(u_canvas_out, p, vec4(o_canvas, 0.0, 0.0)); }
+#else
 layout(location = 0) out vec2 o_canvas;  // grain (unit variance), marks (brightness change)
+#endif
 
 #ifdef PAPER_MARKS
 // Rice paper's fibres and impurity spots hang on lattice points: a point carries a fibre (a
@@ -144,8 +155,8 @@ float quarterSine(float t) {
   return x * (1.0 - x2 * (1.0 / 6.0 - x2 * (1.0 / 120.0 - x2 * (1.0 / 5040.0))));
 }
 
-void main() {
-  vec2 pixel = gl_FragCoord.xy;
+void shadePixel() {
+  vec2 pixel = PIXEL_COORD;
   vec2 ndc = pixel * u_ndc_per_pixel - 1.0;
   // Without divisions where a product does: a software rasteriser pays for each.
   float w, per_w;  // clip w (the distance along the view axis), and 1 / w
@@ -231,3 +242,4 @@ void main() {
 #endif
   o_canvas = vec2(grain, marks);
 }
+#include "pixel_main.glsl"

@@ -8,6 +8,7 @@
 // T = colour / paper (bare paper stays bare).
 // The same noise moves where the picture is read by up to `u_wobble` pixels, so edges wobble
 // as a hand-laid wash does.
+#include "pixel_stage.glsl"
 layout(binding = 0) uniform sampler2D u_picture;
 layout(binding = 1) uniform sampler2D u_surface_id;
 layout(binding = 2) uniform sampler2D u_depth;
@@ -22,7 +23,14 @@ uniform float u_radius;  // pixels
 uniform int u_samples;   // per side
 uniform float u_wobble;  // pixels
 uniform float u_wobble_scale;  // pixels per noise texel
+#ifdef PIXEL_COMPUTE
+layout(binding = 7, rgba8) writeonly uniform image2D o_colour_image;
+vec4 o_colour;
+void pixelOutputsClear() { o_colour = vec4(0.0); }
+void pixelStore(ivec2 p) { imageStore(o_colour_image, p, o_colour); }
+#else
 out vec4 o_colour;
+#endif
 
 float linearDepth(float d) {
   float z = d * 2.0 - 1.0;
@@ -43,9 +51,9 @@ int idAt(ivec2 p) {
   return int(round(texelFetch(u_surface_id, p, 0).a * 255.0));
 }
 
-void main() {
+void shadePixel() {
   ivec2 size = textureSize(u_picture, 0);
-  ivec2 p = ivec2(gl_FragCoord.xy);
+  ivec2 p = ivec2(PIXEL_COORD);
   vec2 at = vec2(p) + 0.5 + u_wobble * 2.0 * noiseAt(vec2(p));
   ivec2 q = clamp(ivec2(at), ivec2(0), size - 1);
   vec4 picture = texelFetch(u_picture, q, 0);
@@ -84,3 +92,4 @@ void main() {
   vec3 under = clamp(t, 0.0, 1.0);
   o_colour = vec4((pow(under, vec3(1.0 + u_strength * edge)) + (t - under)) * u_paper, picture.a);
 }
+#include "pixel_main.glsl"

@@ -12,7 +12,9 @@
 // the land below it hidden, paper with wave strokes, bank lines), MARKS (some object's
 // texture strokes as discrete marks, ink_marks.glsl), DEBUG_OUTPUTS (line
 // weight, tone and wrinkle luma as extra targets, for tests). PAPER builds the background's
-// program, which the pass draws apart by the depth test.
+// program, which the pass draws apart by the depth test. With PIXEL_COMPUTE both are compute
+// shaders (pixel_main.glsl) testing the depth themselves; DEBUG_OUTPUTS stays a fragment pass.
+#include "pixel_stage.glsl"
 #include "ink_objects.glsl"
 #ifdef SHADING
 #include "ink_gaussian_cdf.glsl"
@@ -106,7 +108,14 @@ float objectMarks(ObjectParams o, ivec2 p, vec3 P, vec3 n, float k) {
 }
 #endif
 
+#ifdef PIXEL_COMPUTE
+layout(rgba8, binding = 7) writeonly uniform image2D u_colour_out;
+vec4 o_colour;
+void pixelOutputsClear() { o_colour = vec4(0.0); }
+void pixelStore(ivec2 p) { imageStore(u_colour_out, p, o_colour); }
+#else
 layout(location = 0) out vec4 o_colour;
+#endif
 #ifdef WATER
 #include "ink_water.glsl"
 #endif
@@ -133,12 +142,14 @@ float strokeInk(ivec2 p) {
 
 // Depth-tested against the G-buffer's depth before shading: the pass draws the surfaces
 // and the background (PAPER) apart, each with its own main.
+#ifndef PIXEL_COMPUTE
 layout(early_fragment_tests) in;
+#endif
 
 #ifdef PAPER
 // Where nothing was drawn: the paper, and the outlines' ink that overran the silhouette.
-void main() {
-  ivec2 p = ivec2(gl_FragCoord.xy);
+void shadePixel() {
+  ivec2 p = ivec2(PIXEL_COORD);
   float ink = 0.0;
 #ifdef STROKES
   ink = strokeInk(p);
@@ -157,8 +168,8 @@ void main() {
 #endif
 }
 #else
-void main() {
-  ivec2 p = ivec2(gl_FragCoord.xy);
+void shadePixel() {
+  ivec2 p = ivec2(PIXEL_COORD);
 #ifdef DEBUG_OUTPUTS
   o_line = vec2(0.0, 1.0);
   o_tone = vec2(1.0);
@@ -175,7 +186,16 @@ void main() {
 #ifdef WATER
   // How much the height changes from pixel to pixel here (taken before any branch), so the
   // bank line looks at its neighbours only near the water's level.
+#ifdef PIXEL_COMPUTE
+  // A compute shader has no derivatives: the differences across p's 2x2 quad, along its row
+  // and its column, as a fragment shader's fine derivatives take them.
+  ivec2 q = p & ~1;
+  float dx = worldPositionAt(ivec2(q.x + 1, p.y)).z - worldPositionAt(ivec2(q.x, p.y)).z;
+  float dy = worldPositionAt(ivec2(p.x, q.y + 1)).z - worldPositionAt(ivec2(p.x, q.y)).z;
+  float z_per_pixel = max(abs(dx), abs(dy));
+#else
   float z_per_pixel = max(abs(dFdx(position.z)), abs(dFdy(position.z)));
+#endif
   if (underWater(position)) {
     // The land under the water is hidden: paper, the waves, and what stands in front.
     // The atmosphere at the water's height above the land the pixel shows (its border too).
@@ -301,3 +321,4 @@ void main() {
 #endif
 }
 #endif
+#include "pixel_main.glsl"

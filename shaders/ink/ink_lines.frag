@@ -14,6 +14,8 @@
 //   slightly different view, lighter ink.
 // Width tapers with the crest's strength and with distance; the atmosphere (fade, mist,
 // border) is applied here, at the centre, so a stroke overrunning onto the paper keeps it.
+// With PIXEL_COMPUTE it is a compute shader (pixel_main.glsl) that tests the depth itself.
+#include "pixel_stage.glsl"
 #include "ink_objects.glsl"
 #include "ink_surface.glsl"
 // Ink × 255 per pixel, cleared to 0 each frame.
@@ -21,7 +23,14 @@ layout(r32ui, binding = 3) uniform uimage2D u_stroke_ink;
 // What the ink pass would otherwise compute again at each surface pixel: what the atmosphere
 // and the border leave (presence(), r) and the shading's noise (surfaceNoise(): erosion g,
 // added noise b).
+#ifdef PIXEL_COMPUTE
+layout(rgba16, binding = 7) writeonly uniform image2D u_presence_noise_out;
+vec4 o_presence_noise;
+void pixelOutputsClear() { o_presence_noise = vec4(0.0); }
+void pixelStore(ivec2 p) { imageStore(u_presence_noise_out, p, o_presence_noise); }
+#else
 layout(location = 0) out vec4 o_presence_noise;
+#endif
 
 // The G-buffer's encoded normal: a unit vector to 16 bits a component, so its length is 1
 // to ~1e-4 and the tests below need no normalize (seven a pixel cost ~0.5 ms at 1024²).
@@ -69,10 +78,12 @@ float suggestiveTrough(ivec2 p, vec3 position, vec3 n, float z) {
 
 // Depth-tested against the G-buffer's depth before shading (the image atomics would
 // otherwise put the test after): only surface pixels run, the background is skipped.
+#ifndef PIXEL_COMPUTE
 layout(early_fragment_tests) in;
+#endif
 
-void main() {
-  ivec2 p = ivec2(gl_FragCoord.xy);
+void shadePixel() {
+  ivec2 p = ivec2(PIXEL_COORD);
   // Every test below reads p's neighbourhood; each texel is read once. The depth of p, its
   // four neighbours and two diagonal ones come from two gathers (a texel fetch costs a
   // software rasteriser several image loads, and it runs every test's code whether or not a
@@ -219,3 +230,4 @@ void main() {
     }
   }
 }
+#include "pixel_main.glsl"

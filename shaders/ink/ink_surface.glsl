@@ -26,10 +26,27 @@ layout(binding = 3) uniform sampler2D u_surface_noise;
 // SHADING no erosion and nothing added. Call it where the control flow is uniform: the
 // level of detail comes from the pixel quad's derivatives of the coordinates (across a
 // silhouette they are large, and the noise there its coarse average, for a pixel).
+vec2 noiseCoordinates(ObjectParams o, vec3 position) {
+  vec4 w = vec4(position, 1.0);
+  return vec2(dot(o.world_to_model_x, w), dot(o.world_to_model_y, w)) * o.noise_frequency;
+}
+
+vec3 worldPositionAt(ivec2 p);
+
 vec2 surfaceNoise(ObjectParams o, vec3 position) {
 #ifdef SHADING
-  vec4 w = vec4(position, 1.0);
-  return texture(u_surface_noise, vec2(dot(o.world_to_model_x, w), dot(o.world_to_model_y, w)) * o.noise_frequency).rg;
+  vec2 uv = noiseCoordinates(o, position);
+#ifdef PIXEL_COMPUTE
+  // A compute shader has no derivatives: the coordinates' differences across the pixel's
+  // 2x2 quad, from its first pixel, as a fragment shader's level of detail takes them.
+  ivec2 q = ivec2(PIXEL_COORD) & ~1;
+  vec2 uv00 = noiseCoordinates(o, worldPositionAt(q));
+  vec2 dx = noiseCoordinates(o, worldPositionAt(q + ivec2(1, 0))) - uv00;
+  vec2 dy = noiseCoordinates(o, worldPositionAt(q + ivec2(0, 1))) - uv00;
+  return textureGrad(u_surface_noise, uv, dx, dy).rg;
+#else
+  return texture(u_surface_noise, uv).rg;
+#endif
 #else
   return vec2(1.0, 0.5);
 #endif
@@ -57,6 +74,9 @@ vec3 worldPosition(ivec2 p, float depth) {
   vec4 w = u_inverse_view_projection * vec4(ndc, depth * 2.0 - 1.0, 1.0);
   return w.xyz / w.w;
 }
+
+// The world position pixel p shows (the far plane's point where nothing was drawn).
+vec3 worldPositionAt(ivec2 p) { return worldPosition(p, texelFetch(u_depth, p, 0).r); }
 
 // Distance along the view axis from a depth-buffer value; background is infinitely far.
 float viewDepth(float d) {

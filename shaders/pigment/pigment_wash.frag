@@ -4,6 +4,7 @@
 // thinned the ink (the picture's alpha, from the ink pass), optionally follows the ink
 // (thicker where the picture is darker than the paper), and varies with the object-space
 // erosion noise of the G-buffer (seed 003's texture layer, which stays on the surface).
+#include "pixel_stage.glsl"
 #include "pigment_km.glsl"
 
 struct Wash {
@@ -18,14 +19,21 @@ layout(binding = 0) uniform sampler2D u_picture;
 layout(binding = 1) uniform sampler2D u_surface_id;  // erosion noise, ..., object id / 255
 layout(binding = 2) uniform sampler2D u_depth;
 uniform vec3 u_paper;
+#ifdef PIXEL_COMPUTE
+layout(binding = 7, rgba8) writeonly uniform image2D o_colour_image;
+vec4 o_colour;
+void pixelOutputsClear() { o_colour = vec4(0.0); }
+void pixelStore(ivec2 p) { imageStore(o_colour_image, p, o_colour); }
+#else
 out vec4 o_colour;
+#endif
 
 float luma(vec3 c) {
   return dot(c, vec3(0.2126, 0.7152, 0.0722));
 }
 
-void main() {
-  ivec2 p = ivec2(gl_FragCoord.xy);
+void shadePixel() {
+  ivec2 p = ivec2(PIXEL_COORD);
   vec4 picture = texelFetch(u_picture, p, 0);
   o_colour = picture;
   if (texelFetch(u_depth, p, 0).r >= 1.0) return;
@@ -41,3 +49,4 @@ void main() {
   o_colour = vec4(kmOnGround(w.s_thickness.xyz, w.a_follow.xyz, w.b_texture.xyz, max(thickness, 0.0), picture.rgb),
                   picture.a);
 }
+#include "pixel_main.glsl"

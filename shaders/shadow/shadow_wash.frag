@@ -3,6 +3,7 @@
 // a wash of the shadow's pigment, laid by Kubelka–Munk over the picture. The edge is
 // filtered over a disc of `u_softness` texels (hardware-compared bilinear taps), and the
 // wash thins with the atmosphere as the ink did (the picture's alpha, from the ink pass).
+#include "pixel_stage.glsl"
 #include "pigment_km.glsl"
 
 layout(binding = 0) uniform sampler2D u_picture;
@@ -15,8 +16,17 @@ uniform float u_softness;  // texels
 uniform vec4 u_s_thickness;
 uniform vec3 u_a;
 uniform vec3 u_b;
+#ifdef PIXEL_COMPUTE
+layout(binding = 7, rgba8) writeonly uniform image2D o_colour_image;
+layout(binding = 6, r8) writeonly uniform image2D o_shade_image;
+vec4 o_colour;
+float o_shade;  // for the edges pass: 0 lit .. 1 in shadow
+void pixelOutputsClear() { o_colour = vec4(0.0); o_shade = 0.0; }
+void pixelStore(ivec2 p) { imageStore(o_colour_image, p, o_colour); imageStore(o_shade_image, p, vec4(o_shade, 0.0, 0.0, 0.0)); }
+#else
 layout(location = 0) out vec4 o_colour;
 layout(location = 1) out float o_shade;  // for the edges pass: 0 lit .. 1 in shadow
+#endif
 
 // 0 lit, 1 in shadow, at a world position.
 float shadowAt(vec3 world) {
@@ -40,8 +50,8 @@ float shadowAt(vec3 world) {
   return 1.0 - lit / weight;
 }
 
-void main() {
-  ivec2 p = ivec2(gl_FragCoord.xy);
+void shadePixel() {
+  ivec2 p = ivec2(PIXEL_COORD);
   vec4 picture = texelFetch(u_picture, p, 0);
   o_colour = picture;
   o_shade = 0.0;
@@ -55,3 +65,4 @@ void main() {
   if (thickness <= 0.0) return;
   o_colour = vec4(kmOnGround(u_s_thickness.xyz, u_a, u_b, thickness, picture.rgb), picture.a);
 }
+#include "pixel_main.glsl"

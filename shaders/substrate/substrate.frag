@@ -14,6 +14,7 @@
 //   d_min = 0.2), L the wash's lightness (light washes granulate more);
 // - lighting (Eq. 5): the scene's light, seen from the camera, rakes the relief:
 //   1 − (1 − L·N) d_s, divided by its value on flat paper so the sheet keeps its brightness.
+#include "pixel_stage.glsl"
 layout(binding = 0) uniform sampler2D u_picture;  // bilinear, for the distortion
 layout(binding = 1) uniform sampler2D u_height;   // canvas grain (R) or value noise (R)
 layout(binding = 2) uniform sampler2D u_surface_id;
@@ -29,7 +30,14 @@ uniform float u_dry_edge;
 uniform float u_granulation;
 uniform float u_lighting;
 uniform float u_distortion;  // pixels
+#ifdef PIXEL_COMPUTE
+layout(binding = 7, rgba8) writeonly uniform image2D o_colour_image;
+vec4 o_colour;
+void pixelOutputsClear() { o_colour = vec4(0.0); }
+void pixelStore(ivec2 p) { imageStore(o_colour_image, p, o_colour); }
+#else
 out vec4 o_colour;
+#endif
 
 float heightAt(ivec2 p) {
   ivec2 n = textureSize(u_height, 0);
@@ -45,8 +53,8 @@ float luma(vec3 c) {
   return dot(c, vec3(0.2126, 0.7152, 0.0722));
 }
 
-void main() {
-  ivec2 p = ivec2(gl_FragCoord.xy);
+void shadePixel() {
+  ivec2 p = ivec2(PIXEL_COORD);
   float h = heightAt(p);
   vec2 slope = 0.5 * vec2(heightAt(p + ivec2(1, 0)) - heightAt(p - ivec2(1, 0)),
                           heightAt(p + ivec2(0, 1)) - heightAt(p - ivec2(0, 1)));
@@ -76,3 +84,4 @@ void main() {
   float lit = (1.0 - (1.0 - max(dot(u_light, n), 0.0)) * d_s) / max(flat_lit, 1e-3);
   o_colour = vec4(clamp((t + excess) * u_paper * lit, 0.0, 1.0), picture.a);
 }
+#include "pixel_main.glsl"

@@ -708,9 +708,10 @@ TEST_F(Ink, ShadersReloadFromADirectoryAndABrokenOneKeepsTheOld) {
   const glm::vec3 before = centre();
   // Edited on disk: the ink pass paints every object pixel red.
   std::string text(shaderSource("ink.frag"));
-  const std::string tail = "#endif\n}\n#endif\n";  // the end of the surfaces' main (not PAPER's)
+  // The end of the surfaces' shadePixel (not PAPER's), before the shared main.
+  const std::string tail = "#endif\n}\n#endif\n#include \"pixel_main.glsl\"\n";
   ASSERT_EQ(text.rfind(tail), text.size() - tail.size());
-  text.insert(text.size() - std::string("}\n#endif\n").size(), "  o_colour = vec4(1.0, 0.0, 0.0, 1.0);\n");
+  text.insert(text.size() - tail.size() + std::string("#endif\n").size(), "  o_colour = vec4(1.0, 0.0, 0.0, 1.0);\n");
   std::ofstream(ink_frag) << text;
   r.reloadShaders();
   EXPECT_EQ(centre(), glm::vec3(1, 0, 0));

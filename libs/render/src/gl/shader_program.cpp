@@ -91,13 +91,27 @@ std::string mapShaderLog(const std::string& log, const std::vector<std::string>&
 }
 
 Program::Program(const std::vector<std::string>& files, const std::vector<std::string>& defines) {
+  std::vector<std::pair<std::string, GLenum>> stages;
+  for (const std::string& file : files) stages.emplace_back(file, stageOf(file));
+  build(stages, defines);
+}
+
+Program Program::pixelCompute(const std::string& frag, std::vector<std::string> defines) {
+  defines.emplace_back("PIXEL_COMPUTE");
+  Program p;
+  p.build({{frag, GL_COMPUTE_SHADER}}, defines);
+  return p;
+}
+
+void Program::build(const std::vector<std::pair<std::string, GLenum>>& stages,
+                    const std::vector<std::string>& defines) {
   std::vector<GLuint> shaders;
   auto cleanup = [&] {
     for (GLuint s : shaders) glDeleteShader(s);
   };
-  for (const std::string& file : files) {
+  for (const auto& [file, stage] : stages) {
     const PreprocessedShader pre = preprocessShader(file, defines);
-    const GLuint s = glCreateShader(stageOf(file));
+    const GLuint s = glCreateShader(stage);
     shaders.push_back(s);
     const char* src = pre.text.c_str();
     glShaderSource(s, 1, &src, nullptr);
@@ -127,7 +141,11 @@ Program::Program(const std::vector<std::string>& files, const std::vector<std::s
     glDeleteProgram(id_);
     id_ = 0;
     std::string names;
-    for (const auto& f : files) names += (names.empty() ? "" : " + ") + f;
+    std::vector<std::string> files;
+    for (const auto& stage : stages) {
+      names += (names.empty() ? "" : " + ") + stage.first;
+      files.push_back(stage.first);
+    }
     throw makeError("shader link failed (", names, "): ", mapShaderLog(log.c_str(), files));
   }
 }
@@ -178,6 +196,9 @@ void Program::set(const char* name, const glm::vec2& v) const {
 }
 void Program::set(const char* name, const glm::ivec2& v) const {
   glProgramUniform2iv(id_, location(name), 1, &v.x);
+}
+void Program::set(const char* name, const glm::ivec4& v) const {
+  glProgramUniform4iv(id_, location(name), 1, &v.x);
 }
 void Program::set(const char* name, const glm::vec3& v) const {
   glProgramUniform3fv(id_, location(name), 1, glm::value_ptr(v));

@@ -12,6 +12,7 @@
 #include "shanshui/mesh/shapes.h"
 #include "shanshui/noise/gabor.h"
 #include "shanshui/render/gl_check.h"
+#include "shanshui/render/pixel_stage.h"
 
 namespace shanshui::render {
 
@@ -148,7 +149,9 @@ std::vector<std::string> CanvasPass::variants() const {
       return {joined(definesFor(1)), joined(definesFor(kInvocations))};
     case Method::Tiles: {
       // The tile's, the surfaces', the background's, and the mottle's when it is drawn.
-      std::vector<std::string> v{joined(definesFor(1)), joined(tilesDefines(false)), joined(tilesDefines(true))};
+      const std::string stage = compute_ ? " PIXEL_COMPUTE" : "";
+      std::vector<std::string> v{joined(definesFor(1)), joined(tilesDefines(false)) + stage,
+                                 joined(tilesDefines(true)) + stage};
       if (canvas_.hasMottle()) v.push_back(joined(kMottleDefines));
       return v;
     }
@@ -167,8 +170,19 @@ void CanvasPass::reloadShaders() {
     case Method::Tiles: {
       Program synthesis({"fullscreen.vert", "canvas_static.frag"}, definesFor(1));
       // All built before any is replaced.
-      Program surfaces({"fullscreen.vert", "canvas_tiles.frag"}, tilesDefines(false));
-      Program background({"fullscreen.vert", "canvas_tiles.frag"}, tilesDefines(true));
+      // On a GPU the two are compute shaders, each testing the G-buffer's depth itself.
+      compute_ = pixelPassesAsCompute();
+      std::vector<std::string> surface_defines = tilesDefines(false), background_defines = tilesDefines(true);
+      Program surfaces, background;
+      if (compute_) {
+        surface_defines.emplace_back("PIXEL_SURFACES");
+        background_defines.emplace_back("PIXEL_BACKGROUND");
+        surfaces = Program::pixelCompute("canvas_tiles.frag", surface_defines);
+        background = Program::pixelCompute("canvas_tiles.frag", background_defines);
+      } else {
+        surfaces = Program({"fullscreen.vert", "canvas_tiles.frag"}, surface_defines);
+        background = Program({"fullscreen.vert", "canvas_tiles.frag"}, background_defines);
+      }
       tile_synthesis_ = std::move(synthesis);
       tiles_ = std::move(surfaces);
       tiles_background_ = std::move(background);
@@ -392,12 +406,17 @@ void CanvasPass::runTiles(const std::vector<Item>& items, const Framebuffer& gbu
   glDisable(GL_DEPTH_TEST);
   glBindVertexArray(empty_vao_.id());
   const float mottle_cell = canvas_.hasMottle() ? drawMottle(camera, width, height) : 1.0f;
-  // The frame's attachable depth: the depth test keeps each program to the surfaces or to
-  // the background, and llvmpipe skips the other's pixels before shading them.
-  glNamedFramebufferTexture(target_.id(), GL_DEPTH_ATTACHMENT, attachable_depth.id(), 0);
-  target_.bind();
-  glEnable(GL_DEPTH_TEST);
-  glDepthMask(GL_FALSE);
+  if (compute_) {
+    glBindImageTexture(2, target_.colour(0).id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG16F);
+    glBindTextureUnit(7, gbuffer.depth().id());
+  } else {
+    // The frame's attachable depth: the depth test keeps each program to the surfaces or to
+    // the background, and llvmpipe skips the other's pixels before shading them.
+    glNamedFramebufferTexture(target_.id(), GL_DEPTH_ATTACHMENT, attachable_depth.id(), 0);
+    target_.bind();
+    glEnable(GL_DEPTH_TEST);
+    glDepthMask(GL_FALSE);
+  }
   glBindTextureUnit(0, gbuffer.depth().id());
   glBindTextureUnit(1, gbuffer.colour(1).id());
   glBindImageTexture(0, tile_.id(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_R8I);
@@ -416,8 +435,12 @@ void CanvasPass::runTiles(const std::vector<Item>& items, const Framebuffer& gbu
     p->set("u_tile_shift", std::countr_zero(static_cast<unsigned>(tile_size_)));
     setMarks(*p, height, canvas_.patch * o.radius);
     p->set("u_mottle_texels", 1.0f / mottle_cell);
-    glDepthFunc(p == &tiles_ ? GL_GREATER : GL_EQUAL);  // the triangle lies at depth 1: surfaces, then the background
-    glDrawArrays(GL_TRIANGLES, 0, 3);
+    if (compute_) {
+      dispatchPixels(*p, {0, 0, width, height});
+    } else {
+      glDepthFunc(p == &tiles_ ? GL_GREATER : GL_EQUAL);  // the triangle lies at depth 1: surfaces, then the background
+      glDrawArrays(GL_TRIANGLES, 0, 3);
+    }
   }
   glDisable(GL_DEPTH_TEST);
   glDepthMask(GL_TRUE);

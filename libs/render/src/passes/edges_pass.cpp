@@ -5,6 +5,7 @@
 #include "shanshui/core/error.h"
 #include "shanshui/noise/value_noise.h"
 #include "shanshui/render/gl_check.h"
+#include "shanshui/render/pixel_stage.h"
 #include "shanshui/render/render_pass.h"
 #include "shanshui/render/shader_program.h"
 
@@ -23,7 +24,10 @@ class EdgesPass final : public RenderPass {
   }
 
   std::string name() const override { return "edges"; }
-  void buildPrograms() override { program_ = Program({"fullscreen.vert", "edge_darkening.frag"}, defines_); }
+  void buildPrograms() override {
+    compute_ = pixelPassesAsCompute();
+    program_ = pixelProgram("edge_darkening.frag", defines_, compute_);
+  }
   std::vector<std::string> variants() const override { return {joined(defines_)}; }
 
   void setScene(const scene::Scene& s) override {
@@ -39,7 +43,6 @@ class EdgesPass final : public RenderPass {
   void run(const FrameInputs& in, FrameImages& images) override {
     SHANSHUI_CHECK(images.picture != nullptr && images.gbuffer != nullptr);
     if (in.timer) in.timer->begin("edges");
-    target_.bind();
     glDisable(GL_DEPTH_TEST);
     glDisable(GL_BLEND);
     glBindVertexArray(vao_.id());
@@ -61,7 +64,7 @@ class EdgesPass final : public RenderPass {
     program_.set("u_samples", e.samples);
     program_.set("u_wobble", static_cast<float>(e.wobble * px));
     program_.set("u_wobble_scale", static_cast<float>(std::max(e.wobble_scale * px, 1e-3)));
-    glDrawArrays(GL_TRIANGLES, 0, 3);
+    shadePixels(program_, compute_, target_, {GL_RGBA8}, in.drawn());
     SHANSHUI_GL_CHECK("edges pass");
     images.picture = &target_.colour();
     if (in.timer) in.timer->end();
@@ -70,6 +73,7 @@ class EdgesPass final : public RenderPass {
  private:
   std::vector<std::string> defines_;
   Program program_;
+  bool compute_ = false;  //!< program_ is a compute shader (pixelPassesAsCompute)
   VertexArray vao_;
   std::optional<Texture2D> noise_;
   std::optional<std::uint64_t> seed_;

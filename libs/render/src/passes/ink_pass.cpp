@@ -13,6 +13,7 @@
 #include "shanshui/noise/value_noise.h"
 #include "shanshui/render/gl_check.h"
 #include "shanshui/render/ink_object_params.h"
+#include "shanshui/render/pixel_stage.h"
 #include "shanshui/render/render_pass.h"
 #include "shanshui/render/shader_program.h"
 
@@ -88,6 +89,12 @@ class InkPass final : public RenderPass {
       if (in_storage) std::erase_if(d, [](const std::string& w) { return w.starts_with("OBJECTS="); });
     };
     toStorage(defines);
+    // On a GPU compute shaders (the debug outputs' extra targets stay a fragment pass's).
+    const bool compute = pixelPassesAsCompute() && !debug_outputs_;
+    auto build = [compute](const std::string& frag, std::vector<std::string> d, const char* test) {
+      if (compute) d.emplace_back(test);  // the depth test the fragment stage gets from the depth buffer
+      return pixelProgram(frag, d, compute);
+    };
     std::optional<Program> lines;
     std::vector<std::string> line_defines;
     if (scene_.usesStrokes()) {
@@ -95,12 +102,13 @@ class InkPass final : public RenderPass {
       toStorage(line_defines);
       if (scene_.usesShading()) line_defines.emplace_back("SHADING");  // it samples the shading's noise
       if (scene_.usesSuggestiveContours()) line_defines.emplace_back("SUGGESTIVE");
-      lines.emplace(Program({"fullscreen.vert", "ink_lines.frag"}, line_defines));
+      lines.emplace(build("ink_lines.frag", line_defines, "PIXEL_SURFACES"));
     }
     std::vector<std::string> paper_defines = defines;
     paper_defines.emplace_back("PAPER");
-    Program paper({"fullscreen.vert", "ink.frag"}, paper_defines);
-    program_ = Program({"fullscreen.vert", "ink.frag"}, defines);  // a throw keeps the old programs
+    Program paper = build("ink.frag", paper_defines, "PIXEL_BACKGROUND");
+    program_ = build("ink.frag", defines, "PIXEL_SURFACES");  // a throw keeps the old programs
+    compute_ = compute;
     paper_ = std::move(paper);
     lines_ = std::move(lines);
     defines_ = std::move(defines);
@@ -110,8 +118,9 @@ class InkPass final : public RenderPass {
 
   std::vector<std::string> variants() const override {
     // The background's half of the same variant (PAPER) is not listed apart.
-    std::vector<std::string> v{joined(defines_)};
-    if (lines_) v.push_back("lines: " + joined(line_defines_));
+    const std::string stage = compute_ ? " PIXEL_COMPUTE" : "";
+    std::vector<std::string> v{joined(defines_) + stage};
+    if (lines_) v.push_back("lines: " + joined(line_defines_) + stage);
     return v;
   }
 
@@ -160,24 +169,36 @@ class InkPass final : public RenderPass {
     if (value_noise_) glBindImageTexture(5, value_noise_->id(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_R8);
     if (surface_noise_) glBindTextureUnit(3, surface_noise_->id());
     if (const std::optional<std::size_t> w = wrinkledHere(in.scene)) glBindTextureUnit(4, in.objects[*w].wrinkle->id());
-    // The frame's attachable depth on this pass's targets: the depth test keeps each draw to
-    // the surfaces or to the background, and llvmpipe skips the other pixels' shading (with
-    // fill framing about half the picture is background).
-    glNamedFramebufferTexture(target_.id(), GL_DEPTH_ATTACHMENT, images.attachable_depth->id(), 0);
-    glEnable(GL_DEPTH_TEST);
-    glDepthMask(GL_FALSE);
-    glDepthFunc(GL_GREATER);  // the triangle lies at depth 1: surfaces only
-    if (lines_) {             // built exactly when some object draws strokes
+    // The pixels drawn: the region redrawn, or all (a compute shader's rectangle; a fragment
+    // pass has the frame's scissor).
+    const glm::ivec4 rect = in.drawn(), whole{0, 0, in.width, in.height};
+    if (compute_) {
+      glBindTextureUnit(7, g.depth().id());  // the programs' own depth test
+    } else {
+      // The frame's attachable depth on this pass's targets: the depth test keeps each draw
+      // to the surfaces or to the background, and llvmpipe skips the other pixels' shading
+      // (with fill framing about half the picture is background).
+      glNamedFramebufferTexture(target_.id(), GL_DEPTH_ATTACHMENT, images.attachable_depth->id(), 0);
+      glEnable(GL_DEPTH_TEST);
+      glDepthMask(GL_FALSE);
+      glDepthFunc(GL_GREATER);  // the triangle lies at depth 1: surfaces only
+    }
+    if (lines_) {  // built exactly when some object draws strokes
       if (stroke_ink_.width() != target_.width() || stroke_ink_.height() != target_.height()) {
         strokes_ = Framebuffer(target_.width(), target_.height(), {GL_RGBA16}, false);
         stroke_ink_ = Texture2D(target_.width(), target_.height(), GL_R32UI);
       }
-      glNamedFramebufferTexture(strokes_.id(), GL_DEPTH_ATTACHMENT, images.attachable_depth->id(), 0);
       if (in.timer) in.timer->begin("lines");
       const GLuint zero = 0;
       glClearTexImage(stroke_ink_.id(), 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
       glBindImageTexture(3, stroke_ink_.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
-      strokes_.bind();
+      if (compute_) {
+        glBindImageTexture(7, strokes_.colour(0).id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16);
+      } else {
+        glNamedFramebufferTexture(strokes_.id(), GL_DEPTH_ATTACHMENT, images.attachable_depth->id(), 0);
+        strokes_.bind();
+      }
+      glm::ivec4 line_rect = rect;
       if (in.region) {
         // A stroke's centre stamps ink up to its width around it: centres just outside the
         // redrawn region reach into it, so they are stamped too.
@@ -185,7 +206,9 @@ class InkPass final : public RenderPass {
         for (const scene::Object& o : in.scene.objects) widest = std::max(widest, o.lines.width);
         const int grow = 2 * (static_cast<int>(std::ceil(widest * in.height / 1024.0)) / 2) + 4;  // whole quads
         const glm::ivec4& r = *in.region;
-        glScissor(r.x - grow, r.y - grow, r.z - r.x + 2 * grow, r.w - r.y + 2 * grow);
+        line_rect = glm::clamp(r + glm::ivec4(-grow, -grow, grow, grow), glm::ivec4(0),
+                               glm::ivec4(whole.z, whole.w, whole.z, whole.w));
+        if (!compute_) glScissor(r.x - grow, r.y - grow, r.z - r.x + 2 * grow, r.w - r.y + 2 * grow);
       }
       lines_->use();
       setSurfaceUniforms(*lines_, in);
@@ -194,19 +217,27 @@ class InkPass final : public RenderPass {
                     glm::mat4(glm::dmat4(in.camera.projection(static_cast<double>(in.width) / in.height)) *
                               glm::dmat4(in.camera.view())));
       }
-      glDrawArrays(GL_TRIANGLES, 0, 3);
-      if (in.region) {
-        const glm::ivec4& r = *in.region;
-        glScissor(r.x, r.y, r.z - r.x, r.w - r.y);
+      if (compute_) {
+        dispatchPixels(*lines_, line_rect);
+      } else {
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+        if (in.region) {
+          const glm::ivec4& r = *in.region;
+          glScissor(r.x, r.y, r.z - r.x, r.w - r.y);
+        }
+        glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
       }
-      glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
       if (in.timer) in.timer->end();
       SHANSHUI_GL_CHECK("ink lines");
       glBindImageTexture(3, stroke_ink_.id(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_R32UI);
       glBindImageTexture(4, strokes_.colour(0).id(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA16);
     }
     if (in.timer) in.timer->begin("ink");
-    target_.bind();
+    if (compute_) {
+      glBindImageTexture(7, target_.colour(0).id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA8);
+    } else {
+      target_.bind();
+    }
     if (grainHere(in.scene)) glBindImageTexture(2, images.canvas->id(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_RG16F);
     if (images.elements)
       glBindImageTexture(6, images.elements->id(), 0, GL_FALSE, 0, GL_READ_ONLY,
@@ -219,8 +250,12 @@ class InkPass final : public RenderPass {
       ink->set("u_paper", glm::vec3(in.scene.output.paper));
       if (grainHere(in.scene)) ink->set("u_canvas_contrast", static_cast<float>(in.scene.canvas.contrast));
       if (in.scene.usesWater()) setWaterUniforms(*ink, in);
-      glDepthFunc(ink == &program_ ? GL_GREATER : GL_EQUAL);  // surfaces, then the background
-      glDrawArrays(GL_TRIANGLES, 0, 3);
+      if (compute_) {
+        dispatchPixels(*ink, rect);
+      } else {
+        glDepthFunc(ink == &program_ ? GL_GREATER : GL_EQUAL);  // surfaces, then the background
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+      }
     }
     glDisable(GL_DEPTH_TEST);
     glDepthMask(GL_TRUE);
@@ -371,6 +406,7 @@ class InkPass final : public RenderPass {
   Program program_;
   std::optional<Program> paper_;  //!< the background's pixels (PAPER)
   std::optional<Program> lines_;  //!< the stroke centres, when some object draws strokes
+  bool compute_ = false;          //!< the three are compute shaders (pixelPassesAsCompute)
   std::vector<std::string> line_defines_;
   VertexArray vao_;
   Buffer params_;

@@ -6,6 +6,7 @@
 #include "shanshui/pigment/kubelka_munk.h"
 #include "shanshui/pigment/palette.h"
 #include "shanshui/render/gl_check.h"
+#include "shanshui/render/pixel_stage.h"
 #include "shanshui/render/render_pass.h"
 #include "shanshui/render/shader_program.h"
 
@@ -55,7 +56,10 @@ class PigmentPass final : public RenderPass {
   }
 
   std::string name() const override { return "pigment"; }
-  void buildPrograms() override { program_ = Program({"fullscreen.vert", "pigment_wash.frag"}); }
+  void buildPrograms() override {
+    compute_ = pixelPassesAsCompute();
+    program_ = pixelProgram("pigment_wash.frag", {}, compute_);
+  }
   std::vector<std::string> variants() const override { return {""}; }
 
   void setScene(const scene::Scene& s) override {
@@ -85,7 +89,6 @@ class PigmentPass final : public RenderPass {
   void run(const FrameInputs& in, FrameImages& images) override {
     SHANSHUI_CHECK(images.picture != nullptr && images.gbuffer != nullptr);
     if (in.timer) in.timer->begin("pigment");
-    target_.bind();
     glDisable(GL_DEPTH_TEST);
     glDisable(GL_BLEND);
     glBindVertexArray(vao_.id());
@@ -95,7 +98,7 @@ class PigmentPass final : public RenderPass {
     glBindTextureUnit(1, images.gbuffer->colour(1).id());
     glBindTextureUnit(2, images.gbuffer->depth().id());
     program_.set("u_paper", glm::vec3(in.scene.output.paper));
-    glDrawArrays(GL_TRIANGLES, 0, 3);
+    shadePixels(program_, compute_, target_, {GL_RGBA8}, in.drawn());
     SHANSHUI_GL_CHECK("pigment pass");
     images.picture = &target_.colour();
     if (in.timer) in.timer->end();
@@ -105,6 +108,7 @@ class PigmentPass final : public RenderPass {
   scene::Scene scene_;
   bool shading_;
   Program program_;
+  bool compute_ = false;  //!< program_ is a compute shader (pixelPassesAsCompute)
   VertexArray vao_;
   Buffer washes_;
   Framebuffer target_;

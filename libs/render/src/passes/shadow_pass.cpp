@@ -12,6 +12,7 @@
 #include "shanshui/core/error.h"
 #include "shanshui/pigment/kubelka_munk.h"
 #include "shanshui/render/gl_check.h"
+#include "shanshui/render/pixel_stage.h"
 #include "shanshui/render/render_pass.h"
 #include "shanshui/render/shader_program.h"
 
@@ -36,7 +37,8 @@ class ShadowPass final : public RenderPass {
 
   void buildPrograms() override {
     Program depth({"shadow_depth.vert", "shadow_depth.frag"});
-    wash_ = Program({"fullscreen.vert", "shadow_wash.frag"});
+    compute_ = pixelPassesAsCompute();
+    wash_ = pixelProgram("shadow_wash.frag", {}, compute_);
     depth_ = std::move(depth);
   }
 
@@ -73,7 +75,6 @@ class ShadowPass final : public RenderPass {
       drawMap(in, light);
       map_key_ = key;
     }
-    target_.bind();
     glDisable(GL_DEPTH_TEST);
     glDisable(GL_BLEND);
     glBindVertexArray(vao_.id());
@@ -91,7 +92,7 @@ class ShadowPass final : public RenderPass {
     wash_.set("u_s_thickness", glm::vec4(glm::vec3(coefficients_.S), static_cast<float>(sh.pigment.thickness)));
     wash_.set("u_a", glm::vec3(coefficients_.a));
     wash_.set("u_b", glm::vec3(coefficients_.b));
-    glDrawArrays(GL_TRIANGLES, 0, 3);
+    shadePixels(wash_, compute_, target_, {GL_RGBA8, GL_R8}, in.drawn());
     SHANSHUI_GL_CHECK("shadow pass");
     images.picture = &target_.colour();
     images.shadow = &target_.colour(1);
@@ -117,6 +118,7 @@ class ShadowPass final : public RenderPass {
 
   scene::Scene scene_;
   Program depth_, wash_;
+  bool compute_ = false;  //!< wash_ is a compute shader (pixelPassesAsCompute)
   VertexArray vao_;
   pigment::Coefficients coefficients_;
   Framebuffer map_, target_;

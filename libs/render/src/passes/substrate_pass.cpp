@@ -11,6 +11,7 @@
 #include "shanshui/image/image_io.h"
 #include "shanshui/noise/value_noise.h"
 #include "shanshui/render/gl_check.h"
+#include "shanshui/render/pixel_stage.h"
 #include "shanshui/render/render_pass.h"
 #include "shanshui/render/shader_program.h"
 
@@ -45,8 +46,9 @@ class SubstratePass final : public RenderPass {
 
   std::string name() const override { return "substrate"; }
   void buildPrograms() override {
-    program_ = Program({"fullscreen.vert", "substrate.frag"},
-                       from_canvas_ ? std::vector<std::string>{"CANVAS"} : std::vector<std::string>{});
+    compute_ = pixelPassesAsCompute();
+    program_ = pixelProgram("substrate.frag",
+                            from_canvas_ ? std::vector<std::string>{"CANVAS"} : std::vector<std::string>{}, compute_);
   }
   std::vector<std::string> variants() const override { return {from_canvas_ ? "CANVAS" : ""}; }
 
@@ -71,7 +73,6 @@ class SubstratePass final : public RenderPass {
     SHANSHUI_CHECK(images.picture != nullptr && images.gbuffer != nullptr);
     SHANSHUI_CHECK(!from_canvas_ || images.canvas != nullptr);
     if (in.timer) in.timer->begin("substrate");
-    target_.bind();
     glDisable(GL_DEPTH_TEST);
     glDisable(GL_BLEND);
     glBindVertexArray(vao_.id());
@@ -92,7 +93,7 @@ class SubstratePass final : public RenderPass {
     program_.set("u_granulation", static_cast<float>(p.granulation));
     program_.set("u_lighting", static_cast<float>(p.lighting));
     program_.set("u_distortion", static_cast<float>(p.distortion * in.height / 1024.0));
-    glDrawArrays(GL_TRIANGLES, 0, 3);
+    shadePixels(program_, compute_, target_, {GL_RGBA8}, in.drawn());
     glBindSampler(0, 0);
     SHANSHUI_GL_CHECK("substrate pass");
     images.picture = &target_.colour();
@@ -102,6 +103,7 @@ class SubstratePass final : public RenderPass {
  private:
   bool from_canvas_;
   Program program_;
+  bool compute_ = false;  //!< program_ is a compute shader (pixelPassesAsCompute)
   VertexArray vao_;
   Buffer weights_;
   GLuint sampler_ = 0;

@@ -148,7 +148,8 @@ class CanvasPass {
   int quads_ = 0;
   Program single_, multi_, static_;                    //!< geometry shader with 1 or kInvocations invocations; static
   Program tiles_, tiles_background_, tile_synthesis_;  //!< the tiles canvas (surfaces, background), and its tile
-  Program mottle_;                                     //!< rice paper's mottle (tiles)
+  bool compute_ = false;  //!< tiles_ and tiles_background_ are compute shaders (pixelPassesAsCompute)
+  Program mottle_;        //!< rice paper's mottle (tiles)
   Framebuffer mottle_target_;
   Buffer tile_bytes_;         //!< the tile, rows from the bottom, one signed byte a texel
   BufferTexture tile_;        //!< tile_bytes_ as R8I texels (the shaders index it: y · size + x)

@@ -55,6 +55,8 @@ struct FrameInputs {
   //! When set, only this region (GL pixels x0, y0, x1, y1; the scissor is set to it) changed
   //! since the last frame: passes may draw only there, their targets keep the rest.
   const glm::ivec4* region = nullptr;
+  //! The pixels a pass draws: the region, or the whole frame (a compute shader's rectangle).
+  glm::ivec4 drawn() const { return region ? *region : glm::ivec4(0, 0, width, height); }
 
   //! Model matrix of object i at the frame's time, or at time t.
   glm::dmat4 modelAt(std::size_t i) const { return modelAt(i, time); }

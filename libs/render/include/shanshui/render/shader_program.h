@@ -33,6 +33,9 @@ class Program {
   Program() = default;
   //! Throws Error with mapped file:line messages when compiling or linking fails.
   Program(const std::vector<std::string>& files, const std::vector<std::string>& defines = {});
+  //! A per-pixel fragment shader (one that ends by including pixel_main.glsl) compiled as a
+  //! compute shader, with PIXEL_COMPUTE added to `defines`; run it with dispatchPixels.
+  static Program pixelCompute(const std::string& frag, std::vector<std::string> defines);
   ~Program();
   Program(Program&& other) noexcept;
   Program& operator=(Program&& other) noexcept;
@@ -46,6 +49,7 @@ class Program {
   void set(const char* name, float v) const;
   void set(const char* name, const glm::vec2& v) const;
   void set(const char* name, const glm::ivec2& v) const;
+  void set(const char* name, const glm::ivec4& v) const;
   void set(const char* name, const glm::vec3& v) const;
   void set(const char* name, const glm::vec4& v) const;
   void set(const char* name, const glm::mat3& v) const;
@@ -55,6 +59,9 @@ class Program {
   GLint location(const char* name) const;
 
  private:
+  //! Compiles each file as the given stage and links them.
+  void build(const std::vector<std::pair<std::string, GLenum>>& stages, const std::vector<std::string>& defines);
+
   GLuint id_ = 0;
   //! Names asked for and their locations (-1: not active), sorted by name.
   mutable std::vector<std::pair<std::string, GLint>> locations_;
