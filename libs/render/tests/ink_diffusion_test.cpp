@@ -2,6 +2,7 @@
 // parameters of SPEC.md section 9, and its own invariants.
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <random>
 
 #include "gl_test.h"
@@ -40,62 +41,70 @@ image::Image absorbencyImage(int w, int h, unsigned seed) {
   return a;
 }
 
+// Both layouts: llvmpipe's (boundary invocations of 8 columns, the main region swept by rows
+// and columns) and a GPU's (invocations of 2 columns, the main region gathered for d ≤ 8),
+// forced on llvmpipe by SHANSHUI_PIXEL_PASSES.
 TEST_F(InkGpu, MatchesTheCpuReferenceOnTheExtremeGrid) {
-  InkDiffusionPass pass;
-  const glm::vec3 paper(kPaper[0], kPaper[1], kPaper[2]);
-  double worst_max = 0, worst_mean = 0;
-  int cases = 0;
-  // The pass packs two pixels to a texel, its boundary invocations own 8 columns each and
-  // walk strips of rows: widths 48, 47 and 45 end on a whole invocation, in a half-empty
-  // texel and 3 columns short of a whole invocation; heights end in partial strips.
-  for (const auto& [w, h, border] : {std::tuple{48, 36, false}, std::tuple{47, 37, true}, std::tuple{45, 35, true}}) {
-    const image::Image img = picture(w, h, border ? 2u : 1u, border);
-    const image::Image absorb = absorbencyImage(w, h, 3);
-    const Texture2D colour = Texture2D::fromImage(img, GL_RGBA8), absorbency = Texture2D::fromImage(absorb, GL_R8);
-    // What the GPU sees: the 8-bit values, read back.
-    const image::Image seen = colour.download(3);
-    const std::vector<float> a(absorb.pixels.begin(), absorb.pixels.end());
-    const ink::InkField before = ink::inkFromImage(seen, kPaper);
-    for (int n : {1, 100})
-      for (double ir : {0.0, 1.0})
-        for (double f : {0.0, 1.0})
-          for (int d : {0, 64})
-            for (double ip : {0.5, 1000.0}) {
-              ink::DiffusionOptions o;
-              o.iterations = n;
-              o.residual = ir;
-              o.attenuation = f;
-              o.ring_steps = d;
-              o.absorb = ip;
-              SCOPED_TRACE(testing::Message() << "n=" << n << " Ir=" << ir << " f=" << f << " d=" << d << " Ip=" << ip
-                                              << " size=" << w << "x" << h << " border=" << border);
-              pass.run(colour, absorbency, o, paper);
-              const image::Image gpu = pass.inkAfter();
-              const ink::InkField cpu = ink::diffuseInk(before, a, o);
-              double max_diff = 0, sum_diff = 0, total_gpu = 0;
-              for (std::size_t i = 0; i < cpu.ink.size(); ++i) {
-                ASSERT_TRUE(std::isfinite(gpu.pixels[i]) && gpu.pixels[i] >= 0.0f);
-                const double diff = std::abs(gpu.pixels[i] - cpu.ink[i]);
-                max_diff = std::max(max_diff, diff);
-                sum_diff += diff;
-                total_gpu += gpu.pixels[i];
+  for (const char* layout : {"fragment", "compute"}) {
+    SCOPED_TRACE(layout);
+    setenv("SHANSHUI_PIXEL_PASSES", layout, 1);
+    InkDiffusionPass pass;
+    unsetenv("SHANSHUI_PIXEL_PASSES");
+    const glm::vec3 paper(kPaper[0], kPaper[1], kPaper[2]);
+    double worst_max = 0, worst_mean = 0;
+    int cases = 0;
+    // The pass packs two pixels to a texel, its boundary invocations own 8 columns each and
+    // walk strips of rows: widths 48, 47 and 45 end on a whole invocation, in a half-empty
+    // texel and 3 columns short of a whole invocation; heights end in partial strips.
+    for (const auto& [w, h, border] : {std::tuple{48, 36, false}, std::tuple{47, 37, true}, std::tuple{45, 35, true}}) {
+      const image::Image img = picture(w, h, border ? 2u : 1u, border);
+      const image::Image absorb = absorbencyImage(w, h, 3);
+      const Texture2D colour = Texture2D::fromImage(img, GL_RGBA8), absorbency = Texture2D::fromImage(absorb, GL_R8);
+      // What the GPU sees: the 8-bit values, read back.
+      const image::Image seen = colour.download(3);
+      const std::vector<float> a(absorb.pixels.begin(), absorb.pixels.end());
+      const ink::InkField before = ink::inkFromImage(seen, kPaper);
+      for (int n : {1, 5, 100})
+        for (double ir : {0.0, 1.0})
+          for (double f : {0.0, 1.0})
+            for (int d : {0, 3, 64})
+              for (double ip : {0.5, 1000.0}) {
+                ink::DiffusionOptions o;
+                o.iterations = n;
+                o.residual = ir;
+                o.attenuation = f;
+                o.ring_steps = d;
+                o.absorb = ip;
+                SCOPED_TRACE(testing::Message() << "n=" << n << " Ir=" << ir << " f=" << f << " d=" << d << " Ip=" << ip
+                                                << " size=" << w << "x" << h << " border=" << border);
+                pass.run(colour, absorbency, o, paper);
+                const image::Image gpu = pass.inkAfter();
+                const ink::InkField cpu = ink::diffuseInk(before, a, o);
+                double max_diff = 0, sum_diff = 0, total_gpu = 0;
+                for (std::size_t i = 0; i < cpu.ink.size(); ++i) {
+                  ASSERT_TRUE(std::isfinite(gpu.pixels[i]) && gpu.pixels[i] >= 0.0f);
+                  const double diff = std::abs(gpu.pixels[i] - cpu.ink[i]);
+                  max_diff = std::max(max_diff, diff);
+                  sum_diff += diff;
+                  total_gpu += gpu.pixels[i];
+                }
+                // Float on the GPU against double on the CPU, n iterations of rounding.
+                EXPECT_LT(max_diff, 2e-5);                                        // measured worst: 5.6e-6
+                EXPECT_LT(sum_diff / static_cast<double>(cpu.ink.size()), 5e-6);  // measured worst: 1.3e-6
+                // The boundary stage conserves ink: compare with the main-region total.
+                const ink::InkField main = ink::mainDiffusionDistance(before, o);
+                EXPECT_NEAR(total_gpu, main.total(), 1e-5 * std::max(main.total(), 1.0));
+                worst_max = std::max(worst_max, max_diff);
+                worst_mean = std::max(worst_mean, sum_diff / static_cast<double>(cpu.ink.size()));
+                ++cases;
               }
-              // Float on the GPU against double on the CPU, n iterations of rounding.
-              EXPECT_LT(max_diff, 2e-5);                                        // measured worst: 5.6e-6
-              EXPECT_LT(sum_diff / static_cast<double>(cpu.ink.size()), 5e-6);  // measured worst: 1.3e-6
-              // The boundary stage conserves ink: compare with the main-region total.
-              const ink::InkField main = ink::mainDiffusionDistance(before, o);
-              EXPECT_NEAR(total_gpu, main.total(), 1e-5 * std::max(main.total(), 1.0));
-              worst_max = std::max(worst_max, max_diff);
-              worst_mean = std::max(worst_mean, sum_diff / static_cast<double>(cpu.ink.size()));
-              ++cases;
-            }
+    }
+    EXPECT_EQ(cases, 216);
+    RecordProperty(std::string("worst_max_abs_difference_") + layout, std::to_string(worst_max));
+    RecordProperty(std::string("worst_mean_abs_difference_") + layout, std::to_string(worst_mean));
+    std::printf("GPU (%s layout) vs CPU ink: worst max |diff| %.3g, worst mean |diff| %.3g over %d parameter sets\n",
+                layout, worst_max, worst_mean, cases);
   }
-  EXPECT_EQ(cases, 96);
-  RecordProperty("worst_max_abs_difference", std::to_string(worst_max));
-  RecordProperty("worst_mean_abs_difference", std::to_string(worst_mean));
-  std::printf("GPU vs CPU ink: worst max |diff| %.3g, worst mean |diff| %.3g over %d parameter sets\n", worst_max,
-              worst_mean, cases);
 }
 
 TEST_F(InkGpu, A4096SquarePictureStaysFiniteAndConservesInk) {
@@ -257,45 +266,49 @@ TEST_F(InkGpu, ARegionRunEqualsAWholeRunOfTheChangedPicture) {
         for (int c = 0; c < 3; ++c) next.at(x, y, c) = patch.at(x, y, c);
     frames.push_back(next);
   }
-  for (const auto& [n, d, absorb] : {std::tuple{5, 3, 0.3}, std::tuple{2, 0, 1000.0}, std::tuple{0, 6, 0.3}}) {
-    for (const bool with_grain : {false, true}) {
-      SCOPED_TRACE(testing::Message() << "n=" << n << " d=" << d << " absorb=" << absorb
-                                      << (with_grain ? " with a grain" : ""));
-      ink::DiffusionOptions o;
-      o.iterations = n;
-      o.ring_steps = d;
-      o.absorb = absorb;
-      const PaperTexture texture{&absorbency, {1.0f, 0.0f}, with_grain ? &grain : nullptr, 0.2f};
-      const int grow = InkDiffusionPass::dependence(o);
-      EXPECT_EQ(grow, d + 3 * n);
-      for (const bool grown : {true, false}) {
-        InkDiffusionPass pass;
-        const Texture2D out(w, h, GL_RGBA8);
-        pass.run(Texture2D::fromImage(frames[0], GL_RGBA8), texture, o, paper, out);
-        std::size_t differ = 0;
-        for (std::size_t k = 0; k < patches.size(); ++k) {
-          // The patch in GL pixels (y from the bottom).
-          const glm::ivec4& p = patches[k];
-          glm::ivec4 region(p.x, h - p.w, p.z, h - p.y);
-          if (grown) region += glm::ivec4(-grow, -grow, grow, grow);
-          pass.run(Texture2D::fromImage(frames[k + 1], GL_RGBA8), texture, o, paper, out, nullptr, &region);
-          const glm::ivec4 window = pass.lastWindow();
-          EXPECT_LT((window.z - window.x) * (window.w - window.y), w * h / 2) << "a part of the picture";
-          InkDiffusionPass whole;
-          const Texture2D expected(w, h, GL_RGBA8);
-          whole.run(Texture2D::fromImage(frames[k + 1], GL_RGBA8), texture, o, paper, expected);
-          const image::Image a = expected.download(4), b = out.download(4);
-          for (std::size_t i = 0; i < a.pixels.size(); ++i) differ += a.pixels[i] != b.pixels[i];
-          if (grown) {
-            ASSERT_EQ(differ, 0u) << "change " << k;
+  // Both layouts (llvmpipe's and a GPU's, see MatchesTheCpuReferenceOnTheExtremeGrid).
+  for (const char* layout : {"fragment", "compute"})
+    for (const auto& [n, d, absorb] : {std::tuple{5, 3, 0.3}, std::tuple{2, 0, 1000.0}, std::tuple{0, 6, 0.3}}) {
+      setenv("SHANSHUI_PIXEL_PASSES", layout, 1);
+      for (const bool with_grain : {false, true}) {
+        SCOPED_TRACE(testing::Message() << layout << " n=" << n << " d=" << d << " absorb=" << absorb
+                                        << (with_grain ? " with a grain" : ""));
+        ink::DiffusionOptions o;
+        o.iterations = n;
+        o.ring_steps = d;
+        o.absorb = absorb;
+        const PaperTexture texture{&absorbency, {1.0f, 0.0f}, with_grain ? &grain : nullptr, 0.2f};
+        const int grow = InkDiffusionPass::dependence(o);
+        EXPECT_EQ(grow, d + 3 * n);
+        for (const bool grown : {true, false}) {
+          InkDiffusionPass pass;
+          const Texture2D out(w, h, GL_RGBA8);
+          pass.run(Texture2D::fromImage(frames[0], GL_RGBA8), texture, o, paper, out);
+          std::size_t differ = 0;
+          for (std::size_t k = 0; k < patches.size(); ++k) {
+            // The patch in GL pixels (y from the bottom).
+            const glm::ivec4& p = patches[k];
+            glm::ivec4 region(p.x, h - p.w, p.z, h - p.y);
+            if (grown) region += glm::ivec4(-grow, -grow, grow, grow);
+            pass.run(Texture2D::fromImage(frames[k + 1], GL_RGBA8), texture, o, paper, out, nullptr, &region);
+            const glm::ivec4 window = pass.lastWindow();
+            EXPECT_LT((window.z - window.x) * (window.w - window.y), w * h / 2) << "a part of the picture";
+            InkDiffusionPass whole;
+            const Texture2D expected(w, h, GL_RGBA8);
+            whole.run(Texture2D::fromImage(frames[k + 1], GL_RGBA8), texture, o, paper, expected);
+            const image::Image a = expected.download(4), b = out.download(4);
+            for (std::size_t i = 0; i < a.pixels.size(); ++i) differ += a.pixels[i] != b.pixels[i];
+            if (grown) {
+              ASSERT_EQ(differ, 0u) << "change " << k;
+            }
+          }
+          if (!grown && n > 0) {
+            EXPECT_GT(differ, 0u) << "the ink crossed the patch's edge";
           }
         }
-        if (!grown && n > 0) {
-          EXPECT_GT(differ, 0u) << "the ink crossed the patch's edge";
-        }
       }
+      unsetenv("SHANSHUI_PIXEL_PASSES");
     }
-  }
 }
 
 TEST_F(InkGpu, OneByOneEmptyAndFullPicturesStayFinite) {

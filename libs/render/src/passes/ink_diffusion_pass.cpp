@@ -11,6 +11,7 @@
 #include "shanshui/core/error.h"
 #include "shanshui/noise/value_noise.h"
 #include "shanshui/render/gl_check.h"
+#include "shanshui/render/pixel_stage.h"
 
 namespace shanshui::render {
 
@@ -44,9 +45,16 @@ int packedWidth(int width) {
 // groups and coarser areas to leave out. On llvmpipe (1024², five iterations over ink
 // everywhere, 15 alternating runs each) 8 columns cost half what 2 or 4 do with the ink
 // packed two pixels to a texel, while with one pixel to a texel 8 and 2 cost the same.
+//
+// On a GPU (pixelPassesAsCompute) the same area is 32 invocations of 2 columns: 8-invocation
+// groups leave three quarters of a 32-wide warp idle, and a GPU has the threads to spare.
+// Each pixel's arithmetic is the same, in the same order, so the ink is the same to the bit.
 constexpr int kBlock = 8;
 constexpr int kGroupInvocations = 8;
+constexpr int kGpuBlock = 2;
+constexpr int kGpuGroupInvocations = 32;
 constexpr int kAreaWidth = kBlock * kGroupInvocations;
+static_assert(kGpuBlock * kGpuGroupInvocations == kAreaWidth, "both layouts share the work-group area");
 constexpr int kStripRows = 16;
 // The extraction marks ink above the residual and strokes per block of kMarkBlock²
 // pixels: a boundary work group runs only if a block with ink lies within n + d pixels of
@@ -57,11 +65,16 @@ constexpr int kMaxRingSteps = 256;
 // The per-pixel passes (extraction, output) and the row and column sweeps: one invocation
 // per pair of columns (or per row), this many to a work group.
 constexpr int kLineGroup = 64;
+// On a GPU the main region for d up to this is one gather (ink_diffusion_rings.comp) instead
+// of the row and column sweeps, which give a whole row or column to one invocation: 1024
+// rows and 512 column pairs at 1024², a sliver of a GPU's threads, each walking its line
+// end to end.
+constexpr int kMaxGatherSteps = 8;
 static_assert(kStripRows % kMarkBlock == 0, "the extraction marks whole blocks per strip");
 
-std::vector<std::string> defines(std::vector<std::string> extra = {}) {
-  extra.push_back("BLOCK=" + std::to_string(kBlock));
-  extra.push_back("GROUP_INVOCATIONS=" + std::to_string(kGroupInvocations));
+std::vector<std::string> defines(bool gpu, std::vector<std::string> extra = {}) {
+  extra.push_back("BLOCK=" + std::to_string(gpu ? kGpuBlock : kBlock));
+  extra.push_back("GROUP_INVOCATIONS=" + std::to_string(gpu ? kGpuGroupInvocations : kGroupInvocations));
   extra.push_back("STRIP_ROWS=" + std::to_string(kStripRows));
   extra.push_back("AREA_W=" + std::to_string(kAreaWidth));
   extra.push_back("AREA_H=" + std::to_string(kStripRows));
@@ -76,13 +89,16 @@ glm::ivec2 InkDiffusionPass::workGroupArea() {
   return {kAreaWidth, kStripRows};
 }
 
-InkDiffusionPass::InkDiffusionPass()
-    : extract_({"ink_diffusion_extract.comp"}, defines()),
-      rows_({"ink_diffusion_rows.comp"}, defines()),
-      columns_({"ink_diffusion_columns.comp"}, defines({"RING_TABLE=" + std::to_string(kMaxRingSteps + 1)})),
-      reach_({"ink_diffusion_reach.comp"}, defines()),
-      boundary_({"ink_diffusion_boundary.comp"}, defines()),
-      output_({"ink_diffusion_output.comp"}, defines()) {}
+InkDiffusionPass::InkDiffusionPass() : gpu_layout_(pixelPassesAsCompute()) {
+  const std::string ring_table = "RING_TABLE=" + std::to_string(kMaxRingSteps + 1);
+  extract_ = Program({"ink_diffusion_extract.comp"}, defines(gpu_layout_));
+  rows_ = Program({"ink_diffusion_rows.comp"}, defines(gpu_layout_));
+  columns_ = Program({"ink_diffusion_columns.comp"}, defines(gpu_layout_, {ring_table}));
+  if (gpu_layout_) rings_ = Program({"ink_diffusion_rings.comp"}, defines(gpu_layout_, {ring_table}));
+  reach_ = Program({"ink_diffusion_reach.comp"}, defines(gpu_layout_));
+  boundary_ = Program({"ink_diffusion_boundary.comp"}, defines(gpu_layout_));
+  output_ = Program({"ink_diffusion_output.comp"}, defines(gpu_layout_));
+}
 
 void InkDiffusionPass::ensureSize(int width, int height) {
   if (out_.width() == width && out_.height() == height) return;
@@ -175,10 +191,29 @@ void InkDiffusionPass::run(const Texture2D& colour, const PaperTexture& texture,
   glDispatchCompute(sx, sy, 1);
   barrier();
 
-  // Main region (none when d = 0): the blocks within d of a stroke, then rows and columns.
-  // Both store only strokes within d over an image cleared to "far" (a fill costs far less
-  // than a store per pixel), and the columns raise the extracted ink only where a ring does.
-  if (o.ring_steps > 0) {
+  // f^r for r = 0 … d, the rings' ink.
+  const auto setRingInk = [&](const Program& p) {
+    std::vector<float> ring_ink(static_cast<std::size_t>(o.ring_steps) + 1);
+    for (int r = 0; r <= o.ring_steps; ++r) ring_ink[r] = static_cast<float>(std::pow(o.attenuation, r));
+    glProgramUniform1fv(p.id(), p.location("u_ring_ink"), o.ring_steps + 1, ring_ink.data());
+  };
+  if (o.ring_steps > 0 && gpu_layout_ && o.ring_steps <= kMaxGatherSteps) {
+    // Main region on a GPU: one gather, into the other image, which then becomes main_.
+    rings_.use();
+    window(rings_);
+    rings_.set("u_threshold", static_cast<float>(o.threshold));
+    rings_.set("u_ring_steps", o.ring_steps);
+    setRingInk(rings_);
+    bindImage(0, main_, GL_READ_ONLY);
+    bindImage(2, next_, GL_WRITE_ONLY);
+    glDispatchCompute(groups(packedWidth(hi.x) - lo.x / 2, 8), groups(size.y, 8), 1);
+    barrier();
+    std::swap(main_, next_);
+  } else if (o.ring_steps > 0) {
+    // Main region (none when d = 0): the blocks within d of a stroke, then rows and columns.
+    // Both store only strokes within d over an image cleared to "far" (a fill costs far
+    // less than a store per pixel), and the columns raise the extracted ink only where a
+    // ring does.
     reach(strokes_, near_, glm::ivec2(kMarkBlock), o.ring_steps, glm::ivec4(blocks_lo, blocks_hi));
     const GLuint far = 0xFFFFFFFFu;  // kFar of shaders/ink_diffusion/ink_diffusion_nearest.glsl
     glClearTexSubImage(nearest_.id(), 0, lo.x, lo.y, 0, size.x, size.y, 1, GL_RED_INTEGER, GL_UNSIGNED_INT, &far);
@@ -194,9 +229,7 @@ void InkDiffusionPass::run(const Texture2D& colour, const PaperTexture& texture,
     columns_.use();
     window(columns_);
     columns_.set("u_ring_steps", o.ring_steps);
-    std::vector<float> ring_ink(static_cast<std::size_t>(o.ring_steps) + 1);
-    for (int r = 0; r <= o.ring_steps; ++r) ring_ink[r] = static_cast<float>(std::pow(o.attenuation, r));
-    glProgramUniform1fv(columns_.id(), columns_.location("u_ring_ink"), o.ring_steps + 1, ring_ink.data());
+    setRingInk(columns_);
     bindImage(3, main_, GL_READ_WRITE);
     bindImage(4, near_, GL_READ_ONLY);
     glDispatchCompute(groups(packedWidth(size.x), kLineGroup), 1, 1);
@@ -237,7 +270,9 @@ void InkDiffusionPass::run(const Texture2D& colour, const PaperTexture& texture,
   // than the stores).
   const Program* out = &output_;
   if (texture.grain) {
-    if (!output_canvas_.id()) output_canvas_ = Program({"ink_diffusion_output.comp"}, defines({"CANVAS"}));
+    if (!output_canvas_.id()) {
+      output_canvas_ = Program({"ink_diffusion_output.comp"}, defines(gpu_layout_, {"CANVAS"}));
+    }
     out = &output_canvas_;
     out->set("u_canvas_contrast", texture.contrast);
     bindImage(4, *texture.grain, GL_READ_ONLY);

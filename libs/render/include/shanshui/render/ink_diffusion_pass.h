@@ -70,7 +70,10 @@ class InkDiffusionPass {
   //! block marked in `marks`.
   //! `window` is the range of `reached` texels to compute (x0, y0, x1, y1).
   void reach(const Texture2D& marks, const Texture2D& reached, glm::ivec2 area, int pixels, glm::ivec4 window) const;
-  Program extract_, rows_, columns_, reach_, boundary_, output_;
+  //! The GPU's layout (pixelPassesAsCompute): wider boundary work groups, and the main
+  //! region gathered (rings_) for small d instead of swept; the same ink either way.
+  bool gpu_layout_ = false;
+  Program extract_, rows_, columns_, rings_, reach_, boundary_, output_;
   Program output_canvas_;  //!< built on first use with a canvas grain
   Texture2D capacity_, main_, next_, nearest_, out_;
   Texture2D seeds_, strokes_,
