@@ -63,6 +63,50 @@ std::vector<glm::dvec3> peakOnAPlain(glm::dvec2 peak) {
   return points;
 }
 
+// The drawn framing bisects over the hull candidates instead of every point. Oracle: the
+// largest and smallest ratio (x − m) / (z − e) over all points, brute force, for random
+// m and e (below the points), on a disc of points, a grid (many points on the polygon's
+// edges), a few points, the disc with a far outlier, a line and one point repeated; and the filter must leave few of a
+// disc's points, or it saves nothing.
+TEST(Camera, HullCandidatesKeepEveryExtremeOfARatio) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  std::vector<std::vector<glm::dvec2>> sets(3);
+  for (int i = 0; i < 10000; ++i) {
+    const double r = std::sqrt(unit(rng)), a = 6.283185307179586 * unit(rng);
+    sets[0].emplace_back(3 * r * std::cos(a), 5 + 2 * r * std::sin(a));
+  }
+  for (int j = 0; j <= 60; ++j)
+    for (int i = 0; i <= 60; ++i) sets[1].emplace_back(-3 + 0.1 * i, 4 + 0.05 * j);
+  sets[2] = {{0, 4}, {1, 5}, {0.5, 4.5}, {-1, 6}, {0.2, 4.1}, {0.3, 5.2}, {0.1, 4.9}, {-0.4, 5.5}, {0.6, 4.4}, {0, 5}};
+  // A far outlier (most directions share it), points on a line, and one point many times.
+  sets.push_back(sets[0]);
+  sets.back().emplace_back(40, 6);
+  sets.push_back({});
+  for (int i = 0; i < 40; ++i) sets.back().emplace_back(0.1 * i, 4 + 0.05 * i);
+  sets.push_back(std::vector<glm::dvec2>(40, glm::dvec2(1, 5)));
+  for (std::size_t k = 0; k < sets.size(); ++k) {
+    const std::vector<glm::dvec2>& all = sets[k];
+    const std::vector<glm::dvec2> kept = hullCandidates(all);
+    if (k == 0) {
+      EXPECT_LT(kept.size(), all.size() / 20) << "a disc keeps only its rim";
+    }
+    for (int trial = 0; trial < 200; ++trial) {
+      const double m = -4 + 8 * unit(rng), e = 2.9 * unit(rng);  // below every point's z
+      auto extremes = [&](const std::vector<glm::dvec2>& v) {
+        double most = -1e300, least = 1e300;
+        for (const glm::dvec2& p : v) {
+          const double s = (p.x - m) / (p.y - e);
+          most = std::max(most, s);
+          least = std::min(least, s);
+        }
+        return glm::dvec2(most, least);
+      };
+      EXPECT_EQ(extremes(kept), extremes(all)) << "set " << k << ", trial " << trial;
+    }
+  }
+}
+
 TEST(Camera, ReliefGroundIsTheHighestPointOfTheCellsNearby) {
   const std::vector<glm::dvec3> points = peakOnAPlain({1, -1});
   const Relief relief(points, 16);

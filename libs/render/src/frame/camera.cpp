@@ -1,6 +1,7 @@
 #include "shanshui/render/camera.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -53,6 +54,44 @@ OrbitCamera frameBounds(const mesh::Bounds& b, double azimuth_deg, double elevat
   return cam;
 }
 
+std::vector<glm::dvec2> hullCandidates(const std::vector<glm::dvec2>& points) {
+  // Akl and Toussaint's filter: the extreme points along sixteen directions, in counter-
+  // clockwise order, span a polygon inside the hull; a point strictly inside it is not a
+  // vertex of the hull. Points on an edge are kept; a direction whose extreme is its
+  // neighbour's adds no edge.
+  // Sixteen directions leave about 3 % of a disc's points, eight about 10 %.
+  constexpr int kDirections = 16;
+  if (points.size() <= kDirections) return points;
+  std::array<glm::dvec2, kDirections> direction, extreme;
+  std::array<double, kDirections> best;
+  for (int k = 0; k < kDirections; ++k) {
+    const double a = 2.0 * std::numbers::pi * k / kDirections;
+    direction[k] = glm::dvec2(std::cos(a), std::sin(a));
+  }
+  best.fill(-std::numeric_limits<double>::infinity());
+  for (const glm::dvec2& p : points)
+    for (int k = 0; k < kDirections; ++k) {
+      const double along = glm::dot(p, direction[k]);
+      if (along > best[k]) {
+        best[k] = along;
+        extreme[k] = p;
+      }
+    }
+  int edges = 0;
+  for (int k = 0; k < kDirections; ++k) edges += extreme[k] != extreme[(k + 1) % kDirections] ? 1 : 0;
+  if (edges < 3) return points;  // all on a line or at one point: no inside
+  std::vector<glm::dvec2> kept;
+  for (const glm::dvec2& p : points) {
+    bool inside = true;
+    for (int k = 0; k < kDirections && inside; ++k) {
+      const glm::dvec2 a = extreme[k], e = extreme[(k + 1) % kDirections] - a, d = p - a;
+      inside = (e.x == 0.0 && e.y == 0.0) || e.x * d.y - e.y * d.x > 0.0;
+    }
+    if (!inside) kept.push_back(p);
+  }
+  return kept;
+}
+
 OrbitCamera fillPoints(const std::vector<glm::dvec3>& points, double azimuth_deg, double elevation_deg,
                        double fov_y_deg, double aspect, double zoom) {
   const mesh::Bounds b = mesh::bounds(points);
@@ -87,13 +126,22 @@ OrbitCamera fillPoints(const std::vector<glm::dvec3>& points, double azimuth_deg
   // extremes falls as the eye moves along that axis: bisect for zero.
   const bool x_has_room = ez < ez_x;
   const glm::dvec3 side = x_has_room ? r : u;
+  // Each point as (along the side, along the view): the extremes of the ratio below over
+  // all points are those over the candidates (a drawn framing has thousands of points, and
+  // the bisection visits them 80 times; issue 47 measured 1.6 ms a frame).
+  std::vector<glm::dvec2> projected;
+  projected.reserve(points.size());
+  for (const glm::dvec3& q : points) {
+    const glm::dvec3 p = q - b.centre();
+    projected.emplace_back(glm::dot(p, side), glm::dot(p, f));
+  }
+  const std::vector<glm::dvec2> candidates = hullCandidates(projected);
   double lo = -2 * radius, hi = 2 * radius;
   for (int step = 0; step < 80; ++step) {
     const double mid = 0.5 * (lo + hi);
     double most = -1e300, least = 1e300;
-    for (const glm::dvec3& q : points) {
-      const glm::dvec3 p = q - b.centre();
-      const double s = (glm::dot(p, side) - mid) / (glm::dot(p, f) - ez);
+    for (const glm::dvec2& p : candidates) {
+      const double s = (p.x - mid) / (p.y - ez);
       most = std::max(most, s);
       least = std::min(least, s);
     }

@@ -44,6 +44,12 @@ OrbitCamera fillBounds(const mesh::Bounds& b, double azimuth_deg, double elevati
 OrbitCamera fillPoints(const std::vector<glm::dvec3>& points, double azimuth_deg, double elevation_deg,
                        double fov_y_deg = 35.0, double aspect = 1.0, double zoom = 1.0);
 
+//! The points of a plane that can be a vertex of their convex hull: all but those strictly
+//! inside the polygon of the extreme points along sixteen directions (Akl and Toussaint's
+//! filter, linear time). The largest and smallest of a ratio of two affine functions of a
+//! point over all points (its denominator positive) are those over these.
+std::vector<glm::dvec2> hullCandidates(const std::vector<glm::dvec2>& points);
+
 //! The scene's land seen from above, coarsely: its highest point, and the highest ground
 //! in each cell of a grid over its horizontal bounds. Enough to place a camera on the
 //! ground and aim it at a peak.
