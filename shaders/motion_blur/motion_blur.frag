@@ -15,6 +15,7 @@
 //   pulled towards C_n in the paper's valleys by the granulation g: mix(C_blur, C_n,
 //   g W (1 − h)) (the printed C_blur − C_paper W (1 − h) would darken bare paper too);
 // - §3.5: across the trail, bristle stripes carry more or less paint (a × (1 − bristles · r)).
+#include "pixel_stage.glsl"
 layout(binding = 0) uniform sampler2D u_picture;
 layout(binding = 1) uniform sampler2D u_velocity;
 layout(binding = 2) uniform sampler2D u_height;  // canvas grain (CANVAS) or value noise
@@ -26,7 +27,14 @@ uniform float u_bristle_px;
 uniform float u_granulation;
 layout(binding = 3) uniform sampler2D u_neighbour_max;  // per tile: fastest velocity within reach
 uniform int u_tile;  // pixels per tile
+#ifdef PIXEL_COMPUTE
+layout(binding = 7, rgba8) writeonly uniform image2D o_colour_image;
+vec4 o_colour;
+void pixelOutputsClear() { o_colour = vec4(0.0); }
+void pixelStore(ivec2 p) { imageStore(o_colour_image, p, o_colour); }
+#else
 out vec4 o_colour;
+#endif
 
 float hash(vec2 p) {
   return fract(sin(dot(p, vec2(127.1, 311.7))) * 43758.5453);
@@ -45,8 +53,8 @@ bool moving(vec4 v) {
   return v.a > 0.5 && dot(v.xy, v.xy) > 0.25;
 }
 
-void main() {
-  ivec2 p = ivec2(gl_FragCoord.xy);
+void shadePixel() {
+  ivec2 p = ivec2(PIXEL_COORD);
   ivec2 size = textureSize(u_picture, 0);
   vec4 picture = texelFetch(u_picture, p, 0);
   o_colour = picture;
@@ -90,3 +98,4 @@ void main() {
   if (1.0 - water >= h) return;
   o_colour = vec4(mix(c_blur, c_n, u_granulation * water * (1.0 - h)), picture.a);
 }
+#include "pixel_main.glsl"

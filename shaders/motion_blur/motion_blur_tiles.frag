@@ -4,13 +4,21 @@
 // and leave holes in the trail). NEIGHBOURS off: each texel is a u_tile × u_tile block of
 // the velocity buffer, keeping its fastest moving surface's velocity (alpha 1 if any).
 // NEIGHBOURS on: each tile keeps the fastest of the tiles within u_radius tiles.
+#include "pixel_stage.glsl"
 layout(binding = 0) uniform sampler2D u_source;
 uniform int u_tile;    // pixels per tile (first stage)
 uniform int u_radius;  // tiles (second stage)
+#ifdef PIXEL_COMPUTE
+layout(binding = 7, rgba16f) writeonly uniform image2D o_velocity_image;
+vec4 o_velocity;
+void pixelOutputsClear() { o_velocity = vec4(0.0); }
+void pixelStore(ivec2 p) { imageStore(o_velocity_image, p, o_velocity); }
+#else
 out vec4 o_velocity;
+#endif
 
-void main() {
-  ivec2 t = ivec2(gl_FragCoord.xy);
+void shadePixel() {
+  ivec2 t = ivec2(PIXEL_COORD);
   ivec2 size = textureSize(u_source, 0);
   vec4 best = vec4(0.0);
 #ifdef NEIGHBOURS
@@ -32,3 +40,4 @@ void main() {
 #endif
   o_velocity = best;
 }
+#include "pixel_main.glsl"

@@ -1,7 +1,8 @@
 // The per-pixel passes as compute shaders (issue 47 item 2): on a GPU the canvas, the ink
-// pass and its stroke centres run as compute shaders, on llvmpipe as fragment passes; both
-// are built from the same sources (pixel_main.glsl). The oracle for the compute path is the
-// fragment path: the samples drawn both ways on llvmpipe are the same picture.
+// pass and its stroke centres, the paper effects and the motion blur run as compute
+// shaders, on llvmpipe as fragment passes; both are built from the same sources
+// (pixel_main.glsl). The oracle for the compute path is the fragment path: the samples
+// drawn both ways on llvmpipe are the same picture.
 #include <cmath>
 #include <cstdlib>
 #include <map>
@@ -104,13 +105,14 @@ TEST_F(PixelPasses, ComputeDrawsTheSamePictureAsTheFragmentPasses) {
   }
 }
 
-// A boat moving over a still scene: after the first frame only its region is redrawn, and
-// the compute shaders must draw that rectangle (and the stroke centres a margin around it)
-// as the fragment passes draw it under the scissor.
+// A boat moving over a still scene, with its motion blur: after the first frame only its
+// region is redrawn, and the compute shaders must draw that rectangle (and the stroke
+// centres a margin around it) as the fragment passes draw it under the scissor.
 TEST_F(PixelPasses, ARedrawnRegionIsTheSameInBothStages) {
   const Drawn fragment = drawSample("moving_boat", "fragment", 3), compute = drawSample("moving_boat", "compute", 3);
   ASSERT_LT(compute.redrawn, 0.6) << "the later frames redraw only the boat's region";
   EXPECT_TRUE(builtAsCompute(compute, "ink"));
+  EXPECT_EQ(compute.variants.count("motion_blur"), 1u) << "the boat's trail is drawn too";
   for (std::size_t i = 0; i < fragment.frames.size(); ++i) {
     SCOPED_TRACE(i);
     const Difference d = differenceOf(fragment.frames[i], compute.frames[i]);

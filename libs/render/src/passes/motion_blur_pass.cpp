@@ -10,6 +10,7 @@
 #include "shanshui/core/error.h"
 #include "shanshui/noise/value_noise.h"
 #include "shanshui/render/gl_check.h"
+#include "shanshui/render/pixel_stage.h"
 #include "shanshui/render/render_pass.h"
 #include "shanshui/render/shader_program.h"
 
@@ -48,10 +49,12 @@ class MotionBlurPass final : public RenderPass {
 
   std::string name() const override { return "motion_blur"; }
   void buildPrograms() override {
-    Program tiles({"fullscreen.vert", "motion_blur_tiles.frag"});
-    Program neighbours({"fullscreen.vert", "motion_blur_tiles.frag"}, {"NEIGHBOURS"});
-    program_ = Program({"fullscreen.vert", "motion_blur.frag"},
-                       from_canvas_ ? std::vector<std::string>{"CANVAS"} : std::vector<std::string>{});
+    const bool compute = pixelPassesAsCompute();
+    Program tiles = pixelProgram("motion_blur_tiles.frag", {}, compute);
+    Program neighbours = pixelProgram("motion_blur_tiles.frag", {"NEIGHBOURS"}, compute);
+    program_ = pixelProgram("motion_blur.frag",
+                            from_canvas_ ? std::vector<std::string>{"CANVAS"} : std::vector<std::string>{}, compute);
+    compute_ = compute;
     tiles_program_ = std::move(tiles);
     neighbours_program_ = std::move(neighbours);
   }
@@ -78,7 +81,6 @@ class MotionBlurPass final : public RenderPass {
     const scene::MotionBlurParams& m = in.scene.motion_blur;
     // The longest trail: how far from a pixel the surface that passed over it can be now.
     const double reach = std::clamp(m.length * fastestPixels(in), 0.0, kMaxReachTiles * kTile);
-    target_.bind();
     glDisable(GL_DEPTH_TEST);
     glDisable(GL_BLEND);
     if (reach < 0.5) {  // nothing moves: the picture as it is
@@ -89,18 +91,16 @@ class MotionBlurPass final : public RenderPass {
       // The fastest motion per tile, then within reach of each tile: every tile, whatever
       // region the frame redraws (the scissor is in the picture's pixels, not the tiles').
       glDisable(GL_SCISSOR_TEST);
-      tile_max_.bind();
+      const glm::ivec4 tiles(0, 0, tile_max_.width(), tile_max_.height());
       tiles_program_.use();
       glBindTextureUnit(0, images.gbuffer->colour(2).id());
       tiles_program_.set("u_tile", kTile);
-      glDrawArrays(GL_TRIANGLES, 0, 3);
-      neighbour_max_.bind();
+      shadePixels(tiles_program_, compute_, tile_max_, {GL_RGBA16F}, tiles);
       neighbours_program_.use();
       glBindTextureUnit(0, tile_max_.colour().id());
       neighbours_program_.set("u_radius", static_cast<int>(std::ceil(reach / kTile)));
-      glDrawArrays(GL_TRIANGLES, 0, 3);
+      shadePixels(neighbours_program_, compute_, neighbour_max_, {GL_RGBA16F}, tiles);
       if (in.region) glEnable(GL_SCISSOR_TEST);
-      target_.bind();
       program_.use();
       glBindTextureUnit(0, images.picture->id());
       glBindTextureUnit(1, images.gbuffer->colour(2).id());
@@ -113,7 +113,7 @@ class MotionBlurPass final : public RenderPass {
       program_.set("u_bristles", static_cast<float>(m.bristles));
       program_.set("u_bristle_px", static_cast<float>(std::max(1.0, 3.0 * in.height / 1024.0)));
       program_.set("u_granulation", static_cast<float>(m.granulation));
-      glDrawArrays(GL_TRIANGLES, 0, 3);
+      shadePixels(program_, compute_, target_, {GL_RGBA8}, in.drawn());
     }
     SHANSHUI_GL_CHECK("motion blur pass");
     images.picture = &target_.colour();
@@ -125,6 +125,7 @@ class MotionBlurPass final : public RenderPass {
   static constexpr double kMaxReachTiles = 16;  //!< longest trail, in tiles (256 px)
   bool from_canvas_;
   Program program_, tiles_program_, neighbours_program_;
+  bool compute_ = false;  //!< the three are compute shaders (pixelPassesAsCompute)
   VertexArray vao_;
   std::optional<Texture2D> noise_;
   std::optional<std::uint64_t> seed_;
