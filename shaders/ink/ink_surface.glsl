@@ -21,18 +21,19 @@ float valueNoise(vec2 uv) {
 layout(binding = 3) uniform sampler2D u_surface_noise;
 #endif
 
-// The shading's noise (render_pass.h's erosionNoiseTexture: erosion in r, added noise in g)
-// on the object's model x and y, as the G-buffer pass once sampled it per fragment; without
-// SHADING no erosion and nothing added. Call it where the control flow is uniform: the
-// level of detail comes from the pixel quad's derivatives of the coordinates (across a
-// silhouette they are large, and the noise there its coarse average, for a pixel).
+// The shading noise's coordinates at a world position: the object's model x and y.
 vec2 noiseCoordinates(ObjectParams o, vec3 position) {
   vec4 w = vec4(position, 1.0);
   return vec2(dot(o.world_to_model_x, w), dot(o.world_to_model_y, w)) * o.noise_frequency;
 }
 
-vec3 worldPositionAt(ivec2 p);
+vec3 worldPositionAt(ivec2 p);  // below
 
+// The shading's noise (render_pass.h's erosionNoiseTexture: erosion in r, added noise in g)
+// on the object's model x and y, as the G-buffer pass once sampled it per fragment; without
+// SHADING no erosion and nothing added. Call it where the control flow is uniform: the
+// level of detail comes from the pixel quad's derivatives of the coordinates (across a
+// silhouette they are large, and the noise there its coarse average, for a pixel).
 vec2 surfaceNoise(ObjectParams o, vec3 position) {
 #ifdef SHADING
   vec2 uv = noiseCoordinates(o, position);
