@@ -171,18 +171,15 @@ void CanvasPass::reloadShaders() {
       Program synthesis({"fullscreen.vert", "canvas_static.frag"}, definesFor(1));
       // All built before any is replaced.
       // On a GPU the two are compute shaders, each testing the G-buffer's depth itself.
-      compute_ = pixelPassesAsCompute();
+      const bool compute = pixelPassesAsCompute();
       std::vector<std::string> surface_defines = tilesDefines(false), background_defines = tilesDefines(true);
-      Program surfaces, background;
-      if (compute_) {
+      if (compute) {
         surface_defines.emplace_back("PIXEL_SURFACES");
         background_defines.emplace_back("PIXEL_BACKGROUND");
-        surfaces = Program::pixelCompute("canvas_tiles.frag", surface_defines);
-        background = Program::pixelCompute("canvas_tiles.frag", background_defines);
-      } else {
-        surfaces = Program({"fullscreen.vert", "canvas_tiles.frag"}, surface_defines);
-        background = Program({"fullscreen.vert", "canvas_tiles.frag"}, background_defines);
       }
+      Program surfaces = pixelProgram("canvas_tiles.frag", surface_defines, compute);
+      Program background = pixelProgram("canvas_tiles.frag", background_defines, compute);
+      compute_ = compute;
       tile_synthesis_ = std::move(synthesis);
       tiles_ = std::move(surfaces);
       tiles_background_ = std::move(background);

@@ -25,8 +25,9 @@ class EdgesPass final : public RenderPass {
 
   std::string name() const override { return "edges"; }
   void buildPrograms() override {
-    compute_ = pixelPassesAsCompute();
-    program_ = pixelProgram("edge_darkening.frag", defines_, compute_);
+    const bool compute = pixelPassesAsCompute();
+    program_ = pixelProgram("edge_darkening.frag", defines_, compute);
+    compute_ = compute;
   }
   std::vector<std::string> variants() const override { return {joined(defines_)}; }
 

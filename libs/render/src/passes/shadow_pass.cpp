@@ -37,8 +37,9 @@ class ShadowPass final : public RenderPass {
 
   void buildPrograms() override {
     Program depth({"shadow_depth.vert", "shadow_depth.frag"});
-    compute_ = pixelPassesAsCompute();
-    wash_ = pixelProgram("shadow_wash.frag", {}, compute_);
+    const bool compute = pixelPassesAsCompute();
+    wash_ = pixelProgram("shadow_wash.frag", {}, compute);
+    compute_ = compute;
     depth_ = std::move(depth);
   }
 

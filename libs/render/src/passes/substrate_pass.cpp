@@ -46,9 +46,10 @@ class SubstratePass final : public RenderPass {
 
   std::string name() const override { return "substrate"; }
   void buildPrograms() override {
-    compute_ = pixelPassesAsCompute();
+    const bool compute = pixelPassesAsCompute();
     program_ = pixelProgram("substrate.frag",
-                            from_canvas_ ? std::vector<std::string>{"CANVAS"} : std::vector<std::string>{}, compute_);
+                            from_canvas_ ? std::vector<std::string>{"CANVAS"} : std::vector<std::string>{}, compute);
+    compute_ = compute;
   }
   std::vector<std::string> variants() const override { return {from_canvas_ ? "CANVAS" : ""}; }
 
