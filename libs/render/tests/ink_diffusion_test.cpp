@@ -13,7 +13,15 @@
 namespace shanshui::render {
 namespace {
 
-using InkGpu = test::HeadlessGl;
+// Some tests choose the pass's layout through SHANSHUI_PIXEL_PASSES; it never outlives one,
+// even one that stops at a failed assertion.
+class InkGpu : public test::HeadlessGl {
+ protected:
+  void TearDown() override {
+    unsetenv("SHANSHUI_PIXEL_PASSES");
+    test::HeadlessGl::TearDown();
+  }
+};
 
 const double kPaper[3] = {0.95, 0.93, 0.87};
 
