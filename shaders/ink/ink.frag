@@ -12,8 +12,10 @@
 // the land below it hidden, paper with wave strokes, bank lines), MARKS (some object's
 // texture strokes as discrete marks, ink_marks.glsl), DEBUG_OUTPUTS (line
 // weight, tone and wrinkle luma as extra targets, for tests). PAPER builds the background's
-// program, which the pass draws apart by the depth test. With PIXEL_COMPUTE both are compute
-// shaders (pixel_main.glsl) testing the depth themselves; DEBUG_OUTPUTS stays a fragment pass.
+// program, which the pass draws apart by the depth test; BARE the surfaces' where the
+// atmosphere leaves nothing of the land (ink_classes.frag sorts them out for a fragment
+// pass). With PIXEL_COMPUTE the surfaces' and the background's are compute shaders
+// (pixel_main.glsl) testing the depth themselves; DEBUG_OUTPUTS stays a fragment pass.
 #include "pixel_stage.glsl"
 #include "ink_objects.glsl"
 #ifdef SHADING
@@ -168,56 +170,11 @@ void shadePixel() {
 #endif
 }
 #else
-void shadePixel() {
-  ivec2 p = ivec2(PIXEL_COORD);
-#ifdef DEBUG_OUTPUTS
-  o_line = vec2(0.0, 1.0);
-  o_tone = vec2(1.0);
-#endif
-  float depth = texelFetch(u_depth, p, 0).r;
-  vec4 surface = imageLoad(u_surface_id, p);
-  int id = int(surface.a * 255.0 + 0.5);
-#ifdef SINGLE_OBJECT
-  ObjectParams o = objects[0];  // a constant index: one load for all pixels, not a gather
-#else
-  ObjectParams o = objects[id - 1];
-#endif
-  vec3 position = worldPosition(p, depth);
-#ifdef WATER
-  // How much the height changes from pixel to pixel here (taken before any branch), so the
-  // bank line looks at its neighbours only near the water's level.
-#ifdef PIXEL_COMPUTE
-  // A compute shader has no derivatives: the differences across p's 2x2 quad, along its row
-  // and its column, as a fragment shader's fine derivatives take them.
-  ivec2 q = p & ~1;
-  float dx = worldPositionAt(ivec2(q.x + 1, p.y)).z - worldPositionAt(ivec2(q.x, p.y)).z;
-  float dy = worldPositionAt(ivec2(p.x, q.y + 1)).z - worldPositionAt(ivec2(p.x, q.y)).z;
-  float z_per_pixel = max(abs(dx), abs(dy));
-#else
-  float z_per_pixel = max(abs(dFdx(position.z)), abs(dFdy(position.z)));
-#endif
-  if (underWater(position)) {
-    // The land under the water is hidden: paper, the waves, and what stands in front.
-    // The atmosphere at the water's height above the land the pixel shows (its border too).
-    vec3 water = mix(u_paper, o.line_color, waveInk(p) * presence(o, vec3(position.xy, u_water.x)));
-#ifdef ELEMENTS
-    water = mix(water, u_element_colour, elementInk(p, depth));
-#endif
-    o_colour = onPaper(p, water);
-#ifdef PIGMENT
-    o_colour.a = 0.0;  // no wash on the water
-#endif
-    return;
-  }
-#endif
-#ifdef STROKES
-  vec4 presence_noise = imageLoad(u_presence_noise, p);
-  float here = presence_noise.r;
-  vec2 noise = presence_noise.gb;
-#else
-  float here = presence(o, position);
-  vec2 noise = surfaceNoise(o, position);
-#endif
+// A land pixel's colour before the trees and the paper: feature lines, interior shading and
+// texture marks, taken towards the paper by what the atmosphere leaves (`here`), then the
+// strokes. z_per_pixel: how much the height changes to a neighbour (the bank line's reach).
+vec3 landColour(ObjectParams o, ivec2 p, float depth, vec4 surface, vec3 position, float here, vec2 noise,
+                float z_per_pixel) {
   vec4 nc = imageLoad(u_normal_curvature, p);
   vec3 n = normalize(nc.xyz * 2.0 - 1.0);
   float k = decodeCurvature(nc.w);
@@ -308,16 +265,89 @@ void shadePixel() {
   colour = mix(colour, o.line_color, stroke);
   line_weight = max(line_weight, stroke);
 #endif
+#ifdef DEBUG_OUTPUTS
+  o_line = vec2(line_weight, col);
+  o_tone = vec2(tone, wrinkle);
+#endif
+  return colour;
+}
+
+void shadePixel() {
+  ivec2 p = ivec2(PIXEL_COORD);
+#ifdef DEBUG_OUTPUTS
+  o_line = vec2(0.0, 1.0);
+  o_tone = vec2(1.0);
+#endif
+  float depth = texelFetch(u_depth, p, 0).r;
+  vec4 surface = imageLoad(u_surface_id, p);
+  int id = int(surface.a * 255.0 + 0.5);
+#ifdef SINGLE_OBJECT
+  ObjectParams o = objects[0];  // a constant index: one load for all pixels, not a gather
+#else
+  ObjectParams o = objects[id - 1];
+#endif
+  vec3 position = worldPosition(p, depth);
+  // Where the atmosphere is taken: the point shown, or the water's surface above land under
+  // water (which is hidden).
+  vec3 atmosphere_at = position;
+  bool under = false;
+  float z_per_pixel = 0.0;
+#ifdef WATER
+  under = underWater(position);
+  atmosphere_at.z = max(position.z, u_water.x);
+  // How much the height changes from pixel to pixel here (taken before any branch), so the
+  // bank line looks at its neighbours only near the water's level.
+#ifdef PIXEL_COMPUTE
+  // A compute shader has no derivatives: the differences across p's 2x2 quad, along its row
+  // and its column, as a fragment shader's fine derivatives take them.
+  ivec2 q = p & ~1;
+  float dx = worldPositionAt(ivec2(q.x + 1, p.y)).z - worldPositionAt(ivec2(q.x, p.y)).z;
+  float dy = worldPositionAt(ivec2(p.x, q.y + 1)).z - worldPositionAt(ivec2(p.x, q.y)).z;
+  z_per_pixel = max(abs(dx), abs(dy));
+#else
+  z_per_pixel = max(abs(dFdx(position.z)), abs(dFdy(position.z)));
+#endif
+#endif
+#ifdef BARE
+  // Only where the atmosphere leaves nothing (the pass's depth test picks these pixels).
+  float here = 0.0;
+  vec2 noise = vec2(0.0);
+#elif defined(STROKES)
+  // The lines pass took both at atmosphere_at.
+  vec4 presence_noise = imageLoad(u_presence_noise, p);
+  float here = presence_noise.r;
+  vec2 noise = presence_noise.gb;
+#else
+  float here = presence(o, atmosphere_at);
+  vec2 noise = surfaceNoise(o, position);
+#endif
+  // Bare: nothing of the land stands (a dissolved border), so it shows the paper and the
+  // strokes that overran onto it, as landColour would at here = 0, without its work (the
+  // debug outputs want that work's lines and tones).
+  bool bare = here <= 0.0;
+#ifdef DEBUG_OUTPUTS
+  bare = false;
+#endif
+  vec3 colour = u_paper;
+  if (under) {
+#ifdef WATER
+    // The land under the water is hidden: paper and the waves (their share 0 elsewhere, so a
+    // software rasteriser, which runs this for the whole group of pixels, turns no cells).
+    colour = mix(u_paper, o.line_color, waveInk(p, under ? here : 0.0));
+#endif
+  } else if (bare) {
+#ifdef STROKES
+    colour = mix(u_paper, o.line_color, strokeInk(p));
+#endif
+  } else {
+    colour = landColour(o, p, depth, surface, position, here, noise, z_per_pixel);
+  }
 #ifdef ELEMENTS
   colour = mix(colour, u_element_colour, elementInk(p, depth));
 #endif
   o_colour = onPaper(p, colour);
 #ifdef PIGMENT
-  o_colour.a = here;  // the pigment pass thins its wash as the atmosphere thins the ink
-#endif
-#ifdef DEBUG_OUTPUTS
-  o_line = vec2(line_weight, col);
-  o_tone = vec2(tone, wrinkle);
+  o_colour.a = under ? 0.0 : here;  // the pigment pass thins its wash as the atmosphere thins the ink; none on water
 #endif
 }
 #endif

@@ -21,8 +21,11 @@
 // Ink × 255 per pixel, cleared to 0 each frame.
 layout(r32ui, binding = 3) uniform uimage2D u_stroke_ink;
 // What the ink pass would otherwise compute again at each surface pixel: what the atmosphere
-// and the border leave (presence(), r) and the shading's noise (surfaceNoise(): erosion g,
-// added noise b).
+// and the border leave (presence(), r; for land under water, at the water's surface above
+// it) and the shading's noise (surfaceNoise(): erosion g, added noise b).
+#ifdef WATER
+uniform vec4 u_water;  // the water's level in x (ink_water.glsl)
+#endif
 #ifdef PIXEL_COMPUTE
 layout(rgba16, binding = 7) writeonly uniform image2D u_presence_noise_out;
 vec4 o_presence_noise;
@@ -106,7 +109,12 @@ void shadePixel() {
   vec4 column = m * vec4(centre * 2.0 - 1.0, -1.0, 1.0), per_depth = 2.0 * m[2];
   vec4 h = column + depth * per_depth;
   vec3 position = h.xyz / h.w;
+#ifdef WATER
+  // Land under the water is hidden: the atmosphere there is the water surface's above it.
+  float here = presence(o, vec3(position.xy, max(position.z, u_water.x)));
+#else
   float here = presence(o, position);
+#endif
   o_presence_noise = vec4(here, surfaceNoise(o, position), 0.0);
   if ((o.line_flags & kStrokes) == 0u) return;
   vec4 nc = imageLoad(u_normal_curvature, p);

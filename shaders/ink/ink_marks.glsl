@@ -24,42 +24,51 @@ vec4 unpack4(uint h) {
 float marksOctave(vec2 q, vec2 dir, float density, uint style, uint seed) {
   vec2 perp = vec2(-dir.y, dir.x);
   ivec2 base = ivec2(floor(q - 0.5));
+  uvec2 salt = uvec2(seed, seed * 0x9e3779b9u);
+  // First which of the four cells hold a mark that is kept and within reach of q (one hash
+  // each: a centre lies within half a cell of q for ~0.8 of them), then the shapes of those
+  // alone, in a loop as long as the most any pixel needs. A software rasteriser runs both
+  // sides of a branch for a whole group of pixels, but leaves a loop once all are done: the
+  // shapes cost one or two turns instead of four.
+  uint todo = 0u;
+  for (int k = 0; k < 4; ++k) {
+    ivec2 c = base + ivec2(k & 1, k >> 1);
+    vec4 a = unpack4(cellHash(uvec2(c + 32768) ^ salt));
+    vec2 d = q - (vec2(c) + a.xy);
+    if (dot(d, d) < 0.25 && density > a.z - 0.06) todo |= 1u << k;
+  }
   float ink = 0.0;
-  for (int j = 0; j <= 1; ++j) {
-    for (int i = 0; i <= 1; ++i) {
-      ivec2 c = base + ivec2(i, j);
-      uint h = cellHash(uvec2(c + 32768) ^ uvec2(seed, seed * 0x9e3779b9u));
-      vec4 a = unpack4(h);
-      vec2 d = q - (vec2(c) + a.xy);
-      // Out of the mark's reach (under half a cell, below) or not kept: nothing to draw. Most
-      // of the four cells end here: a centre lies within half a cell of q for ~0.8 of them.
-      if (dot(d, d) >= 0.25) continue;
-      float keep = smoothstep(a.z - 0.06, a.z + 0.06, density);
-      if (keep <= 0.0) continue;
-      vec4 b = unpack4(cellHash(uvec2(h, seed + 7u)));
-      float cover;
-      if (style == kMarksAxe) {
-        // A wedge turned up to ±25 degrees: its point uphill, its broad end downhill.
-        // cos and sin to the cubic and quadratic terms: within 0.3 % at 25 degrees.
-        float turn = (b.x - 0.5) * 0.87, turn2 = turn * turn;
-        float cs = 1.0 - 0.5 * turn2, sn = turn * (1.0 - turn2 / 6.0);
-        vec2 along_dir = cs * dir + sn * perp;
-        float along = dot(d, along_dir), across = dot(d, vec2(-along_dir.y, along_dir.x));
-        float half_length = 0.3 + 0.12 * b.y;  // with the ±25° turn, at most half a cell along x or y
-        float t = along / half_length;        // -1 uphill point .. 1 broad end
-        float width = (0.04 + 0.1 * b.z) * clamp(0.5 + 0.5 * t, 0.0, 1.0);
-        cover = (1.0 - smoothstep(0.85, 1.0, abs(t))) * (1.0 - smoothstep(0.7 * width, width, abs(across)));
-      } else {
-        // A long fibre, gently waving across its length, tapering to both ends.
-        float along = dot(d, dir), across = dot(d, perp);
-        float half_length = 0.36 + 0.1 * b.y;
-        float t = along / half_length;
-        across += 0.035 * sin(12.0 * along + 6.2832 * b.x);
-        float width = (0.022 + 0.018 * b.z) * sqrt(max(1.0 - t * t, 0.0));
-        cover = abs(t) < 1.0 ? 1.0 - smoothstep(0.5 * width, width + 1e-4, abs(across)) : 0.0;
-      }
-      ink = max(ink, keep * cover * (0.55 + 0.45 * b.w));
+  while (todo != 0u) {
+    int k = findLSB(todo);
+    todo &= todo - 1u;
+    ivec2 c = base + ivec2(k & 1, k >> 1);
+    uint h = cellHash(uvec2(c + 32768) ^ salt);
+    vec4 a = unpack4(h);
+    vec2 d = q - (vec2(c) + a.xy);
+    float keep = smoothstep(a.z - 0.06, a.z + 0.06, density);
+    vec4 b = unpack4(cellHash(uvec2(h, seed + 7u)));
+    float cover;
+    if (style == kMarksAxe) {
+      // A wedge turned up to ±25 degrees: its point uphill, its broad end downhill.
+      // cos and sin to the cubic and quadratic terms: within 0.3 % at 25 degrees.
+      float turn = (b.x - 0.5) * 0.87, turn2 = turn * turn;
+      float cs = 1.0 - 0.5 * turn2, sn = turn * (1.0 - turn2 / 6.0);
+      vec2 along_dir = cs * dir + sn * perp;
+      float along = dot(d, along_dir), across = dot(d, vec2(-along_dir.y, along_dir.x));
+      float half_length = 0.3 + 0.12 * b.y;  // with the ±25° turn, at most half a cell along x or y
+      float t = along / half_length;        // -1 uphill point .. 1 broad end
+      float width = (0.04 + 0.1 * b.z) * clamp(0.5 + 0.5 * t, 0.0, 1.0);
+      cover = (1.0 - smoothstep(0.85, 1.0, abs(t))) * (1.0 - smoothstep(0.7 * width, width, abs(across)));
+    } else {
+      // A long fibre, gently waving across its length, tapering to both ends.
+      float along = dot(d, dir), across = dot(d, perp);
+      float half_length = 0.36 + 0.1 * b.y;
+      float t = along / half_length;
+      across += 0.035 * sin(12.0 * along + 6.2832 * b.x);
+      float width = (0.022 + 0.018 * b.z) * sqrt(max(1.0 - t * t, 0.0));
+      cover = abs(t) < 1.0 ? 1.0 - smoothstep(0.5 * width, width + 1e-4, abs(across)) : 0.0;
     }
+    ink = max(ink, keep * cover * (0.55 + 0.45 * b.w));
   }
   return ink;
 }
@@ -82,10 +91,14 @@ float textureMarks(vec2 uv, vec2 duv_dx, vec2 duv_dy, vec2 down, float spacing_p
   // half-faded sum of two.
   float blend = smoothstep(0.4, 0.6, scale - level);
   // Each octave its own lattice (a different seed), so the coarser one's marks are not
-  // the finer one's doubled.
+  // the finer one's doubled. A loop over the octaves needed, not two calls: it ends after
+  // one turn where every pixel of a group needs only one.
   int octave = int(level);
-  float a = blend < 1.0 ? marksOctave(uv / size0, dir, density, style, seed + uint(octave & 1023) * 131u) : 0.0;
-  float b = blend > 0.0 ? marksOctave(uv / (2.0 * size0), dir, density, style, seed + uint((octave + 1) & 1023) * 131u)
-                        : 0.0;
+  float a = 0.0, b = 0.0;
+  for (int k = blend < 1.0 ? 0 : 1, last = blend > 0.0 ? 1 : 0; k <= last; ++k) {
+    float ink = marksOctave(uv / (k == 0 ? size0 : 2.0 * size0), dir, density, style,
+                            seed + uint((octave + k) & 1023) * 131u);
+    if (k == 0) a = ink; else b = ink;
+  }
   return mix(a, b, blend);
 }

@@ -27,8 +27,10 @@ bool underWater(vec3 position) {
 }
 
 // The wave strokes' ink at w, where a view ray of direction d meets the water at parameter
-// t (waterHit), in [0, 1].
-float waveInkAt(vec3 w, float t, vec3 d) {
+// t (waterHit), in [0, 1], times `share` (what the atmosphere leaves of it; 0: none, and no
+// cell is looked at: a software rasteriser runs a branch for its whole group of pixels, but
+// leaves a loop once none of them has a turn left).
+float waveInkAt(vec3 w, float t, vec3 d, float share) {
   if (u_water.z <= 0.0) return 0.0;
   // A pixel on the water, in cells: across (u) as it is, along the view foreshortened.
   float pixel = t * u_pixel_angle / u_water.y, graze = max(abs(d.z), 0.02);
@@ -41,7 +43,8 @@ float waveInkAt(vec3 w, float t, vec3 d) {
   ivec2 c = ivec2(floor(q));
   float ink = 0.0;
   // A stroke lies in its cell's middle band and may reach into the cells beside it.
-  for (int dx = -1; dx <= 1; ++dx) {
+  int last = share > 0.0 && visible > 0.0 ? 1 : -2;
+  for (int dx = -1; dx <= last; ++dx) {
     uvec2 cell = uvec2(c + ivec2(dx, 0) + 32768);
     uint h = cellHash(cell);
     if (float(h & 0xffffu) / 65535.0 >= u_water.z) continue;
@@ -61,14 +64,14 @@ float waveInkAt(vec3 w, float t, vec3 d) {
     float cover = clamp((thick - abs(q.y - v)) * cell_px + 0.5, 0.0, 1.0);
     ink = max(ink, cover * (1.0 - smoothstep(0.75, 1.0, abs(s))));
   }
-  return ink * visible * u_water.w;
+  return share * (ink * visible * u_water.w);
 }
 
-// The wave strokes' ink where this pixel's view ray meets the water, in [0, 1].
-float waveInk(ivec2 p) {
+// The wave strokes' ink where this pixel's view ray meets the water, in [0, 1], times share.
+float waveInk(ivec2 p, float share) {
   vec3 w, d;
   float t;
-  return waterHit(p, w, t, d) ? waveInkAt(w, t, d) : 0.0;
+  return waterHit(p, w, t, d) ? waveInkAt(w, t, d, share) : 0.0;
 }
 
 // Open water where no land was drawn (between ranges, in front of a near bank): the wave
@@ -87,7 +90,7 @@ float openWaterInk(ivec2 p) {
 #ifdef MIST
   f *= 1.0 - mistAt(w);
 #endif
-  return f * waveInkAt(w, t, d);
+  return waveInkAt(w, t, d, f);
 }
 
 // 1 on the land's side of a bank: a neighbour within the line's width is under water. z is
@@ -97,9 +100,11 @@ float openWaterInk(ivec2 p) {
 float bankLine(ivec2 p, float z, float z_per_pixel) {
   if (u_water_bank <= 0.0) return 0.0;
   int r = max(1, int(round(u_water_bank)));
-  if (z - u_water.x > 4.0 * float(r) * z_per_pixel + 1e-4 * abs(u_water.x) + 1e-6) return 0.0;
+  // Elsewhere a loop of no turns: a software rasteriser runs a branch for its whole group of
+  // pixels, but leaves a loop once none of them has a turn left.
+  int sides = z - u_water.x > 4.0 * float(r) * z_per_pixel + 1e-4 * abs(u_water.x) + 1e-6 ? 0 : 4;
   ivec2 size = textureSize(u_depth, 0);
-  for (int k = 0; k < 4; ++k) {
+  for (int k = 0; k < sides; ++k) {
     ivec2 q = p + r * ivec2(k == 0 ? 1 : (k == 1 ? -1 : 0), k == 2 ? 1 : (k == 3 ? -1 : 0));
     if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, size))) continue;
     float depth = texelFetch(u_depth, q, 0).r;

@@ -81,10 +81,11 @@ TEST(RenderCli, StatsListThePassesBuiltAndTheirGpuTimePerFrame) {
   EXPECT_EQ(s["passes_built"], json({"gbuffer", "canvas", "elements", "ink"}));
   // The sample draws its lines as strokes: the ink pass has a lines stage before it, which
   // also samples the shading's noise (SHADING). Its slope wrinkles on planar UVs are
-  // computed in the ink pass, not the G-buffer's.
+  // computed in the ink pass, not the G-buffer's. Its dissolved border's bare land is drawn
+  // apart (llvmpipe's fragment passes).
   EXPECT_EQ(s["variants"]["ink"],
             json({"LINES STROKES SHADING WRINKLE WRINKLE_SLOPE CANVAS ELEMENTS SINGLE_OBJECT BORDER MIST",
-                  "lines: SINGLE_OBJECT BORDER MIST SHADING"}));
+                  "lines: SINGLE_OBJECT BORDER MIST SHADING", "bare land: BARE"}));
   // The tiles canvas: its tile, the surfaces' and the background's programs (rice paper's
   // fibres, spots and mottle; the grain pinned to the surface under zoom), the mottle's.
   EXPECT_EQ(s["variants"]["canvas"],
@@ -162,8 +163,8 @@ TEST(RenderCli, LinesOnlyAndShadingOnlyBuildOnlyTheirShaderCode) {
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const json a = readJson(dir / "a.json");
   // Strokes only: the bands' code (BAND_LINES) is left out of the ink pass.
-  EXPECT_EQ(a["variants"]["ink"],
-            json({"LINES STROKES CANVAS ELEMENTS SINGLE_OBJECT BORDER MIST", "lines: SINGLE_OBJECT BORDER MIST"}));
+  EXPECT_EQ(a["variants"]["ink"], json({"LINES STROKES CANVAS ELEMENTS SINGLE_OBJECT BORDER MIST",
+                                        "lines: SINGLE_OBJECT BORDER MIST", "bare land: BARE"}));
   EXPECT_EQ(a["variants"]["gbuffer"], json({"OBJECT_CURVATURE"})) << "no noise, no wrinkle texture, no UVs";
   r = run(base + " -o " + quote(dir / "b.png") + " --stats " + quote(dir / "b.json") +
           " --set objects.0.lines.enabled=false");
@@ -172,7 +173,8 @@ TEST(RenderCli, LinesOnlyAndShadingOnlyBuildOnlyTheirShaderCode) {
   EXPECT_EQ(b["variants"]["ink"], json({"SHADING WRINKLE WRINKLE_SLOPE CANVAS ELEMENTS SINGLE_OBJECT BORDER MIST"}));
   // No curvature of either kind, no UV varying, no noise (the ink pass samples it).
   EXPECT_EQ(b["variants"]["gbuffer"], json({""}));
-  // Eq. 1's bands instead of strokes: no lines stage, no stroke code, the bands' code.
+  // Eq. 1's bands instead of strokes: no lines stage, no stroke code, the bands' code (and
+  // no bare land drawn apart: the lines stage finds it).
   r = run(base + " -o " + quote(dir / "c.png") + " --stats " + quote(dir / "c.json") +
           " --set objects.0.lines.width=0");
   ASSERT_EQ(r.exit_code, 0) << r.output;

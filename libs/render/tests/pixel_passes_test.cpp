@@ -3,6 +3,7 @@
 // shaders, on llvmpipe as fragment passes; both are built from the same sources
 // (pixel_main.glsl). The oracle for the compute path is the fragment path: the samples
 // drawn both ways on llvmpipe are the same picture.
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <map>
@@ -122,6 +123,46 @@ TEST_F(PixelPasses, ARedrawnRegionIsTheSameInBothStages) {
   }
   // The frames differ from each other (the boat moved), so the comparison can fail.
   EXPECT_GT(differenceOf(compute.frames[0], compute.frames[2]).largest, 0.1);
+}
+
+// The fragment stage draws the surfaces a dissolved border leaves bare (the lines pass found
+// nothing of the land standing there) with their own program, sorted out by the depth test
+// (ink_classes.frag). The oracle: the same renderer with the debug outputs on, which shades
+// every surface pixel with the whole program. The painting's borders leave about a quarter
+// of its picture bare; a scene that dissolves no border builds nothing for it.
+TEST_F(PixelPasses, BareLandDrawnApartIsWhatTheWholeShadingDraws) {
+  setenv("SHANSHUI_PIXEL_PASSES", "fragment", 1);
+  const scene::Scene s = scene::loadScene(test::sourceDir() / "samples/scenes/painting.json",
+                                          {"output.width=320", "output.height=240", "objects.0.max_vertices=30000"});
+  scene::AssetCache cache;
+  InkRenderer r(s, cache.getAll(s));
+  const image::Image apart = r.renderImage(frameKey(s, 0, 1, 0.0));
+  const std::vector<std::string> variants = r.variants().at("ink");
+  EXPECT_NE(std::find(variants.begin(), variants.end(), "bare land: BARE"), variants.end());
+  r.setDebugOutputs(true);
+  const image::Image whole = r.renderImage(frameKey(s, 0, 1, 0.0));
+  for (const std::string& v : r.variants().at("ink")) EXPECT_EQ(v.find("BARE"), std::string::npos) << v;
+  const Difference d = differenceOf(apart, whole);
+  EXPECT_LT(d.mean, 1e-6);
+  EXPECT_EQ(d.share_off, 0.0);
+  // The bare land is paper but for strokes and trees: the picture's paper-coloured pixels
+  // are far more than its background alone.
+  const image::Image positions = r.worldPositions();
+  std::size_t land = 0, paper_on_land = 0;
+  for (int y = 0; y < whole.height; ++y)
+    for (int x = 0; x < whole.width; ++x) {
+      if (positions.at(x, y, 3) < 0.5f) continue;
+      ++land;
+      if (std::abs(whole.at(x, y, 0) - static_cast<float>(s.output.paper.r)) < 0.03f) ++paper_on_land;
+    }
+  EXPECT_GT(static_cast<double>(paper_on_land), 0.2 * static_cast<double>(land));
+
+  const scene::Scene plain = scene::loadScene(
+      test::sourceDir() / "samples/scenes/default.json",
+      {"output.width=160", "output.height=120", "objects.0.max_vertices=30000", "objects.0.border.mode=\"keep\""});
+  ASSERT_FALSE(plain.dissolvesBorders());
+  InkRenderer p(plain, cache.getAll(plain));
+  for (const std::string& v : p.variants().at("ink")) EXPECT_EQ(v.find("BARE"), std::string::npos) << v;
 }
 
 TEST_F(PixelPasses, AnUnknownStageIsAnErrorNamingTheVariable) {

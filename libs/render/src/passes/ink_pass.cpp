@@ -102,14 +102,27 @@ class InkPass final : public RenderPass {
       toStorage(line_defines);
       if (scene_.usesShading()) line_defines.emplace_back("SHADING");  // it samples the shading's noise
       if (scene_.usesSuggestiveContours()) line_defines.emplace_back("SUGGESTIVE");
+      if (scene_.usesWater()) line_defines.emplace_back("WATER");  // the atmosphere over hidden land
       lines.emplace(build("ink_lines.frag", line_defines, "PIXEL_SURFACES"));
     }
-    std::vector<std::string> paper_defines = defines;
+    std::vector<std::string> paper_defines = defines, bare_defines = defines;
     paper_defines.emplace_back("PAPER");
     Program paper = build("ink.frag", paper_defines, "PIXEL_BACKGROUND");
+    // A fragment pass draws the surfaces that a dissolved border leaves bare apart, with what
+    // remains of the program once nothing of the land stands (BARE): a software rasteriser
+    // runs every branch for a whole group of pixels, but skips a group the depth test
+    // rejects. The lines pass finds them (the border's presence), so only with strokes.
+    std::optional<Program> bare, classes;
+    if (!compute && !debug_outputs_ && scene_.usesStrokes() && scene_.dissolvesBorders()) {
+      bare_defines.emplace_back("BARE");
+      bare.emplace(build("ink.frag", bare_defines, "PIXEL_SURFACES"));
+      classes.emplace(pixelProgram("ink_classes.frag", {}, false));
+    }
     program_ = build("ink.frag", defines, "PIXEL_SURFACES");  // a throw keeps the old programs
     compute_ = compute;
     paper_ = std::move(paper);
+    bare_ = std::move(bare);
+    classes_ = std::move(classes);
     lines_ = std::move(lines);
     defines_ = std::move(defines);
     line_defines_ = std::move(line_defines);
@@ -121,6 +134,7 @@ class InkPass final : public RenderPass {
     const std::string stage = compute_ ? " PIXEL_COMPUTE" : "";
     std::vector<std::string> v{joined(defines_) + stage};
     if (lines_) v.push_back("lines: " + joined(line_defines_) + stage);
+    if (bare_) v.emplace_back("bare land: BARE");
     return v;
   }
 
@@ -145,6 +159,7 @@ class InkPass final : public RenderPass {
     std::vector<GLenum> out{GL_RGBA8};
     if (debug_outputs_) out.insert(out.end(), {GL_RG16F, GL_RG16F});
     target_ = Framebuffer(width, height, out, false);
+    kinds_ = Framebuffer();    // made at the next frame that draws bare land apart
     strokes_ = Framebuffer();  // both made at the next frame that draws strokes
     stroke_ink_ = Texture2D();
   }
@@ -197,6 +212,10 @@ class InkPass final : public RenderPass {
       } else {
         glNamedFramebufferTexture(strokes_.id(), GL_DEPTH_ATTACHMENT, images.attachable_depth->id(), 0);
         strokes_.bind();
+        if (classes_) {  // alpha 1 where no surface is: the background, for ink_classes.frag
+          const float background[4] = {0.0f, 0.0f, 0.0f, 1.0f};
+          glClearNamedFramebufferfv(strokes_.id(), GL_COLOR, 0, background);
+        }
       }
       glm::ivec4 line_rect = rect;
       if (in.region) {
@@ -212,6 +231,7 @@ class InkPass final : public RenderPass {
       }
       lines_->use();
       setSurfaceUniforms(*lines_, in);
+      if (in.scene.usesWater()) setWaterUniforms(*lines_, in);
       if (scene_.usesSuggestiveContours()) {
         lines_->set("u_view_projection",
                     glm::mat4(glm::dmat4(in.camera.projection(static_cast<double>(in.width) / in.height)) *
@@ -233,6 +253,19 @@ class InkPass final : public RenderPass {
       glBindImageTexture(4, strokes_.colour(0).id(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA16);
     }
     if (in.timer) in.timer->begin("ink");
+    if (classes_) {
+      // Each pixel's kind as its depth (ink_classes.frag: 0 shade, 0.5 bare, 1 background),
+      // for the three draws below to test for equality.
+      if (kinds_.width() != target_.width() || kinds_.height() != target_.height())
+        kinds_ = Framebuffer(target_.width(), target_.height(), {}, true);
+      kinds_.bind();
+      glDepthMask(GL_TRUE);
+      glDepthFunc(GL_ALWAYS);
+      classes_->use();
+      glDrawArrays(GL_TRIANGLES, 0, 3);
+      glDepthMask(GL_FALSE);
+      glNamedFramebufferTexture(target_.id(), GL_DEPTH_ATTACHMENT, kinds_.depth().id(), 0);
+    }
     if (compute_) {
       glBindImageTexture(7, target_.colour(0).id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA8);
     } else {
@@ -242,7 +275,9 @@ class InkPass final : public RenderPass {
     if (images.elements)
       glBindImageTexture(6, images.elements->id(), 0, GL_FALSE, 0, GL_READ_ONLY,
                          elementsKeepNearness(in.scene) ? GL_RG32F : GL_R8);
-    for (const Program* ink : {&program_, &*paper_}) {
+    const Program* bare = bare_ ? &*bare_ : nullptr;
+    for (const Program* ink : std::initializer_list<const Program*>{&program_, bare, &*paper_}) {
+      if (!ink) continue;
       ink->use();
       if (images.elements) ink->set("u_element_colour", elementColour(in.scene));
       setSurfaceUniforms(*ink, in);
@@ -252,6 +287,13 @@ class InkPass final : public RenderPass {
       if (in.scene.usesWater()) setWaterUniforms(*ink, in);
       if (compute_) {
         dispatchPixels(*ink, rect);
+      } else if (classes_) {
+        // The triangle at the depth of its kind: glDepthRange(v, v) puts every fragment at v.
+        const float kind = ink == &program_ ? 0.0f : (ink == bare ? 0.5f : 1.0f);
+        glDepthRangef(kind, kind);
+        glDepthFunc(GL_EQUAL);
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+        glDepthRangef(0.0f, 1.0f);
       } else {
         glDepthFunc(ink == &program_ ? GL_GREATER : GL_EQUAL);  // surfaces, then the background
         glDrawArrays(GL_TRIANGLES, 0, 3);
@@ -404,9 +446,12 @@ class InkPass final : public RenderPass {
   bool debug_outputs_ = false;
   std::vector<std::string> defines_;
   Program program_;
-  std::optional<Program> paper_;  //!< the background's pixels (PAPER)
-  std::optional<Program> lines_;  //!< the stroke centres, when some object draws strokes
-  bool compute_ = false;          //!< the three are compute shaders (pixelPassesAsCompute)
+  std::optional<Program> paper_;    //!< the background's pixels (PAPER)
+  std::optional<Program> lines_;    //!< the stroke centres, when some object draws strokes
+  std::optional<Program> bare_;     //!< a fragment pass's surfaces where nothing of the land stands (BARE)
+  std::optional<Program> classes_;  //!< sorts the pixels for bare_ (ink_classes.frag)
+  Framebuffer kinds_;               //!< classes_'s depth: 0 shade, 0.5 bare, 1 background
+  bool compute_ = false;            //!< the three are compute shaders (pixelPassesAsCompute)
   std::vector<std::string> line_defines_;
   VertexArray vao_;
   Buffer params_;
