@@ -2,6 +2,8 @@
 // any error into one line on stderr and a non-zero exit code.
 #pragma once
 
+#include <unistd.h>
+
 #include <charconv>
 #include <cstdio>
 #include <cstdlib>
@@ -46,6 +48,15 @@ inline CLI::Validator integerIn(long long min, unsigned long long max = ~0ULL) {
       max == ~0ULL ? ">=" + std::to_string(min) : "[" + std::to_string(min) + ", " + std::to_string(max) + "]");
 }
 
+//! Once memory ran out under an address-space limit a driver's threads or exit handlers may
+//! never finish (memoryRanOut): the error is written, the temporaries are gone with the
+//! unwinding, so the process ends here, without them.
+inline void endIfMemoryRanOut() {
+  if (!memoryRanOut()) return;
+  std::fflush(nullptr);
+  ::_exit(1);
+}
+
 //! Runs `body` after parsing; returns the process exit code (0 ok, 1 error, CLI11's code
 //! for usage errors, 0 for --help). Every error is one line on stderr.
 inline int runTool(CLI::App& app, int argc, char** argv, const std::function<void()>& body) {
@@ -78,9 +89,11 @@ inline int runTool(CLI::App& app, int argc, char** argv, const std::function<voi
     std::fprintf(stderr,
                  "%s: error: %s%sout of memory%s: the input or the requested size is too large (--max-memory)\n",
                  app.get_name().c_str(), last.c_str(), last.empty() ? "" : ": ", addressSpaceLimitNote().c_str());
+    endIfMemoryRanOut();
     return 1;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "%s: error: %s\n", app.get_name().c_str(), e.what());
+    endIfMemoryRanOut();
     return 1;
   }
 }

@@ -15,6 +15,7 @@
 #include <cstring>
 #include <map>
 #include <mutex>
+#include <new>
 #include <system_error>
 #include <vector>
 
@@ -225,6 +226,13 @@ void installTempFileCleanup() {
 
 namespace {
 char g_crash_message[512];
+std::atomic<bool> g_memory_ran_out{false};
+
+// operator new's last resort under a limit: note it, then fail as it would have.
+void noteAndThrowBadAlloc() {
+  g_memory_ran_out.store(true, std::memory_order_relaxed);
+  throw std::bad_alloc();
+}
 
 extern "C" void reportCrashUnderLimit(int) {
   for (TempNode* n = g_temps.load(std::memory_order_acquire); n; n = n->next) {
@@ -259,7 +267,18 @@ void guardCrashesUnderMemoryLimit(std::string_view component) {
       sigemptyset(&sa.sa_mask);
       ::sigaction(sig, &sa, nullptr);
     }
+    std::set_new_handler(noteAndThrowBadAlloc);
   });
+}
+
+bool memoryRanOut() {
+  return g_memory_ran_out.load(std::memory_order_relaxed);
+}
+
+void noteMemoryRanOut() {
+  rlimit lim{};
+  if (::getrlimit(RLIMIT_AS, &lim) == 0 && lim.rlim_cur != RLIM_INFINITY)
+    g_memory_ran_out.store(true, std::memory_order_relaxed);
 }
 
 void checkOutputPath(const fs::path& target) {

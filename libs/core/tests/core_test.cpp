@@ -11,6 +11,7 @@
 #include <fstream>
 #include <set>
 #include <thread>
+#include <vector>
 
 #include "shanshui/core/atomic_output.h"
 #include "shanshui/core/error.h"
@@ -298,6 +299,43 @@ TEST(Parse, PairNeedsTwoNumbersAroundAColon) {
   for (const char* bad : {"0.5", "0.1:", ":0.9", "a:b", "0.1:0.2:0.3", "nan:1"}) {
     test::expectErrorNaming([&] { parsePair(bad, "--range"); }, "--range", bad);
   }
+}
+
+// Under an address-space limit a failed operator new is noted (memoryRanOut), so the GL
+// wrappers stop calling a driver that may hang after running out; without a limit neither a
+// failed allocation nor a driver's report is noted. In a child process, which sets the limit.
+TEST(AtomicOutput, RunningOutOfMemoryIsNotedOnlyUnderAnAddressSpaceLimit) {
+#ifdef __SANITIZE_ADDRESS__
+  GTEST_SKIP() << "AddressSanitizer reserves terabytes of address space: no limit leaves it room";
+#endif
+  rlimit own{};
+  ASSERT_EQ(::getrlimit(RLIMIT_AS, &own), 0);
+  if (own.rlim_cur != RLIM_INFINITY) GTEST_SKIP() << "this test process already runs under a limit";
+  auto child = [](bool limit) {
+    const pid_t pid = ::fork();
+    if (pid == 0) {
+      if (limit) {
+        const rlimit lim{rlim_t{2} << 30, rlim_t{2} << 30};
+        ::setrlimit(RLIMIT_AS, &lim);
+      }
+      guardCrashesUnderMemoryLimit("the test");
+      int code = memoryRanOut() ? 10 : 0;
+      try {
+        std::vector<char> big(std::size_t{64} << 40);  // 64 TiB: fails with or without a limit
+        code = 11;
+      } catch (const std::bad_alloc&) {
+        if (memoryRanOut() != limit) code = 12;
+      }
+      ::_exit(code);
+    }
+    int status = 0;
+    ::waitpid(pid, &status, 0);
+    return WIFEXITED(status) ? WEXITSTATUS(status) : 100 + WTERMSIG(status);
+  };
+  EXPECT_EQ(child(true), 0) << "under a limit the failure is noted";
+  EXPECT_EQ(child(false), 0) << "without one it is not";
+  noteMemoryRanOut();  // this process has no limit: a driver's report changes nothing
+  EXPECT_FALSE(memoryRanOut());
 }
 
 TEST(AtomicOutput, CheckOutputPathRefusesBeforeAnyWork) {

@@ -121,7 +121,7 @@ class EglContext final : public GlContext {
   }
 
   ~EglContext() override {
-    if (display_ != EGL_NO_DISPLAY) {
+    if (display_ != EGL_NO_DISPLAY && !memoryRanOut()) {  // a driver out of memory may hang: leave it
       eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
       if (context_ != EGL_NO_CONTEXT) eglDestroyContext(display_, context_);
       eglTerminate(display_);
@@ -241,7 +241,10 @@ void checkGlAllocation(const char* what) {
   GLenum e = glGetError();
   bool out_of_memory = false;
   for (; e != GL_NO_ERROR; e = glGetError()) out_of_memory = out_of_memory || e == GL_OUT_OF_MEMORY;
-  if (out_of_memory) throw makeError("OpenGL: out of memory allocating ", what, addressSpaceLimitNote());
+  if (out_of_memory) {
+    noteMemoryRanOut();
+    throw makeError("OpenGL: out of memory allocating ", what, addressSpaceLimitNote());
+  }
 }
 
 std::unique_ptr<GlContext> GlContext::create(const ContextOptions& options) {

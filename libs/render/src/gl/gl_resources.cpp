@@ -57,7 +57,7 @@ Texture2D Texture2D::tiledFromImage(const image::Image& img, GLenum internal_for
 }
 
 Texture2D::~Texture2D() {
-  if (id_) glDeleteTextures(1, &id_);
+  if (id_ && !memoryRanOut()) glDeleteTextures(1, &id_);  // see memoryRanOut()
 }
 
 Texture2D::Texture2D(Texture2D&& o) noexcept

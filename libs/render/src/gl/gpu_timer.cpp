@@ -1,5 +1,6 @@
 #include "shanshui/render/gpu_timer.h"
 
+#include "shanshui/core/atomic_output.h"
 #include "shanshui/core/error.h"
 
 namespace shanshui::render {
@@ -9,7 +10,7 @@ namespace shanshui::render {
 
 namespace {
 void deleteQueries(std::vector<GLuint>& q) {
-  if (!q.empty()) glDeleteQueries(static_cast<GLsizei>(q.size()), q.data());
+  if (!q.empty() && !memoryRanOut()) glDeleteQueries(static_cast<GLsizei>(q.size()), q.data());
   q.clear();
 }
 }  // namespace

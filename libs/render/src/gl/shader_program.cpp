@@ -7,6 +7,7 @@
 
 #include <glm/gtc/type_ptr.hpp>
 
+#include "shanshui/core/atomic_output.h"
 #include "shanshui/core/error.h"
 #include "shanshui/render/shader_library.h"
 
@@ -151,7 +152,7 @@ void Program::build(const std::vector<std::pair<std::string, GLenum>>& stages,
 }
 
 Program::~Program() {
-  if (id_) glDeleteProgram(id_);
+  if (id_ && !memoryRanOut()) glDeleteProgram(id_);  // a driver out of memory may hang: leave it
 }
 
 Program::Program(Program&& other) noexcept : id_(other.id_), locations_(std::move(other.locations_)) {

@@ -6,6 +6,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "shanshui/core/atomic_output.h"
 #include "shanshui/core/error.h"
 #include "shanshui/image/convert.h"
 #include "shanshui/image/image_io.h"
@@ -40,7 +41,9 @@ class SubstratePass final : public RenderPass {
     glSamplerParameteri(sampler_, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
     buildPrograms();
   }
-  ~SubstratePass() override { glDeleteSamplers(1, &sampler_); }
+  ~SubstratePass() override {
+    if (!memoryRanOut()) glDeleteSamplers(1, &sampler_);  // see memoryRanOut()
+  }
   SubstratePass(const SubstratePass&) = delete;
   SubstratePass& operator=(const SubstratePass&) = delete;
 

@@ -45,6 +45,14 @@ void installTempFileCleanup();
 //! does nothing, so a crash elsewhere stays a crash to be found.
 void guardCrashesUnderMemoryLimit(std::string_view component);
 
+//! Whether memory ran out in this process under an address-space limit: operator new failed
+//! after guardCrashesUnderMemoryLimit, or a driver reported it (noteMemoryRanOut, which does
+//! nothing without a limit: a GPU's out-of-memory error leaves its driver working). A GL driver
+//! that ran out may hang in its next call (llvmpipe did, deleting a texture while the error
+//! unwound), so the GL wrappers stop calling it and the tool ends without exit handlers.
+bool memoryRanOut();
+void noteMemoryRanOut();
+
 //! Removes temporaries of `target` left by processes that no longer run (killed outright).
 //! Called by every write; public for tests.
 void sweepStaleTemporaries(const std::filesystem::path& target);

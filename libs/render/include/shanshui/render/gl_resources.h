@@ -6,6 +6,7 @@
 
 #include <epoxy/gl.h>
 
+#include "shanshui/core/atomic_output.h"
 #include "shanshui/image/image.h"
 
 namespace shanshui::render {
@@ -21,7 +22,7 @@ class GlName {
     return n;
   }
   ~GlName() {
-    if (id_) K::destroy(id_);
+    if (id_ && !memoryRanOut()) K::destroy(id_);  // a driver out of memory may hang: leave it
   }
   GlName(GlName&& o) noexcept : id_(o.id_) { o.id_ = 0; }
   GlName& operator=(GlName&& o) noexcept {
