@@ -313,7 +313,7 @@ void shadePixel() {
   float here = 0.0;
   vec2 noise = vec2(0.0);
 #elif defined(STROKES)
-  // The lines pass took both at atmosphere_at.
+  // The lines pass took the presence at atmosphere_at, the noise at the point shown.
   vec4 presence_noise = imageLoad(u_presence_noise, p);
   float here = presence_noise.r;
   vec2 noise = presence_noise.gb;
