@@ -145,8 +145,8 @@ TEST_F(PixelPasses, BareLandDrawnApartIsWhatTheWholeShadingDraws) {
   const Difference d = differenceOf(apart, whole);
   EXPECT_LT(d.mean, 1e-6);
   EXPECT_EQ(d.share_off, 0.0);
-  // The bare land is paper but for strokes and trees: the picture's paper-coloured pixels
-  // are far more than its background alone.
+  // The split matters: bare land shows the paper (but for strokes and trees), and more than
+  // a fifth of the land's pixels are paper-coloured.
   const image::Image positions = r.worldPositions();
   std::size_t land = 0, paper_on_land = 0;
   for (int y = 0; y < whole.height; ++y)

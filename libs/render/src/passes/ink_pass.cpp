@@ -105,7 +105,7 @@ class InkPass final : public RenderPass {
       if (scene_.usesWater()) line_defines.emplace_back("WATER");  // the atmosphere over hidden land
       lines.emplace(build("ink_lines.frag", line_defines, "PIXEL_SURFACES"));
     }
-    std::vector<std::string> paper_defines = defines, bare_defines = defines;
+    std::vector<std::string> paper_defines = defines;
     paper_defines.emplace_back("PAPER");
     Program paper = build("ink.frag", paper_defines, "PIXEL_BACKGROUND");
     // A fragment pass draws the surfaces that a dissolved border leaves bare apart, with what
@@ -114,6 +114,7 @@ class InkPass final : public RenderPass {
     // rejects. The lines pass finds them (the border's presence), so only with strokes.
     std::optional<Program> bare, classes;
     if (!compute && !debug_outputs_ && scene_.usesStrokes() && scene_.dissolvesBorders()) {
+      std::vector<std::string> bare_defines = defines;
       bare_defines.emplace_back("BARE");
       bare.emplace(build("ink.frag", bare_defines, "PIXEL_SURFACES"));
       classes.emplace(pixelProgram("ink_classes.frag", {}, false));
