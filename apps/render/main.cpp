@@ -106,7 +106,7 @@ void runBenchmark(const std::string& input, std::vector<std::string> sets, const
   const int w = sc.output.pixelWidth(), h = sc.output.pixelHeight();
   const scene::CameraKey start = render::frameKey(sc, 0, 1, 0.0);
   std::map<std::string, std::vector<double>> passes, submit;
-  std::vector<double> frame_ms, gpu_ms, submit_ms, camera_ms;
+  std::vector<double> frame_ms, gpu_ms, submit_ms, camera_ms, uniforms;
   std::deque<GLsync> fences;
   std::deque<bool> timed;  // per frame whose times are not read yet: whether they count
   auto readTimes = [&](bool wait) {
@@ -168,6 +168,7 @@ void runBenchmark(const std::string& input, std::vector<std::string> sets, const
       frame_ms.push_back(ms(now - previous));
       submit_ms.push_back(submitted);
       camera_ms.push_back(ms(t0 - t_camera));
+      uniforms.push_back(static_cast<double>(fs.uniforms_set));
       for (const auto& p : fs.submit) submit[p.name].push_back(p.cpu_ms);
     }
     previous = now;
@@ -192,6 +193,7 @@ void runBenchmark(const std::string& input, std::vector<std::string> sets, const
                         {"frame_wall_ms", {{"median", quantile(frame_ms, 0.5)}, {"p90", quantile(frame_ms, 0.9)}}},
                         {"submit_cpu_ms", {{"median", quantile(submit_ms, 0.5)}, {"p90", quantile(submit_ms, 0.9)}}},
                         {"camera_cpu_ms", {{"median", quantile(camera_ms, 0.5)}, {"p90", quantile(camera_ms, 0.9)}}},
+                        {"uniforms_set_per_frame", quantile(uniforms, 0.5)},
                         {"frame_cpu_ms", frame_cpu_ms},
                         {"passes_gpu_ms", {{"median", quantile(gpu_ms, 0.5)}, {"p90", quantile(gpu_ms, 0.9)}}},
                         {"pass_gpu_ms", nlohmann::json::object()}};
@@ -217,6 +219,8 @@ void runBenchmark(const std::string& input, std::vector<std::string> sets, const
   std::printf("  %-18s wall median %7.3f ms  p90 %8.3f ms (%.0f fps, %zu frames in flight)\n", "frame",
               quantile(frame_ms, 0.5), quantile(frame_ms, 0.9), fps, kFramesInFlight);
   std::printf("  %-18s CPU   mean %8.3f ms (the process, every thread)\n", "frame", frame_cpu_ms);
+  std::printf("  %-18s %.0f a frame, one call each (the rest in the frame's uniform block)\n", "uniforms set",
+              quantile(uniforms, 0.5));
   if (!stats_path.empty()) outputs.stage(stats_path, tools::jsonText(out, stats_path));
   outputs.commit();
 }

@@ -16,8 +16,8 @@ layout(binding = 3) uniform sampler2D u_noise;  // value noise, RG in [0, 1], ti
 #ifdef SHADOW
 layout(binding = 4) uniform sampler2D u_shadow;  // 0 lit .. 1 in shadow
 #endif
-uniform vec3 u_paper;
-uniform vec2 u_near_far;
+// The camera, the atmosphere, the paper: the frame's block.
+#include "frame.glsl"
 uniform float u_strength;
 uniform float u_radius;  // pixels
 uniform int u_samples;   // per side

@@ -27,8 +27,8 @@ layout(std430, binding = 3) readonly buffer Frame {
 layout(std430, binding = 4) readonly buffer Entries {
   Entry entries[];
 };
-uniform mat4 u_view_projection;
-uniform vec3 u_eye;
+// The camera, the atmosphere, the paper: the frame's block.
+#include "frame.glsl"
 uniform vec3 u_right;  // the camera's right, level
 uniform uint u_capacity;
 out vec2 v_local;         // along and across the mark, in half widths

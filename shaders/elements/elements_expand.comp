@@ -41,8 +41,8 @@ layout(std430, binding = 5) buffer Indirect {
 };
 
 uniform mat4 u_model;  // uploaded coordinates to world
-uniform mat4 u_view_projection;
-uniform vec3 u_eye;
+// The camera, the atmosphere, the paper: the frame's block.
+#include "frame.glsl"
 uniform float u_near;
 uniform float u_pixels_at_1;  // pixels per world unit at distance 1
 uniform float u_per_1024;     // picture height / 1024
@@ -56,15 +56,10 @@ uniform vec4 u_level_bands;    // elements::kLevelBands: far → middle, middle 
 uniform float u_least_far_px;  // a far tree's dab is at least this wide (pixels at 1024)
 uniform uint u_dot_template;
 // Atmosphere and border.
-uniform float u_fade;
-uniform vec2 u_fade_range;
-uniform vec3 u_mist;  // density, z where it is full, thinning band (0: no mist)
-uniform float u_mist_near;  // share of the mist at the near end of u_fade_range
 uniform vec4 u_to_model_x, u_to_model_y;
 uniform vec2 u_half_extent;
 uniform float u_border_width;  // 0: no border
 uniform float u_border_roughness;
-uniform float u_water_level;  // world z of the water's surface; the lowest float without water
 
 float presence(vec3 world) {
   float far = smoothstep(u_fade_range.x, u_fade_range.y, distance(world, u_eye));
@@ -90,7 +85,7 @@ int marks(uint i, out vec3 world, out float ppu, out float height, out float ink
   if (i >= u_count) return 0;
   Instance e = instances[i];
   world = (u_model * vec4(e.position_size.xyz, 1.0)).xyz;
-  if (world.z < u_water_level) return 0;  // nothing grows under water
+  if (world.z < u_water.x) return 0;  // nothing grows under water (u_water.x: the lowest float without water)
   vec4 clip = u_view_projection * vec4(world, 1.0);
   if (clip.w <= u_near) return 0;
   ppu = u_pixels_at_1 / clip.w;

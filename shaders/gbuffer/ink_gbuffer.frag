@@ -38,7 +38,8 @@ layout(location = 1) out vec4 o_surface_id;  // erosion noise (SURFACE), added n
 // in pixels; alpha 1 marks a surface (the target is cleared to 0).
 in vec4 v_clip;
 in vec4 v_previous_clip;
-uniform vec2 u_viewport;
+// The camera, the atmosphere, the paper: the frame's block.
+#include "frame.glsl"
 layout(location = 2) out vec4 o_velocity;
 #endif
 

@@ -28,7 +28,8 @@ out vec4 v_previous_clip;
 #endif
 uniform mat4 u_model;
 uniform mat3 u_normal_matrix;
-uniform mat4 u_view_projection;
+// The camera, the atmosphere, the paper: the frame's block.
+#include "frame.glsl"
 
 out vec3 v_normal;
 

@@ -22,8 +22,6 @@
 #include "ink_gaussian_cdf.glsl"
 #endif
 #include "ink_surface.glsl"
-uniform vec3 u_light_dir;    // unit, towards the light
-uniform vec3 u_paper;
 #ifdef STROKES
 // The strokes' ink × 255, stamped by ink_lines.frag, and the presence and shading noise it
 // found per surface pixel.

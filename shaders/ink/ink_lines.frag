@@ -23,9 +23,6 @@ layout(r32ui, binding = 3) uniform uimage2D u_stroke_ink;
 // What the ink pass would otherwise compute again at each surface pixel: what the atmosphere
 // and the border leave (presence(), r; for land under water, at the water's surface above
 // it) and the shading's noise (surfaceNoise(): erosion g, added noise b).
-#ifdef WATER
-uniform vec4 u_water;  // the water's level in x (ink_water.glsl)
-#endif
 #ifdef PIXEL_COMPUTE
 layout(rgba16, binding = 7) writeonly uniform image2D u_presence_noise_out;
 vec4 o_presence_noise;
@@ -46,7 +43,6 @@ vec3 normalAt(ivec2 q) {
 }
 
 #ifdef SUGGESTIVE
-uniform mat4 u_view_projection;
 const float kSuggestiveReach = 3.0;  // pixels either side along w where the trough's depth is measured
 
 // N·V at q (−1 where q is background or across a depth jump from `z`: no trough there).

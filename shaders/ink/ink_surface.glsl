@@ -59,16 +59,8 @@ vec2 surfaceNoise(ObjectParams o, vec3 position) {
 layout(rgba16, binding = 0) readonly uniform image2D u_normal_curvature;  // encoded: see ink_gbuffer.frag
 layout(rgba8, binding = 1) readonly uniform image2D u_surface_id;
 layout(binding = 2) uniform sampler2D u_depth;
-uniform mat4 u_inverse_view_projection;
-uniform vec3 u_eye;
-uniform vec2 u_near_far;     // of the projection, for linear depth
-uniform float u_fade;        // strength, [0, 1]
-uniform vec2 u_fade_range;   // distances where the fade starts and is full
-#ifdef MIST
-uniform vec4 u_mist;         // density, z of the full mist's top, thinning band, noise amplitude (world units)
-uniform float u_mist_noise;  // noise tiles per world unit
-uniform float u_mist_near;   // share of the mist at the near end of u_fade_range (all of it at the far end)
-#endif
+// The camera, the distance fade and the mist: the frame's block.
+#include "frame.glsl"
 
 vec3 worldPosition(ivec2 p, float depth) {
   vec2 ndc = (vec2(p) + 0.5) / vec2(textureSize(u_depth, 0)) * 2.0 - 1.0;

@@ -4,11 +4,7 @@
 // the water, a bank line. Needs ink_surface.glsl (u_depth, the camera, worldPosition).
 #include "ink_hash.glsl"
 
-uniform vec4 u_water;        // level (world z), wave cell (world units), share of cells with a stroke, ink
-uniform vec2 u_water_right;  // the picture's horizontal laid on the water: a unit vector in world xy
-uniform float u_water_bank;  // bank line width, pixels
-uniform float u_pixel_angle; // a pixel's width at distance 1, world units
-uniform vec4 u_water_extent; // the open water's rectangle in world xy (min, max): the land's bounds
+// The water's level, waves, bank and extent come in the frame's block (frame_params.glsl).
 
 // Where this pixel's view ray meets the water's surface: the point w, the ray's parameter t
 // and unit direction d; false when it does not (looking up or along the surface).

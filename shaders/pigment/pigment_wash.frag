@@ -18,7 +18,8 @@ layout(std430, binding = 0) readonly buffer Washes {
 layout(binding = 0) uniform sampler2D u_picture;
 layout(binding = 1) uniform sampler2D u_surface_id;  // erosion noise, ..., object id / 255
 layout(binding = 2) uniform sampler2D u_depth;
-uniform vec3 u_paper;
+// The camera, the atmosphere, the paper: the frame's block.
+#include "frame.glsl"
 #ifdef PIXEL_COMPUTE
 layout(binding = 7, rgba8) writeonly uniform image2D o_colour_image;
 vec4 o_colour;

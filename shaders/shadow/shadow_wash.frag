@@ -9,7 +9,8 @@
 layout(binding = 0) uniform sampler2D u_picture;
 layout(binding = 1) uniform sampler2D u_depth;
 layout(binding = 2) uniform sampler2DShadow u_shadow_map;
-uniform mat4 u_inverse_view_projection;
+// The camera, the atmosphere, the paper: the frame's block.
+#include "frame.glsl"
 uniform mat4 u_light_view_projection;
 uniform float u_bias;      // light-space depth units
 uniform float u_softness;  // texels

@@ -22,7 +22,8 @@ layout(binding = 3) uniform sampler2D u_depth;
 layout(std430, binding = 0) readonly buffer Weights {
   vec4 weights[];  // per object: dry brush, granulation, lighting, distortion
 };
-uniform vec3 u_paper;
+// The camera, the atmosphere, the paper: the frame's block.
+#include "frame.glsl"
 uniform vec3 u_light;  // towards the light, view space (z towards the viewer)
 uniform float u_roughness;
 uniform float u_dry_brush;

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <memory>
 #include <numbers>
@@ -23,6 +24,7 @@
 #include "shanshui/ink/diffusion.h"
 #include "shanshui/noise/perlin.h"
 #include "shanshui/noise/value_noise.h"
+#include "shanshui/render/frame_params.h"
 #include "shanshui/render/gl_context.h"
 #include "shanshui/render/ink_object_params.h"
 #include "shanshui/render/look_metrics.h"
@@ -851,6 +853,74 @@ TEST_F(ObjectBlock, DriverOffsetsAreTheCppOffsets) {
     const std::size_t elements = layout == Layout::Block ? 3 : 1;
     EXPECT_EQ(static_cast<std::size_t>(size), elements * sizeof(gpu::ObjectParams));
   }
+}
+
+// The frame's block: every member at the offset C++ writes it to, as the driver lays it out
+// (std140 keeps every member active, read or not), and the block's size.
+TEST_F(ObjectBlock, FrameBlockOffsetsAreTheCppOffsets) {
+  const Program p({"fullscreen.vert", "ink.frag"}, {"LINES", "SHADING", "MIST", "WATER", "SINGLE_OBJECT"});
+  for (const gpu::FieldOffset& f : gpu::kFrameParamsFields) {
+    GLuint index = glGetProgramResourceIndex(p.id(), GL_UNIFORM, f.name);
+    if (index == GL_INVALID_INDEX)
+      index = glGetProgramResourceIndex(p.id(), GL_UNIFORM, ("FrameUniforms." + std::string(f.name)).c_str());
+    ASSERT_NE(index, GL_INVALID_INDEX) << f.name;
+    const GLenum property = GL_OFFSET;
+    GLint offset = -1;
+    glGetProgramResourceiv(p.id(), GL_UNIFORM, index, 1, &property, 1, nullptr, &offset);
+    EXPECT_EQ(static_cast<std::size_t>(offset), f.offset) << f.name;
+  }
+  const GLuint block = glGetProgramResourceIndex(p.id(), GL_UNIFORM_BLOCK, "FrameUniforms");
+  ASSERT_NE(block, GL_INVALID_INDEX);
+  const GLenum properties[2] = {GL_BUFFER_DATA_SIZE, GL_BUFFER_BINDING};
+  GLint values[2] = {0, -1};
+  glGetProgramResourceiv(p.id(), GL_UNIFORM_BLOCK, block, 2, properties, 2, nullptr, values);
+  EXPECT_EQ(static_cast<std::size_t>(values[0]), sizeof(gpu::FrameParams));
+  EXPECT_EQ(values[1], static_cast<GLint>(kFrameBlockBinding));
+}
+
+// The block's values against the camera they come from: the inverse is the inverse, a
+// point one pixel angle above the view axis at distance 1 lands one pixel above the centre,
+// the fade spans the nearest and farthest corners of the bounds (brute force), the light is
+// a unit vector towards it.
+TEST(FrameParams, AgreeWithTheCameraAndTheScene) {
+  scene::Scene s;
+  s.light.direction = {1.0, -2.0, 3.0};
+  s.output.paper = {0.9, 0.85, 0.8};
+  s.mist.density = 0.6;
+  const mesh::Bounds bounds{{-1.0, -2.0, 0.0}, {3.0, 4.0, 1.5}};
+  const std::vector<SceneObjectGpu> objects;
+  OrbitCamera camera;
+  camera.target = {1.0, 1.0, 0.5};
+  camera.distance = 12.0;
+  camera.azimuth_deg = 30.0;
+  camera.elevation_deg = 25.0;
+  const FrameInputs in{s, objects, bounds, camera, 640, 480};
+  const gpu::FrameParams f = frameParams(in);
+  const glm::mat4 product = f.u_inverse_view_projection * f.u_view_projection;
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 4; ++r) EXPECT_NEAR(product[c][r], c == r ? 1.0f : 0.0f, 1e-4f) << c << "," << r;
+  EXPECT_NEAR(glm::distance(glm::dvec3(f.u_eye), camera.eye()), 0.0, 1e-5);
+  EXPECT_EQ(f.u_viewport, glm::vec2(640.0f, 480.0f));
+  const glm::dmat4 to_world = glm::inverse(glm::dmat4(camera.view()));
+  auto pixelY = [&](double up) {
+    const glm::vec4 clip = f.u_view_projection * glm::vec4(glm::vec3(to_world * glm::dvec4(0.0, up, -1.0, 1.0)), 1.0f);
+    return (clip.y / clip.w * 0.5 + 0.5) * 480.0;
+  };
+  EXPECT_NEAR(pixelY(f.u_pixel_angle) - pixelY(0.0), 1.0, 1e-3);
+  double nearest = 1e300, farthest = 0.0;
+  for (double x : {bounds.min.x, bounds.max.x})
+    for (double y : {bounds.min.y, bounds.max.y})
+      for (double z : {bounds.min.z, bounds.max.z}) {
+        nearest = std::min(nearest, glm::distance(glm::dvec3(x, y, z), camera.eye()));
+        farthest = std::max(farthest, glm::distance(glm::dvec3(x, y, z), camera.eye()));
+      }
+  EXPECT_NEAR(f.u_fade_range.x, nearest, 1e-4);
+  EXPECT_NEAR(f.u_fade_range.y, farthest, 1e-4);
+  EXPECT_NEAR(glm::length(f.u_light_dir), 1.0f, 1e-6f);
+  EXPECT_NEAR(glm::dot(glm::dvec3(f.u_light_dir), glm::normalize(s.light.direction)), 1.0, 1e-6);
+  EXPECT_EQ(f.u_paper, glm::vec3(0.9f, 0.85f, 0.8f));
+  EXPECT_FLOAT_EQ(f.u_mist.x, 0.6f);
+  EXPECT_EQ(f.u_water.x, std::numeric_limits<float>::lowest());  // no water
 }
 
 class Variants : public test::HeadlessGl {};

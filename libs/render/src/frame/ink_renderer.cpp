@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <sstream>
 
@@ -389,6 +390,18 @@ const Framebuffer& InkRenderer::render(const OrbitCamera& camera, int width, int
     glEnable(GL_SCISSOR_TEST);
     glScissor(region->x, region->y, region->z - region->x, region->w - region->y);
   }
+  // The uniforms every pass reads alike, in one block bound for the whole frame; uploaded
+  // only when they change (a cached layer's frame, a still camera with moving objects).
+  const gpu::FrameParams params = frameParams(in);
+  if (!frame_block_) {
+    frame_block_ = Buffer::create();
+    glNamedBufferStorage(frame_block_.id(), sizeof params, &params, GL_DYNAMIC_STORAGE_BIT);
+  } else if (!frame_params_ || std::memcmp(&*frame_params_, &params, sizeof params) != 0) {
+    glNamedBufferSubData(frame_block_.id(), 0, sizeof params, &params);
+  }
+  frame_params_ = params;
+  glBindBufferBase(GL_UNIFORM_BUFFER, kFrameBlockBinding, frame_block_.id());
+  const std::uint64_t uniforms_before = uniformsSet();
   FrameImages images;
   std::vector<PassSubmit> submit;
   for (Built& b : passes_) {
@@ -409,6 +422,7 @@ const Framebuffer& InkRenderer::render(const OrbitCamera& camera, int width, int
 
   FrameStats out;
   out.submit = std::move(submit);
+  out.uniforms_set = uniformsSet() - uniforms_before;
   out.redrawn = region ? static_cast<double>(region->z - region->x) * (region->w - region->y) / (width * height) : 1.0;
   if (timing && late_timing_) {
     timer_.endFrame();

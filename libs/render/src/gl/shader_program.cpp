@@ -171,6 +171,14 @@ Program& Program::operator=(Program&& other) noexcept {
   return *this;
 }
 
+namespace {
+std::uint64_t uniforms_set = 0;  // GL calls come from one thread
+}  // namespace
+
+std::uint64_t uniformsSet() {
+  return uniforms_set;
+}
+
 void Program::use() const {
   glUseProgram(id_);
 }
@@ -184,33 +192,43 @@ GLint Program::location(const char* name) const {
   return l;
 }
 void Program::set(const char* name, int v) const {
+  ++uniforms_set;
   glProgramUniform1i(id_, location(name), v);
 }
 void Program::set(const char* name, unsigned v) const {
+  ++uniforms_set;
   glProgramUniform1ui(id_, location(name), v);
 }
 void Program::set(const char* name, float v) const {
+  ++uniforms_set;
   glProgramUniform1f(id_, location(name), v);
 }
 void Program::set(const char* name, const glm::vec2& v) const {
+  ++uniforms_set;
   glProgramUniform2fv(id_, location(name), 1, &v.x);
 }
 void Program::set(const char* name, const glm::ivec2& v) const {
+  ++uniforms_set;
   glProgramUniform2iv(id_, location(name), 1, &v.x);
 }
 void Program::set(const char* name, const glm::ivec4& v) const {
+  ++uniforms_set;
   glProgramUniform4iv(id_, location(name), 1, &v.x);
 }
 void Program::set(const char* name, const glm::vec3& v) const {
+  ++uniforms_set;
   glProgramUniform3fv(id_, location(name), 1, glm::value_ptr(v));
 }
 void Program::set(const char* name, const glm::vec4& v) const {
+  ++uniforms_set;
   glProgramUniform4fv(id_, location(name), 1, glm::value_ptr(v));
 }
 void Program::set(const char* name, const glm::mat3& v) const {
+  ++uniforms_set;
   glProgramUniformMatrix3fv(id_, location(name), 1, GL_FALSE, glm::value_ptr(v));
 }
 void Program::set(const char* name, const glm::mat4& v) const {
+  ++uniforms_set;
   glProgramUniformMatrix4fv(id_, location(name), 1, GL_FALSE, glm::value_ptr(v));
 }
 

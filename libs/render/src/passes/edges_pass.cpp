@@ -58,8 +58,6 @@ class EdgesPass final : public RenderPass {
     }
     const scene::EdgeParams& e = in.scene.edges;
     const double px = in.height / 1024.0;
-    program_.set("u_paper", glm::vec3(in.scene.output.paper));
-    program_.set("u_near_far", glm::vec2(in.camera.near_plane, in.camera.far_plane));
     program_.set("u_strength", static_cast<float>(e.strength));
     program_.set("u_radius", static_cast<float>(e.radius * px));
     program_.set("u_samples", e.samples);

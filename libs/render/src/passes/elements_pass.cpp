@@ -169,8 +169,6 @@ class ElementsPass final : public RenderPass {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, entries_.id());
     glBindBuffer(GL_DRAW_INDIRECT_BUFFER, indirect_.id());
     draw_.use();
-    draw_.set("u_view_projection", in.viewProjection());
-    draw_.set("u_eye", glm::vec3(in.camera.eye()));
     draw_.set("u_right", pictureHorizontal(in));
     draw_.set("u_capacity", static_cast<unsigned>(capacity_));
     glDrawArraysIndirect(GL_TRIANGLE_STRIP, nullptr);
@@ -222,9 +220,6 @@ class ElementsPass final : public RenderPass {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, indirect_.id());
     expand_.use();
     const double per_1024 = in.height / 1024.0;
-    const glm::dvec2 fade = fadeRange(in);
-    expand_.set("u_view_projection", in.viewProjection());
-    expand_.set("u_eye", glm::vec3(in.camera.eye()));
     expand_.set("u_near", static_cast<float>(in.camera.near_plane));
     expand_.set("u_pixels_at_1",
                 static_cast<float>(0.5 * in.height / std::tan(glm::radians(in.camera.fov_y_deg) * 0.5)));
@@ -235,16 +230,7 @@ class ElementsPass final : public RenderPass {
     expand_.set("u_level_bands", glm::vec4(elements::kLevelBands[0], elements::kLevelBands[1], elements::kLevelBands[2],
                                            elements::kLevelBands[3]));
     expand_.set("u_dot_template", dot_template_);
-    expand_.set("u_fade", static_cast<float>(scene_.output.fade));
-    expand_.set("u_water_level", waterLevel(in));
-    expand_.set("u_fade_range", glm::vec2(fade));
-    const scene::Mist& mist = scene_.mist;
-    const double z0 = in.world_bounds.min.z, extent = std::max(in.world_bounds.size().z, 1e-9);
-    expand_.set("u_mist", mist.enabled() ? glm::vec3(static_cast<float>(mist.density),
-                                                     static_cast<float>(z0 + mist.height * extent),
-                                                     static_cast<float>(std::max(mist.softness * extent, 1e-9)))
-                                         : glm::vec3(0.0f));
-    expand_.set("u_mist_near", static_cast<float>(mist.near));
+    // The camera, the fade, the mist and the water's level: the frame's block.
     for (const Run& r : runs_) {
       const scene::Object& o = scene_.objects[r.object];
       const glm::dmat4 model = in.modelAt(r.object);

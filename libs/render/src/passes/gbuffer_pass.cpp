@@ -142,7 +142,6 @@ class GbufferPass final : public RenderPass {
     glDepthFunc(GL_LESS);
     glDisable(GL_CULL_FACE);
     glDisable(GL_BLEND);
-    const glm::mat4 view_projection = in.viewProjection();
     for (std::size_t i = 0; i < in.objects.size(); ++i) {
       const scene::Object& o = in.scene.objects[i];
       if ((which == Which::Static && o.animated()) || (which == Which::Animated && !o.animated())) continue;
@@ -152,12 +151,10 @@ class GbufferPass final : public RenderPass {
       p.use();
       p.set("u_model", glm::mat4(model));
       p.set("u_normal_matrix", glm::mat3(glm::transpose(glm::inverse(glm::dmat3(model)))));
-      p.set("u_view_projection", view_projection);
       p.set("u_object_id", static_cast<float>(i + 1) / 255.0f);
       if (velocity_) {
         p.set("u_previous_model_view_projection",
               glm::mat4(in.previousViewProjection() * in.modelAt(i, in.time - in.scene.motion_blur.interval)));
-        p.set("u_viewport", glm::vec2(in.width, in.height));
       }
       if (o.lines.enabled && o.lines.curvature == scene::CurvatureSource::Screen) {
         p.set("u_feature_size", static_cast<float>(g.feature_size));

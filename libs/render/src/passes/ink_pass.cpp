@@ -9,7 +9,6 @@
 
 #include <glm/gtc/matrix_access.hpp>
 
-#include "frame/atmosphere.h"
 #include "shanshui/noise/value_noise.h"
 #include "shanshui/render/gl_check.h"
 #include "shanshui/render/ink_object_params.h"
@@ -230,14 +229,7 @@ class InkPass final : public RenderPass {
                                glm::ivec4(whole.z, whole.w, whole.z, whole.w));
         if (!compute_) glScissor(r.x - grow, r.y - grow, r.z - r.x + 2 * grow, r.w - r.y + 2 * grow);
       }
-      lines_->use();
-      setSurfaceUniforms(*lines_, in);
-      if (in.scene.usesWater()) setWaterUniforms(*lines_, in);
-      if (scene_.usesSuggestiveContours()) {
-        lines_->set("u_view_projection",
-                    glm::mat4(glm::dmat4(in.camera.projection(static_cast<double>(in.width) / in.height)) *
-                              glm::dmat4(in.camera.view())));
-      }
+      lines_->use();  // its uniforms: the frame's block (frame_params.glsl) and the objects'
       if (compute_) {
         dispatchPixels(*lines_, line_rect);
       } else {
@@ -281,11 +273,7 @@ class InkPass final : public RenderPass {
       if (!ink) continue;
       ink->use();
       if (images.elements) ink->set("u_element_colour", elementColour(in.scene));
-      setSurfaceUniforms(*ink, in);
-      ink->set("u_light_dir", glm::vec3(glm::normalize(in.scene.light.direction)));
-      ink->set("u_paper", glm::vec3(in.scene.output.paper));
       if (grainHere(in.scene)) ink->set("u_canvas_contrast", static_cast<float>(in.scene.canvas.contrast));
-      if (in.scene.usesWater()) setWaterUniforms(*ink, in);
       if (compute_) {
         dispatchPixels(*ink, rect);
       } else if (classes_) {
@@ -310,54 +298,6 @@ class InkPass final : public RenderPass {
   const Framebuffer* target() const override { return &target_; }
 
  private:
-  // What ink_surface.glsl reads: the camera, the distance fade and the mist.
-  static void setSurfaceUniforms(const Program& p, const FrameInputs& in) {
-    const double aspect = static_cast<double>(in.width) / in.height;
-    const OrbitCamera& camera = in.camera;
-    p.set("u_inverse_view_projection",
-          glm::mat4(glm::inverse(glm::dmat4(camera.projection(aspect)) * glm::dmat4(camera.view()))));
-    p.set("u_eye", glm::vec3(camera.eye()));
-    p.set("u_near_far", glm::vec2(static_cast<float>(camera.near_plane), static_cast<float>(camera.far_plane)));
-    p.set("u_fade", static_cast<float>(in.scene.output.fade));
-    // Aerial perspective over the distances the scene spans from this eye: nothing at its
-    // nearest corner, full at its farthest, so the far third of the land is the lighter
-    // whatever the view (the sphere's ±radius left most of the land in the ramp's flat start).
-    double nearest = 1e300, farthest = 0.0;
-    for (int c = 0; c < 8; ++c) {
-      const double d = glm::length(in.world_bounds.corner(c) - camera.eye());
-      nearest = std::min(nearest, d);
-      farthest = std::max(farthest, d);
-    }
-    p.set("u_fade_range",
-          glm::vec2(static_cast<float>(nearest), static_cast<float>(std::max(farthest, nearest + 1e-6))));
-    if (in.scene.mist.enabled()) {
-      // Heights as fractions of the scene's vertical extent; noise cells about a tenth of
-      // the scene's horizontal size.
-      const scene::Mist& m = in.scene.mist;
-      const double z0 = in.world_bounds.min.z, extent = std::max(in.world_bounds.size().z, 1e-9);
-      p.set("u_mist", glm::vec4(static_cast<float>(m.density), static_cast<float>(z0 + m.height * extent),
-                                static_cast<float>(m.softness * extent), static_cast<float>(m.roughness * extent)));
-      const double size = std::max(std::max(in.world_bounds.size().x, in.world_bounds.size().y), 1e-9);
-      p.set("u_mist_noise", static_cast<float>(2.0 / size));
-      p.set("u_mist_near", static_cast<float>(m.near));
-    }
-  }
-
-  // The water's level and its waves' cells in world units, the picture's horizontal on it,
-  // and the bank line's width in pixels.
-  static void setWaterUniforms(const Program& p, const FrameInputs& in) {
-    const scene::Water& w = in.scene.water;
-    const double side = std::max({in.world_bounds.size().x, in.world_bounds.size().y, 1e-9});
-    p.set("u_water", glm::vec4(waterLevel(in), static_cast<float>(w.spacing * side), static_cast<float>(w.waves),
-                               static_cast<float>(w.ink)));
-    p.set("u_water_right", glm::vec2(pictureHorizontal(in)));
-    p.set("u_water_extent",
-          glm::vec4(in.world_bounds.min.x, in.world_bounds.min.y, in.world_bounds.max.x, in.world_bounds.max.y));
-    p.set("u_water_bank", static_cast<float>(w.bank * in.height / 1024.0));
-    p.set("u_pixel_angle",
-          static_cast<float>(2.0 * std::tan(glm::radians(in.camera.fov_y_deg) * 0.5) / std::max(in.height, 1)));
-  }
-
   // The elements' ink colour: the line colour of the first object that grows them.
   static glm::vec3 elementColour(const scene::Scene& s) {
     for (const scene::Object& o : s.objects)

@@ -97,7 +97,6 @@ class PigmentPass final : public RenderPass {
     glBindTextureUnit(0, images.picture->id());
     glBindTextureUnit(1, images.gbuffer->colour(1).id());
     glBindTextureUnit(2, images.gbuffer->depth().id());
-    program_.set("u_paper", glm::vec3(in.scene.output.paper));
     shadePixels(program_, compute_, target_, {GL_RGBA8}, in.drawn());
     SHANSHUI_GL_CHECK("pigment pass");
     images.picture = &target_.colour();

@@ -83,9 +83,6 @@ class ShadowPass final : public RenderPass {
     glBindTextureUnit(0, images.picture->id());
     glBindTextureUnit(1, images.gbuffer->depth().id());
     glBindTextureUnit(2, map_.depth().id());
-    const double aspect = static_cast<double>(in.width) / in.height;
-    wash_.set("u_inverse_view_projection",
-              glm::mat4(glm::inverse(glm::dmat4(in.camera.projection(aspect)) * glm::dmat4(in.camera.view()))));
     wash_.set("u_light_view_projection", glm::mat4(light));
     const scene::ShadowParams& sh = in.scene.shadow;
     wash_.set("u_bias", static_cast<float>(sh.bias / sh.resolution));

@@ -88,7 +88,6 @@ class SubstratePass final : public RenderPass {
     glBindTextureUnit(2, images.gbuffer->colour(1).id());
     glBindTextureUnit(3, images.gbuffer->depth().id());
     const scene::SubstrateParams& p = in.scene.substrate;
-    program_.set("u_paper", glm::vec3(in.scene.output.paper));
     const glm::dvec3 light = glm::dmat3(in.camera.view()) * glm::normalize(in.scene.light.direction);
     program_.set("u_light", glm::vec3(light));
     program_.set("u_roughness", static_cast<float>(p.roughness));

@@ -13,6 +13,7 @@
 
 #include "shanshui/render/camera.h"
 #include "shanshui/render/canvas_pass.h"
+#include "shanshui/render/frame_params.h"
 #include "shanshui/render/gl_resources.h"
 #include "shanshui/render/gpu_mesh.h"
 #include "shanshui/render/gpu_timer.h"
@@ -38,6 +39,9 @@ struct FrameStats {
   std::vector<PassTime> passes;    //!< passes that ran, in order, with GPU milliseconds
   double redrawn = 1.0;            //!< share of the picture the passes drew (less when only animated objects changed)
   std::vector<PassSubmit> submit;  //!< each built pass's run(), in list order; empty when cached
+  //! Uniform values the passes set one call at a time (Program::set), besides the frame's
+  //! block; 0 when cached.
+  std::uint64_t uniforms_set = 0;
 };
 
 //! The camera of a scene for one view: orbit parameters from the scene (or a path key),
@@ -194,6 +198,8 @@ class InkRenderer {
   std::uint64_t static_key_ = 0;           //!< FrameInputs::static_key: counts the requests seen
   std::optional<glm::ivec4> last_moving_;  //!< the animated objects' region in the last frame
   glm::dmat4 last_inverse_view_projection_{1.0};
+  Buffer frame_block_;                            //!< the frame's uniform block (frame_params.glsl)
+  std::optional<gpu::FrameParams> frame_params_;  //!< what frame_block_ holds
 };
 
 }  // namespace shanshui::render

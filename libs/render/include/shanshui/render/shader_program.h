@@ -1,6 +1,7 @@
 // Compiling and linking GLSL programs from shaders/ with compile-time variants.
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <utility>
 #include <vector>
@@ -9,6 +10,10 @@
 #include <glm/glm.hpp>
 
 namespace shanshui::render {
+
+//! How many uniform values Program::set has set in this process (the benchmark reports them
+//! per frame: each is a call into the driver, which the frame's block saves).
+std::uint64_t uniformsSet();
 
 //! GLSL after include expansion: `#include "file.glsl"` is inlined and `#line` directives
 //! are inserted so that the driver's line numbers can be mapped back to files. Source
