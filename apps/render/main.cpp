@@ -219,8 +219,8 @@ void runBenchmark(const std::string& input, std::vector<std::string> sets, const
   std::printf("  %-18s wall median %7.3f ms  p90 %8.3f ms (%.0f fps, %zu frames in flight)\n", "frame",
               quantile(frame_ms, 0.5), quantile(frame_ms, 0.9), fps, kFramesInFlight);
   std::printf("  %-18s CPU   mean %8.3f ms (the process, every thread)\n", "frame", frame_cpu_ms);
-  std::printf("  %-18s %.0f a frame, one call each (the rest in the frame's uniform block)\n", "uniforms set",
-              quantile(uniforms, 0.5));
+  std::printf("  %-18s %.0f a frame sent to the driver (not: the frame's block, values a program holds)\n",
+              "uniforms set", quantile(uniforms, 0.5));
   if (!stats_path.empty()) outputs.stage(stats_path, tools::jsonText(out, stats_path));
   outputs.commit();
 }

@@ -192,6 +192,37 @@ TEST_F(Headless, KeptUniformLocationsAreTheDriversOwn) {
   for (const std::string& n : names) EXPECT_EQ(q.location(n.c_str()), glGetUniformLocation(q.id(), n.c_str())) << n;
 }
 
+// A value the program already holds is not sent again: the count of values sent grows by
+// one per change (none for a name that is not active), the driver holds the last value set,
+// and a moved program keeps what it holds.
+TEST_F(Headless, AUniformIsSentOnlyWhenItsValueChanges) {
+  Program p({"fullscreen.vert", "ink.frag"}, {"LINES", "SHADING", "CANVAS", "ELEMENTS", "SINGLE_OBJECT"});
+  ASSERT_GE(p.location("u_canvas_contrast"), 0);
+  ASSERT_GE(p.location("u_element_colour"), 0);
+  auto held = [](const Program& q, const char* name, int n) {
+    float v[3] = {0.0f, 0.0f, 0.0f};
+    glGetUniformfv(q.id(), q.location(name), v);
+    return std::vector<float>(v, v + n);
+  };
+  const std::uint64_t start = uniformsSet();
+  p.set("u_canvas_contrast", 0.25f);
+  p.set("u_canvas_contrast", 0.25f);
+  EXPECT_EQ(uniformsSet() - start, 1u);
+  p.set("u_canvas_contrast", 0.5f);
+  p.set("u_element_colour", glm::vec3(0.1f, 0.2f, 0.3f));
+  p.set("u_element_colour", glm::vec3(0.1f, 0.2f, 0.3f));
+  p.set("u_not_there", 1.0f);
+  EXPECT_EQ(uniformsSet() - start, 3u);
+  EXPECT_EQ(held(p, "u_canvas_contrast", 1), std::vector<float>{0.5f});
+  EXPECT_EQ(held(p, "u_element_colour", 3), (std::vector<float>{0.1f, 0.2f, 0.3f}));
+  const Program q = std::move(p);
+  q.set("u_canvas_contrast", 0.5f);
+  EXPECT_EQ(uniformsSet() - start, 3u);
+  q.set("u_element_colour", glm::vec3(0.1f, 0.2f, 0.4f));
+  EXPECT_EQ(uniformsSet() - start, 4u);
+  EXPECT_EQ(held(q, "u_element_colour", 3), (std::vector<float>{0.1f, 0.2f, 0.4f}));
+}
+
 TEST_F(Headless, DriverErrorsAreMappedToFileAndLine) {
   // Preprocess a real shader, then break it at a known line of a known file.
   PreprocessedShader pre = preprocessShader("mesh_preview.frag", {"SOME_VARIANT", "LEVEL=3"});

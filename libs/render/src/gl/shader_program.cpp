@@ -4,6 +4,7 @@
 #include <cstring>
 #include <regex>
 #include <sstream>
+#include <type_traits>
 
 #include <glm/gtc/type_ptr.hpp>
 
@@ -155,18 +156,18 @@ Program::~Program() {
   if (id_ && !memoryRanOut()) glDeleteProgram(id_);  // a driver out of memory may hang: leave it
 }
 
-Program::Program(Program&& other) noexcept : id_(other.id_), locations_(std::move(other.locations_)) {
+Program::Program(Program&& other) noexcept : id_(other.id_), uniforms_(std::move(other.uniforms_)) {
   other.id_ = 0;
-  other.locations_.clear();
+  other.uniforms_.clear();
 }
 
 Program& Program::operator=(Program&& other) noexcept {
   if (this != &other) {
     if (id_) glDeleteProgram(id_);
     id_ = other.id_;
-    locations_ = std::move(other.locations_);
+    uniforms_ = std::move(other.uniforms_);
     other.id_ = 0;
-    other.locations_.clear();
+    other.uniforms_.clear();
   }
   return *this;
 }
@@ -182,54 +183,67 @@ std::uint64_t uniformsSet() {
 void Program::use() const {
   glUseProgram(id_);
 }
-GLint Program::location(const char* name) const {
-  const auto at = std::lower_bound(locations_.begin(), locations_.end(), name, [](const auto& entry, const char* n) {
-    return std::strcmp(entry.first.c_str(), n) < 0;
-  });
-  if (at != locations_.end() && at->first == name) return at->second;
-  const GLint l = glGetUniformLocation(id_, name);
-  locations_.insert(at, {name, l});
-  return l;
+Program::Uniform& Program::uniform(const char* name) const {
+  const auto at = std::lower_bound(uniforms_.begin(), uniforms_.end(), name,
+                                   [](const Uniform& u, const char* n) { return std::strcmp(u.name.c_str(), n) < 0; });
+  if (at != uniforms_.end() && at->name == name) return *at;
+  return *uniforms_.insert(at, Uniform{name, glGetUniformLocation(id_, name)});
 }
-void Program::set(const char* name, int v) const {
+
+GLint Program::location(const char* name) const {
+  return uniform(name).location;
+}
+
+template <typename T>
+bool Program::changes(Uniform& u, const T& v) const {
+  static_assert(sizeof(T) <= sizeof(u.value) && std::is_trivially_copyable_v<T>);
+  if (u.location < 0) return false;  // not active: the driver would ignore it
+  if (u.size == sizeof(T) && std::memcmp(u.value.data(), &v, sizeof(T)) == 0) return false;
+  std::memcpy(u.value.data(), &v, sizeof(T));
+  u.size = sizeof(T);
   ++uniforms_set;
-  glProgramUniform1i(id_, location(name), v);
+  return true;
+}
+
+void Program::set(const char* name, int v) const {
+  Uniform& u = uniform(name);
+  if (changes(u, v)) glProgramUniform1i(id_, u.location, v);
 }
 void Program::set(const char* name, unsigned v) const {
-  ++uniforms_set;
-  glProgramUniform1ui(id_, location(name), v);
+  Uniform& u = uniform(name);
+  if (changes(u, v)) glProgramUniform1ui(id_, u.location, v);
 }
 void Program::set(const char* name, float v) const {
-  ++uniforms_set;
-  glProgramUniform1f(id_, location(name), v);
+  Uniform& u = uniform(name);
+  if (changes(u, v)) glProgramUniform1f(id_, u.location, v);
 }
 void Program::set(const char* name, const glm::vec2& v) const {
-  ++uniforms_set;
-  glProgramUniform2fv(id_, location(name), 1, &v.x);
+  Uniform& u = uniform(name);
+  if (changes(u, v)) glProgramUniform2fv(id_, u.location, 1, &v.x);
 }
 void Program::set(const char* name, const glm::ivec2& v) const {
-  ++uniforms_set;
-  glProgramUniform2iv(id_, location(name), 1, &v.x);
+  Uniform& u = uniform(name);
+  if (changes(u, v)) glProgramUniform2iv(id_, u.location, 1, &v.x);
 }
 void Program::set(const char* name, const glm::ivec4& v) const {
-  ++uniforms_set;
-  glProgramUniform4iv(id_, location(name), 1, &v.x);
+  Uniform& u = uniform(name);
+  if (changes(u, v)) glProgramUniform4iv(id_, u.location, 1, &v.x);
 }
 void Program::set(const char* name, const glm::vec3& v) const {
-  ++uniforms_set;
-  glProgramUniform3fv(id_, location(name), 1, glm::value_ptr(v));
+  Uniform& u = uniform(name);
+  if (changes(u, v)) glProgramUniform3fv(id_, u.location, 1, glm::value_ptr(v));
 }
 void Program::set(const char* name, const glm::vec4& v) const {
-  ++uniforms_set;
-  glProgramUniform4fv(id_, location(name), 1, glm::value_ptr(v));
+  Uniform& u = uniform(name);
+  if (changes(u, v)) glProgramUniform4fv(id_, u.location, 1, glm::value_ptr(v));
 }
 void Program::set(const char* name, const glm::mat3& v) const {
-  ++uniforms_set;
-  glProgramUniformMatrix3fv(id_, location(name), 1, GL_FALSE, glm::value_ptr(v));
+  Uniform& u = uniform(name);
+  if (changes(u, v)) glProgramUniformMatrix3fv(id_, u.location, 1, GL_FALSE, glm::value_ptr(v));
 }
 void Program::set(const char* name, const glm::mat4& v) const {
-  ++uniforms_set;
-  glProgramUniformMatrix4fv(id_, location(name), 1, GL_FALSE, glm::value_ptr(v));
+  Uniform& u = uniform(name);
+  if (changes(u, v)) glProgramUniformMatrix4fv(id_, u.location, 1, GL_FALSE, glm::value_ptr(v));
 }
 
 }  // namespace shanshui::render

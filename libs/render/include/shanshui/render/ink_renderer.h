@@ -39,8 +39,8 @@ struct FrameStats {
   std::vector<PassTime> passes;    //!< passes that ran, in order, with GPU milliseconds
   double redrawn = 1.0;            //!< share of the picture the passes drew (less when only animated objects changed)
   std::vector<PassSubmit> submit;  //!< each built pass's run(), in list order; empty when cached
-  //! Uniform values the passes set one call at a time (Program::set), besides the frame's
-  //! block; 0 when cached.
+  //! Uniform values the passes sent to the driver one call at a time (Program::set: a value
+  //! the program already holds is not sent), besides the frame's block; 0 when cached.
   std::uint64_t uniforms_set = 0;
 };
 

@@ -1,6 +1,7 @@
 // Compiling and linking GLSL programs from shaders/ with compile-time variants.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <string>
 #include <utility>
@@ -11,8 +12,9 @@
 
 namespace shanshui::render {
 
-//! How many uniform values Program::set has set in this process (the benchmark reports them
-//! per frame: each is a call into the driver, which the frame's block saves).
+//! How many uniform values Program::set has sent to the driver in this process (the
+//! benchmark reports them per frame: each is a call into the driver). A value a program
+//! already holds is not sent again, and does not count.
 std::uint64_t uniformsSet();
 
 //! GLSL after include expansion: `#include "file.glsl"` is inlined and `#line` directives
@@ -64,12 +66,25 @@ class Program {
   GLint location(const char* name) const;
 
  private:
+  //! A uniform asked for by name: its location (-1: not active) and the value last sent.
+  struct Uniform {
+    std::string name;
+    GLint location = -1;
+    std::size_t size = 0;  //!< bytes of `value` in use; 0 before the first set
+    std::array<unsigned char, sizeof(glm::mat4)> value{};
+  };
+  Uniform& uniform(const char* name) const;
+  //! Whether `v` must go to the driver: a location that is active and a value other than the
+  //! one it holds (then kept as held).
+  template <typename T>
+  bool changes(Uniform& u, const T& v) const;
+
   //! Compiles each file as the given stage and links them.
   void build(const std::vector<std::pair<std::string, GLenum>>& stages, const std::vector<std::string>& defines);
 
   GLuint id_ = 0;
-  //! Names asked for and their locations (-1: not active), sorted by name.
-  mutable std::vector<std::pair<std::string, GLint>> locations_;
+  //! The uniforms asked for, sorted by name.
+  mutable std::vector<Uniform> uniforms_;
 };
 
 }  // namespace shanshui::render
