@@ -3,7 +3,9 @@
 // compared with the last frame's. Before, the request was text built every frame: the
 // camera formatted into a string and the scene's parameter hash (a walk over every key of
 // every object), copied into each pass's inputs. Both measured side by side in one run, on
-// the default sample (one object) and the painting (ten), real time.
+// the default sample (one object) and the painting (ten), real time. And Program::set on a
+// value the program already holds (nothing goes to the driver) against a value that
+// changes every call (one driver call each).
 //   build/bin/bench_frame_cpu
 #include <filesystem>
 #include <memory>
@@ -14,6 +16,7 @@
 
 #include "shanshui/render/gl_context.h"
 #include "shanshui/render/ink_renderer.h"
+#include "shanshui/render/shader_program.h"
 #include "shanshui/scene/scene.h"
 #include "shanshui/scene/scene_assets.h"
 
@@ -61,6 +64,21 @@ void BM_RequestAsText(benchmark::State& state, const char* name) {
   }
 }
 
+// Two uniforms of the ink pass's program set by name, a float and a vec3: the same values
+// every time, or values that alternate.
+void BM_SetUniforms(benchmark::State& state, bool alternate) {
+  context();
+  const render::Program p({"fullscreen.vert", "ink.frag"}, {"LINES", "SHADING", "CANVAS", "ELEMENTS", "SINGLE_OBJECT"});
+  float v = 0.25f;
+  for (auto _ : state) {
+    if (alternate) v = v == 0.25f ? 0.5f : 0.25f;
+    p.set("u_canvas_contrast", v);
+    p.set("u_element_colour", glm::vec3(v, 0.2f, 0.3f));
+  }
+}
+
+BENCHMARK_CAPTURE(BM_SetUniforms, values_kept, false)->Unit(benchmark::kNanosecond);
+BENCHMARK_CAPTURE(BM_SetUniforms, values_sent, true)->Unit(benchmark::kNanosecond);
 BENCHMARK_CAPTURE(BM_CachedFrame, default_sample, "default")->Unit(benchmark::kMicrosecond);
 BENCHMARK_CAPTURE(BM_RequestAsText, default_sample, "default")->Unit(benchmark::kMicrosecond);
 BENCHMARK_CAPTURE(BM_CachedFrame, painting, "painting")->Unit(benchmark::kMicrosecond);
