@@ -90,21 +90,43 @@ float planarSlopeWrinkle(ObjectParams o, ivec2 p, vec3 P, vec3 n) {
 // Texture marks at P of object o (normal n, curvature k): the lattice lies on the object's
 // horizontal plane (model x, y), the marks run down the fall line turned by marks_angle, and
 // their density grows from marks_lit of it on lit slopes to all of it in shadow and near
-// ridges; flat ground stays bare.
-float objectMarks(ObjectParams o, ivec2 p, vec3 P, vec3 n, float k) {
+// ridges; flat ground stays bare. The broad wet strokes (wash_*) lie on a lattice of their
+// own on the picture plane of the scene's view, dense where the slope turns from the light
+// (wash_lit of that on lit slopes) and where the atmosphere leaves the land (`here`).
+float objectMarks(ObjectParams o, ivec2 p, vec3 P, vec3 n, float k, float here) {
   vec3 down = vec3(0.0, 0.0, -1.0) + n.z * n;
   float steep = smoothstep(0.2, 0.45, length(down));
   float shade = 1.0 - max(dot(n, u_light_dir), 0.0);
-  float density = o.marks_density * steep * mix(o.marks_lit, 1.0, shade) * (1.0 + o.marks_ridge * clamp(abs(k), 0.0, 1.0));
-  if (density <= 0.0) return 0.0;
-  vec3 dpx = tangentStep(p, vec2(1.0, 0.0), P, n), dpy = tangentStep(p, vec2(0.0, 1.0), P, n);
-  vec3 mx = o.world_to_model_x.xyz, my = o.world_to_model_y.xyz;
-  vec2 uv = vec2(dot(mx, P) + o.world_to_model_x.w, dot(my, P) + o.world_to_model_y.w);
-  vec2 fall = vec2(dot(mx, down), dot(my, down));
+  float density = o.marks_style == 0u ? 0.0
+                  : o.marks_density * steep * mix(o.marks_lit, 1.0, shade) *
+                        (1.0 + o.marks_ridge * clamp(abs(k), 0.0, 1.0));
+  // Wet strokes thin out with what the atmosphere leaves of the land (here), as a painter
+  // leaves the mist at a range's foot unbrushed: none where under a twentieth is left.
+  float wash = o.wash_density * smoothstep(0.06, 0.25, length(down)) *
+               mix(o.wash_lit, 1.0, smoothstep(0.2, 0.6, shade)) * smoothstep(0.05, 0.4, here);
+  if (density <= 0.0 && wash <= 0.0) return 0.0;
   float c = cos(o.marks_angle), s = sin(o.marks_angle);
-  fall = vec2(c * fall.x - s * fall.y, s * fall.x + c * fall.y);
-  return o.marks_ink * textureMarks(uv, vec2(dot(mx, dpx), dot(my, dpx)), vec2(dot(mx, dpy), dot(my, dpy)), fall,
-                                    o.marks_spacing_px, min(density, 1.0), o.marks_style, o.marks_seed);
+  mat2 turn = mat2(c, s, -s, c);
+  float ink = 0.0;
+  if (density > 0.0) {
+    // On the object's horizontal plane, cells sized by the pixel's footprint there.
+    vec3 dpx = tangentStep(p, vec2(1.0, 0.0), P, n), dpy = tangentStep(p, vec2(0.0, 1.0), P, n);
+    vec3 mx = o.world_to_model_x.xyz, my = o.world_to_model_y.xyz;
+    vec2 uv = vec2(dot(mx, P) + o.world_to_model_x.w, dot(my, P) + o.world_to_model_y.w);
+    float scale = marksScale(vec2(dot(mx, dpx), dot(my, dpx)), vec2(dot(mx, dpy), dot(my, dpy)), o.marks_spacing_px);
+    ink = o.marks_ink * textureMarks(uv, scale, turn * vec2(dot(mx, down), dot(my, down)), min(density, 1.0),
+                                     o.marks_style, o.marks_seed);
+  }
+  if (wash > 0.0) {
+    // On the picture plane of the scene's view, down the fall line as it looks there, cells
+    // sized by a pixel's footprint at the point's distance (the plane faces the viewer).
+    vec3 r = u_brush_right, u = u_brush_up;
+    float scale = log2(max(o.wash_spacing_px * u_pixel_angle * distance(P, u_eye), 1e-30));
+    ink += (1.0 - ink) * o.wash_ink *
+           textureMarks(vec2(dot(r, P), dot(u, P)), scale, turn * vec2(dot(r, down), dot(u, down)), min(wash, 1.0),
+                        kMarksWash, o.marks_seed ^ 0x5bd1e995u);
+  }
+  return ink;
 }
 #endif
 
@@ -255,7 +277,8 @@ vec3 landColour(ObjectParams o, ivec2 p, float depth, vec4 surface, vec3 positio
   // take it back towards the paper; strokes carry their own.
   vec3 colour = mix(u_paper * o.bg_color * tone, o.line_color, line_weight);
 #ifdef MARKS
-  if (o.marks_style != 0u) colour = mix(colour, o.line_color, objectMarks(o, p, position, n, k));
+  if (o.marks_style != 0u || o.wash_density > 0.0)
+    colour = mix(colour, o.line_color, objectMarks(o, p, position, n, k, here));
 #endif
   colour = mix(u_paper, colour, here);
 #ifdef STROKES

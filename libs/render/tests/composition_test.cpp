@@ -91,6 +91,78 @@ TEST_F(Composition, MarksAreDenserInShadowThanOnLitSlopesAndAbsentOnFlatGround) 
   EXPECT_EQ(flat, 0.0) << "flat ground stays bare";
 }
 
+// Ink on the slope facing the camera (world y below 85) of the ridge seen from −y, with the
+// light from `light`: the share of its pixels with ink, and the mean lengths of the inked
+// runs along the picture's rows and columns.
+struct SlopeInk {
+  double share = 0.0, run_x = 0.0, run_y = 0.0;
+  int pixels = 0, flat_inked = 0;
+};
+
+SlopeInk wetStrokesOnTheNearSlope(const json& marks, const glm::dvec3& light) {
+  const scene::Scene s = sceneOf(
+      json::array({plainObject({{"marks", marks}})}),
+      {{"light", {{"direction", {light.x, light.y, light.z}}}}, {"camera", {{"azimuth", -90.0}, {"elevation", 35.0}}}});
+  InkRenderer r(s, load(s, {ridge()}));
+  const OrbitCamera cam = r.camera({-90, 35, 1.3}, static_cast<double>(kWidth) / kHeight);
+  const image::Image c = r.render(cam, kWidth, kHeight).colour(0).download(3);
+  const image::Image pos = r.worldPositions();
+  std::vector<char> inked(static_cast<std::size_t>(kWidth) * kHeight, 0);
+  SlopeInk out;
+  int inked_pixels = 0;
+  for (int y = 0; y < kHeight; ++y)
+    for (int x = 0; x < kWidth; ++x) {
+      if (pos.at(x, y, 3) < 0.5f) continue;
+      const bool ink = inkAt(c, x, y, s) > 0.1;
+      const double wy = pos.at(x, y, 1);
+      if (std::abs(wy - 100.0) < 8.0) out.flat_inked += ink;
+      if (wy >= 85.0) continue;
+      ++out.pixels;
+      inked_pixels += ink;
+      inked[static_cast<std::size_t>(y) * kWidth + x] = ink;
+    }
+  out.share = out.pixels > 0 ? static_cast<double>(inked_pixels) / out.pixels : 0.0;
+  // Mean run length of inked pixels along rows, then along columns.
+  auto meanRun = [&](bool rows) {
+    int runs = 0, total = 0;
+    const int outer = rows ? kHeight : kWidth, inner = rows ? kWidth : kHeight;
+    for (int a = 0; a < outer; ++a) {
+      int run = 0;
+      for (int b = 0; b <= inner; ++b) {
+        const bool on =
+            b < inner &&
+            inked[rows ? static_cast<std::size_t>(a) * kWidth + b : static_cast<std::size_t>(b) * kWidth + a];
+        if (on) {
+          ++run;
+        } else if (run > 0) {
+          ++runs, total += run, run = 0;
+        }
+      }
+    }
+    return runs > 0 ? static_cast<double>(total) / runs : 0.0;
+  };
+  out.run_x = meanRun(true);
+  out.run_y = meanRun(false);
+  return out;
+}
+
+TEST_F(Composition, WetStrokesDarkenTheShadowedSlopeRunningDownThePictureAndLeaveFlatGroundBare) {
+  const json marks = {{"style", "none"}, {"wash", 1.0}, {"wash_size", 120}, {"wash_ink", 0.8}, {"wash_lit", 0.1}};
+  // The slope facing the camera (−y) in shadow (light from +y), then lit (light from −y).
+  const SlopeInk shadow = wetStrokesOnTheNearSlope(marks, {0.0, 1.0, 0.6});
+  const SlopeInk lit = wetStrokesOnTheNearSlope(marks, {0.0, -1.0, 0.6});
+  ASSERT_GT(shadow.pixels, 3000);
+  EXPECT_GT(shadow.share, 0.08) << "wet strokes on the shadowed slope: " << shadow.share;
+  EXPECT_GT(shadow.share, 3.0 * lit.share) << "shadow " << shadow.share << ", lit " << lit.share;
+  // Laid on the picture plane down the fall line: on a slope facing the viewer they run
+  // down the picture, so an inked run is longer down a column than along a row.
+  EXPECT_GT(shadow.run_y, 1.8 * shadow.run_x) << "down " << shadow.run_y << ", across " << shadow.run_x;
+  EXPECT_EQ(shadow.flat_inked, 0) << "the flat top stays bare";
+  // The fine marks alone (no wash) leave the slope far lighter: the strokes are the wash's.
+  const SlopeInk none = wetStrokesOnTheNearSlope({{"style", "hemp"}, {"density", 0.0}}, {0.0, 1.0, 0.6});
+  EXPECT_LT(none.share, 0.01);
+}
+
 TEST_F(Composition, FarRangesCarryLessInkThanNearOnes) {
   // Three copies of the ridge, 0, 600 and 1500 units away along +y, the camera to the south;
   // the mist lies between them and spares the nearest.
@@ -208,6 +280,11 @@ TEST_F(Composition, ASceneWithoutMarksOrGroundedObjectsBuildsNothingForThem) {
       sceneOf(json::array({plainObject({{"shading", {{"enabled", true}}}, {"marks", {{"style", "axe"}}}})}));
   InkRenderer b(marked, load(marked, {ridge()}));
   EXPECT_NE(b.variants().at("ink").front().find("MARKS"), std::string::npos);
+  // Wet strokes alone build the marks' code too.
+  const scene::Scene washed = sceneOf(
+      json::array({plainObject({{"shading", {{"enabled", true}}}, {"marks", {{"style", "none"}, {"wash", 0.5}}}})}));
+  InkRenderer w(washed, load(washed, {ridge()}));
+  EXPECT_NE(w.variants().at("ink").front().find("MARKS"), std::string::npos);
 }
 
 TEST_F(Composition, AGroundedHutIsDrawnStandingWhereItWasPlaced) {

@@ -25,7 +25,8 @@ glm::dmat4 Transform::matrix() const {
 }
 
 bool Scene::usesMarks() const {
-  return std::any_of(objects.begin(), objects.end(), [](const Object& o) { return o.marks.enabled(); });
+  return std::any_of(objects.begin(), objects.end(),
+                     [](const Object& o) { return o.marks.enabled() || o.marks.washes(); });
 }
 
 bool Scene::isComposition() const {

@@ -264,6 +264,16 @@ void describe(V& v, MarksParams& m) {
            m.ridge, {0, 8});
   v.number({"angle", "turn from the fall line: 90 lays the marks along the contour arcs", Effect::Uniform, "degrees"},
            m.angle_deg, {-360, 360});
+  v.number({"wash",
+            "broad wet strokes on the shadowed slopes, beside the marks: share of their lattice's cells holding "
+            "one in full shadow; 0: none (no code)",
+            kRebuild},
+           m.wash, kUnit);
+  v.number({"wash_size", "a wet stroke's length (its lattice follows it)", Effect::Uniform, "pixels at 1024 high"},
+           m.wash_size, {8, 1024});
+  v.number({"wash_ink", "a wet stroke's darkness at its head (it pales towards its tail), share of the line colour"},
+           m.wash_ink, kUnit);
+  v.number({"wash_lit", "wet strokes' density on fully lit slopes relative to shadowed ones"}, m.wash_lit, kUnit);
 }
 
 template <typename V>

@@ -267,12 +267,13 @@ TEST(Scene, RebuildKeysAreTheOnesThatChangeVariantsOrFiles) {
       "objects.*.trees.grove_radius", "objects.*.trees.kinds", "objects.*.trees.seed", "objects.*.dots.enabled",
       "objects.*.dots.density", "objects.*.dots.cluster", "objects.*.dots.spread", "objects.*.dots.at_trees",
       "objects.*.dots.seed", "objects.*.ground.on", "objects.*.marks.style",
-      "shadow.pigment.name",  // builds the shadow pass
-      "substrate.enabled",    // builds the substrate pass
-      "substrate.texture",    // a file
-      "edges.enabled",        // builds the edges pass
-      "motion_blur.enabled",  // velocity target, blur pass
-      "water.enabled",        // the water code in the ink pass
+      "objects.*.marks.wash",  // 0 or not: the marks code
+      "shadow.pigment.name",   // builds the shadow pass
+      "substrate.enabled",     // builds the substrate pass
+      "substrate.texture",     // a file
+      "edges.enabled",         // builds the edges pass
+      "motion_blur.enabled",   // velocity target, blur pass
+      "water.enabled",         // the water code in the ink pass
       "canvas.type", "canvas.static_pattern", "canvas.method"};
   EXPECT_EQ(rebuild, expected);
 }

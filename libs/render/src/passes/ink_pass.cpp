@@ -362,6 +362,11 @@ class InkPass final : public RenderPass {
       p.marks_seed =
           static_cast<std::uint32_t>((in.scene.seed * 0x9E3779B97F4A7C15ull + i * 0xBF58476D1CE4E5B9ull) >> 32);
       p.marks_angle = static_cast<float>(glm::radians(mk.angle_deg));
+      // A wet stroke spans at most 0.84 of a cell (its half length ≤ 0.42).
+      p.wash_density = static_cast<float>(mk.wash);
+      p.wash_ink = static_cast<float>(mk.wash_ink);
+      p.wash_spacing_px = static_cast<float>(mk.wash_size / 0.76 * in.height / 1024.0);
+      p.wash_lit = static_cast<float>(mk.wash_lit);
       // The dissolving border, in the coordinates the object was uploaded in (relative to
       // its bounding-box centre).
       const glm::dmat4 to_model = glm::inverse(in.modelAt(i));

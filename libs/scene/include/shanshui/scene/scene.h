@@ -186,7 +186,8 @@ struct PathKey {
 };
 
 //! Texture strokes (cun) as discrete brush marks (issue 45), beside the wrinkle texture:
-//! hemp-fibre (long, thin, wavy) or axe-cut (short wedges) marks down the fall line.
+//! hemp-fibre (long, thin, wavy) or axe-cut (short wedges) marks down the fall line, and
+//! broad wet strokes (a loaded brush pulled down a shadowed slope, drying towards its tail).
 enum class MarkStyle { None, Hemp, Axe };
 
 struct MarksParams {
@@ -197,7 +198,13 @@ struct MarksParams {
   double lit = 0.2;                   //!< density on fully lit slopes relative to shadowed ones
   double ridge = 1.0;                 //!< extra density at ridges and creases, times the curvature
   double angle_deg = 0;               //!< turn from the fall line: 90 lays them along the contours
+  //! Broad wet strokes on the shadowed slopes, on a lattice of their own beside the marks.
+  double wash = 0.0;         //!< share of lattice cells holding one in full shadow; 0: none
+  double wash_size = 110.0;  //!< a wet stroke's length, pixels at 1024 high
+  double wash_ink = 0.35;    //!< its darkness at the head, share of the line colour
+  double wash_lit = 0.05;    //!< density on fully lit slopes relative to shadowed ones
   bool enabled() const { return style != MarkStyle::None; }
+  bool washes() const { return wash > 0.0; }
 };
 
 //! Where a grounded object stands on its ground: at the transform's x, y, or at a spot the
@@ -494,7 +501,7 @@ struct Scene {
   bool usesShading() const;
   bool usesElements() const;  //!< some object grows trees or moss dots
   bool usesWater() const { return water.enabled; }
-  bool usesMarks() const;  //!< some object draws texture marks
+  bool usesMarks() const;  //!< some object draws texture marks or wet strokes
   bool hasAnimation() const;
   bool dissolvesBorders() const;
   //! Several terrains (DEM objects standing on nothing): a composition of ranges, which the
