@@ -10,8 +10,8 @@
 // presence the atmosphere leaves, in alpha, for the pigment pass), ELEMENTS (the trees' and
 // moss dots' ink over the rest; ELEMENT_NEARNESS with animated objects), WATER (a water level:
 // the land below it hidden, paper with wave strokes, bank lines), MARKS (some object's
-// texture strokes as discrete marks, ink_marks.glsl), DEBUG_OUTPUTS (line
-// weight, tone and wrinkle luma as extra targets, for tests). PAPER builds the background's
+// texture strokes as discrete marks, ink_marks.glsl; WASH: some object's broad wet strokes),
+// DEBUG_OUTPUTS (line weight, tone and wrinkle luma as extra targets, for tests). PAPER builds the background's
 // program, which the pass draws apart by the depth test; BARE the surfaces' where the
 // atmosphere leaves nothing of the land (ink_classes.frag sorts them out for a fragment
 // pass). With PIXEL_COMPUTE the surfaces' and the background's are compute shaders
@@ -90,26 +90,19 @@ float planarSlopeWrinkle(ObjectParams o, ivec2 p, vec3 P, vec3 n) {
 // Texture marks at P of object o (normal n, curvature k): the lattice lies on the object's
 // horizontal plane (model x, y), the marks run down the fall line turned by marks_angle, and
 // their density grows from marks_lit of it on lit slopes to all of it in shadow and near
-// ridges; flat ground stays bare. The broad wet strokes (wash_*) lie on a lattice of their
-// own on the picture plane of the scene's view, dense where the slope turns from the light
-// (wash_lit of that on lit slopes) and where the atmosphere leaves the land (`here`).
+// ridges; flat ground stays bare. With WASH, the broad wet strokes (wash_*) over them, on a
+// lattice of their own on the picture plane of the scene's view, dense where the slope turns
+// from the light (wash_lit of that on lit slopes) and where the atmosphere leaves the land
+// (here).
 float objectMarks(ObjectParams o, ivec2 p, vec3 P, vec3 n, float k, float here) {
   vec3 down = vec3(0.0, 0.0, -1.0) + n.z * n;
   float steep = smoothstep(0.2, 0.45, length(down));
   float shade = 1.0 - max(dot(n, u_light_dir), 0.0);
-  float density = o.marks_style == 0u ? 0.0
-                  : o.marks_density * steep * mix(o.marks_lit, 1.0, shade) *
-                        (1.0 + o.marks_ridge * clamp(abs(k), 0.0, 1.0));
-  // Wet strokes thin out with what the atmosphere leaves of the land (here), as a painter
-  // leaves the mist at a range's foot unbrushed: none where under a twentieth is left.
-  float wash = o.wash_density * smoothstep(0.06, 0.25, length(down)) *
-               mix(o.wash_lit, 1.0, smoothstep(0.2, 0.6, shade)) * smoothstep(0.05, 0.4, here);
-  if (density <= 0.0 && wash <= 0.0) return 0.0;
   float c = cos(o.marks_angle), s = sin(o.marks_angle);
   mat2 turn = mat2(c, s, -s, c);
   float ink = 0.0;
-  if (density > 0.0) {
-    // On the object's horizontal plane, cells sized by the pixel's footprint there.
+  float density = o.marks_density * steep * mix(o.marks_lit, 1.0, shade) * (1.0 + o.marks_ridge * clamp(abs(k), 0.0, 1.0));
+  if (o.marks_style != 0u && density > 0.0) {
     vec3 dpx = tangentStep(p, vec2(1.0, 0.0), P, n), dpy = tangentStep(p, vec2(0.0, 1.0), P, n);
     vec3 mx = o.world_to_model_x.xyz, my = o.world_to_model_y.xyz;
     vec2 uv = vec2(dot(mx, P) + o.world_to_model_x.w, dot(my, P) + o.world_to_model_y.w);
@@ -117,15 +110,22 @@ float objectMarks(ObjectParams o, ivec2 p, vec3 P, vec3 n, float k, float here) 
     ink = o.marks_ink * textureMarks(uv, scale, turn * vec2(dot(mx, down), dot(my, down)), min(density, 1.0),
                                      o.marks_style, o.marks_seed);
   }
-  if (wash > 0.0) {
-    // On the picture plane of the scene's view, down the fall line as it looks there, cells
-    // sized by a pixel's footprint at the point's distance (the plane faces the viewer).
+#ifdef WASH
+  // Wet strokes thin out with what the atmosphere leaves of the land, as a painter leaves the
+  // mist at a range's foot unbrushed: none where under a twentieth is left. A loop of at most
+  // one turn, not a branch (ink_marks.glsl), so pixels without them cost nothing.
+  float wash = o.wash_density * smoothstep(0.02, 0.12, length(down)) *
+               mix(o.wash_lit, 1.0, smoothstep(0.2, 0.6, shade)) * smoothstep(0.05, 0.4, here);
+  for (int i = wash > 0.0 ? 0 : 1; i < 1; ++i) {
+    // On the picture plane of the scene's view, down the fall line as it looks there (on
+    // gentle ground, where that wanders, leaning to straight down the sheet, as a painter's
+    // strokes do), in cells of one size over the object.
     vec3 r = u_brush_right, u = u_brush_up;
-    float scale = log2(max(o.wash_spacing_px * u_pixel_angle * distance(P, u_eye), 1e-30));
     ink += (1.0 - ink) * o.wash_ink *
-           textureMarks(vec2(dot(r, P), dot(u, P)), scale, turn * vec2(dot(r, down), dot(u, down)), min(wash, 1.0),
-                        kMarksWash, o.marks_seed ^ 0x5bd1e995u);
+           washMarks(vec2(dot(r, P), dot(u, P)), o.wash_cell, turn * vec2(dot(r, down), dot(u, down) - 0.1),
+                     min(wash, 1.0), o.marks_seed ^ 0x5bd1e995u);
   }
+#endif
   return ink;
 }
 #endif

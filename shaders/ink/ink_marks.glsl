@@ -1,8 +1,6 @@
 // Texture strokes (cun) as discrete brush marks (issue 45), beside seed 001's wrinkle
-// texture: hemp-fibre marks (long, thin, wavy, tapering at both ends), axe-cut marks
-// (short wedges, broad at the downhill end, turned a little off the fall line) or broad wet
-// strokes (a loaded brush pulled down the slope: a dark round head, a body that pales and
-// breaks into dry-brush streaks towards its tail, gently bent), laid down
+// texture: hemp-fibre marks (long, thin, wavy, tapering at both ends) or axe-cut marks
+// (short wedges, broad at the downhill end, turned a little off the fall line), laid down
 // the fall line on a jittered lattice over the object's horizontal plane. A lattice cell
 // holds at most one mark; whether it does is a random threshold against the density there,
 // which grows on the shadowed side and near ridges, so lit slopes keep few marks and no
@@ -11,7 +9,7 @@
 
 #include "ink_hash.glsl"
 
-const uint kMarksHemp = 1u, kMarksAxe = 2u, kMarksWash = 3u;
+const uint kMarksHemp = 1u, kMarksAxe = 2u;
 
 // Four random numbers in [0, 1) from one hash.
 vec4 unpack4(uint h) {
@@ -75,46 +73,6 @@ float marksOctave(vec2 q, vec2 dir, float density, uint style, uint seed) {
   return ink;
 }
 
-// The wet strokes over lattice point q (cells), running along dir: a group of three broad
-// strokes side by side in a cell, as a painter lays a wet cun, kept where `density` beats the
-// cell's threshold. The group's centre stays within 0.08 of its cell's middle and the group
-// within 0.42 of its centre, so q's own cell holds the only group that can cover it: one
-// cell a pixel instead of four, for marks this large on screen.
-float washOctave(vec2 q, vec2 dir, float density, uint seed) {
-  ivec2 c = ivec2(floor(q));
-  uint h = cellHash(uvec2(c + 32768) ^ uvec2(seed, seed * 0x9e3779b9u));
-  vec4 a = unpack4(h);
-  if (density <= a.z - 0.06) return 0.0;
-  float keep = smoothstep(a.z - 0.06, a.z + 0.06, density);
-  vec2 d = q - (vec2(c) + 0.5 + 0.16 * (a.xy - 0.5));
-  vec4 b = unpack4(cellHash(uvec2(h, seed + 7u)));
-  // Turned together up to ±15 degrees and bent to one side, heads uphill.
-  float turn = (b.x - 0.5) * 0.52, turn2 = turn * turn;
-  float cs = 1.0 - 0.5 * turn2, sn = turn * (1.0 - turn2 / 6.0);
-  vec2 along_dir = cs * dir + sn * vec2(-dir.y, dir.x);
-  float along = dot(d, along_dir), across = dot(d, vec2(-along_dir.y, along_dir.x));
-  across -= (b.x < 0.5 ? 0.025 : -0.025) * (1.0 - 5.0 * along * along);
-  // Of three strokes 0.13 apart and at most 0.12 wide only the nearest can cover q; each
-  // its own length (half: 0.24-0.34) and start (±0.04).
-  int j = clamp(int(floor(across / 0.13 + 1.5)), 0, 2);
-  float r1 = fract(b.y + 0.618 * float(j)), r2 = fract(b.z + 0.382 * float(j));
-  float t = (along - 0.08 * (r2 - 0.5)) / (0.24 + 0.1 * r1);  // -1 the head .. 1 the tail
-  // Round at the head, full through the body, narrowing to the tail.
-  float width = (0.045 + 0.015 * r2) * sqrt(clamp((1.0 + t) * 3.0, 0.0, 1.0)) * (1.0 - 0.5 * max(t, 0.0));
-  float s = (across - 0.13 * (float(j) - 1.0)) / max(width, 1e-4);
-  float cover = (1.0 - smoothstep(0.85, 1.0, abs(t))) * (1.0 - smoothstep(0.6, 1.0, abs(s)));
-  if (cover <= 0.0) return 0.0;
-  // The brush's hairs: value noise across the group, running its length, the gaps between
-  // them widening towards the tail, where the brush runs dry; the ink paler there too.
-  float u = 36.0 * across + 17.0 * b.w, f = fract(u);
-  uint hu = uint(int(floor(u)) + 64) ^ h;
-  float hair = mix(float(cellHash(uvec2(hu, 3u)) >> 8) / 16777216.0,
-                   float(cellHash(uvec2(hu + 1u, 3u)) >> 8) / 16777216.0, f * f * (3.0 - 2.0 * f));
-  float dry = 0.05 + 0.6 * smoothstep(-0.3, 1.0, t);
-  return keep * cover * smoothstep(dry - 0.12, dry + 0.12, hair) * mix(1.0, 0.45, smoothstep(-1.0, 1.0, t)) *
-         (0.7 + 0.3 * b.w);
-}
-
 // The log2 of a lattice cell's size in the units of uv, for cells spacing_px pixels across
 // on screen where uv moves by duv_dx, duv_dy per pixel (their geometric mean); NaN-free,
 // -inf-free: a degenerate footprint gives a vanishing cell, which draws nothing.
@@ -141,11 +99,97 @@ float textureMarks(vec2 uv, float scale, vec2 down, float density, uint style, u
   int octave = int(level);
   float a = 0.0, b = 0.0;
   for (int k = blend < 1.0 ? 0 : 1, last = blend > 0.0 ? 1 : 0; k <= last; ++k) {
-    vec2 q = uv / (k == 0 ? size0 : 2.0 * size0);
-    uint octave_seed = seed + uint((octave + k) & 1023) * 131u;
-    float ink = style == kMarksWash ? washOctave(q, dir, density, octave_seed)
-                                    : marksOctave(q, dir, density, style, octave_seed);
+    float ink = marksOctave(uv / (k == 0 ? size0 : 2.0 * size0), dir, density, style,
+                            seed + uint((octave + k) & 1023) * 131u);
     if (k == 0) a = ink; else b = ink;
   }
   return mix(a, b, blend);
+}
+
+// Broad wet strokes (objects.N.marks.wash): groups of up to three strokes side by side, as a
+// painter lays a wet cun, each with a dark round head uphill and a body that pales and parts
+// into dry-brush streaks towards its tail, the group turned a little and gently bent. Two
+// lattices, the second offset by half a cell along both axes, so groups stand in staggered
+// rows as strokes laid overlapping down a slope. A group's centre stays within 0.08 of its
+// cell's middle and the group within 0.42 of its centre, so of each lattice only q's own
+// cell can cover q: two cells a pixel, not four.
+//
+// As textureMarks, the work a pixel may skip sits in loops, not branches: a software
+// rasteriser runs both sides of a branch for a whole group of pixels, but leaves a loop once
+// none of them has a turn left.
+
+// The ink of the group of cell c (lattice hash h, its first numbers a) at d from its centre.
+float washGroup(vec2 d, vec2 dir, uint h, vec4 a, float density, uint seed) {
+  float keep = smoothstep(a.z - 0.06, a.z + 0.06, density);
+  vec4 b = unpack4(cellHash(uvec2(h, seed + 7u)));
+  // Turned together up to ±15 degrees (cos and sin to the cubic and quadratic terms) and bent
+  // to one side, heads uphill.
+  float turn = (b.x - 0.5) * 0.52, turn2 = turn * turn;
+  float cs = 1.0 - 0.5 * turn2, sn = turn * (1.0 - turn2 / 6.0);
+  vec2 along_dir = cs * dir + sn * vec2(-dir.y, dir.x);
+  float along = dot(d, along_dir), across = dot(d, vec2(-along_dir.y, along_dir.x));
+  across -= (b.x < 0.5 ? 0.025 : -0.025) * (1.0 - 5.0 * along * along);
+  // Of up to three strokes 0.13 apart and at most 0.13 wide only the nearest can cover q;
+  // each its own length (half: 0.24-0.34), start (±0.04), width and ink, and either side
+  // stroke missing from a third of the groups, so groups of one to three.
+  int j = clamp(int(floor(across / 0.13 + 1.5)), 0, 2);
+  float r1 = fract(b.y + 0.618 * float(j)), r2 = fract(b.z + 0.382 * float(j)), r3 = fract(a.w + 0.618 * float(j));
+  float t = (along - 0.08 * (r2 - 0.5)) / (0.24 + 0.1 * r1);  // -1 the head .. 1 the tail
+  // Round at the head, full through the body, narrowing to the tail.
+  float width = (0.04 + 0.025 * r1) * sqrt(clamp((1.0 + t) * 3.0, 0.0, 1.0)) * (1.0 - 0.5 * max(t, 0.0));
+  float s = (across - 0.13 * (float(j) - 1.0)) / max(width, 1e-4);
+  float cover = (1.0 - smoothstep(0.85, 1.0, abs(t))) * (1.0 - smoothstep(0.6, 1.0, abs(s))) *
+                (j != 1 && r3 < 0.33 ? 0.0 : 0.7 + 0.3 * r3);
+  // The brush's hairs: value noise across the group, running its length, the gaps between
+  // them widening towards the tail, where the brush runs dry; the ink paler there too.
+  float u = 36.0 * across + 17.0 * b.w, f = fract(u);
+  uint hu = uint(int(floor(u)) + 64) ^ h;
+  float hair = mix(float(cellHash(uvec2(hu, 3u)) >> 8) / 16777216.0,
+                   float(cellHash(uvec2(hu + 1u, 3u)) >> 8) / 16777216.0, f * f * (3.0 - 2.0 * f));
+  float dry = 0.05 + 0.6 * smoothstep(-0.3, 1.0, t);
+  return keep * cover * smoothstep(dry - 0.12, dry + 0.12, hair) * mix(1.0, 0.45, smoothstep(-1.0, 1.0, t)) *
+         (0.7 + 0.3 * b.w);
+}
+
+// The wet strokes of both lattices over lattice point q (cells): first which of the two
+// cells hold a group that is kept and within reach of q (one hash each), then those alone.
+float washOctave(vec2 q, vec2 dir, float density, uint seed) {
+  uint todo = 0u;
+  for (int k = 0; k < 2; ++k) {
+    vec2 p = q + 0.5 * float(k);
+    uint s = k == 0 ? seed : seed ^ 0x68e31da4u;
+    ivec2 c = ivec2(floor(p));
+    vec4 a = unpack4(cellHash(uvec2(c + 32768) ^ uvec2(s, s * 0x9e3779b9u)));
+    vec2 d = p - (vec2(c) + 0.5 + 0.16 * (a.xy - 0.5));
+    if (dot(d, d) < 0.1764 && density > a.z - 0.06) todo |= 1u << k;
+  }
+  float ink = 0.0;
+  while (todo != 0u) {
+    int k = findLSB(todo);
+    todo &= todo - 1u;
+    vec2 p = q + 0.5 * float(k);
+    uint s = k == 0 ? seed : seed ^ 0x68e31da4u;
+    ivec2 c = ivec2(floor(p));
+    uint h = cellHash(uvec2(c + 32768) ^ uvec2(s, s * 0x9e3779b9u));
+    vec4 a = unpack4(h);
+    ink = max(ink, washGroup(p - (vec2(c) + 0.5 + 0.16 * (a.xy - 0.5)), dir, h, a, density, s));
+  }
+  return ink;
+}
+
+// The wet strokes' ink at uv of a plane (cells of 2^scale of its units), down the direction
+// `down` there (unit or zero: then straight down the plane's v). Across the two octaves
+// around the scale the groups are shared out, not faded: each lattice keeps its share of
+// them at full strength.
+float washMarks(vec2 uv, float scale, vec2 down, float density, uint seed) {
+  vec2 dir = length(down) > 1e-6 ? normalize(down) : vec2(0.0, -1.0);
+  float level = floor(scale);
+  float size0 = exp2(level);
+  float blend = smoothstep(0.4, 0.6, scale - level);
+  int octave = int(level);
+  float ink = 0.0;
+  for (int k = blend < 1.0 ? 0 : 1, last = blend > 0.0 ? 1 : 0; k <= last; ++k)
+    ink = max(ink, washOctave(uv / (k == 0 ? size0 : 2.0 * size0), dir, density * (k == 0 ? 1.0 - blend : blend),
+                              seed + uint((octave + k) & 1023) * 131u));
+  return ink;
 }

@@ -285,6 +285,9 @@ TEST_F(Composition, ASceneWithoutMarksOrGroundedObjectsBuildsNothingForThem) {
       json::array({plainObject({{"shading", {{"enabled", true}}}, {"marks", {{"style", "none"}, {"wash", 0.5}}}})}));
   InkRenderer w(washed, load(washed, {ridge()}));
   EXPECT_NE(w.variants().at("ink").front().find("MARKS"), std::string::npos);
+  EXPECT_NE(w.variants().at("ink").front().find("WASH"), std::string::npos);
+  // Marks without wet strokes build no wet strokes' code.
+  for (const std::string& v : b.variants().at("ink")) EXPECT_EQ(v.find("WASH"), std::string::npos) << v;
 }
 
 TEST_F(Composition, AGroundedHutIsDrawnStandingWhereItWasPlaced) {

@@ -29,6 +29,10 @@ bool Scene::usesMarks() const {
                      [](const Object& o) { return o.marks.enabled() || o.marks.washes(); });
 }
 
+bool Scene::usesWash() const {
+  return std::any_of(objects.begin(), objects.end(), [](const Object& o) { return o.marks.washes(); });
+}
+
 bool Scene::isComposition() const {
   return std::count_if(objects.begin(), objects.end(),
                        [](const Object& o) { return !o.dem.empty() && !o.grounded(); }) > 1;

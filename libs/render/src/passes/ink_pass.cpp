@@ -64,6 +64,7 @@ std::vector<std::string> inkDefines(const scene::Scene& s, bool debug_outputs) {
   if (s.usesElements() && elementsKeepNearness(s)) d.emplace_back("ELEMENT_NEARNESS");
   if (s.usesWater()) d.emplace_back("WATER");
   if (s.usesMarks()) d.emplace_back("MARKS");
+  if (s.usesWash()) d.emplace_back("WASH");
   addSurfaceDefines(s, d);
   if (debug_outputs) d.emplace_back("DEBUG_OUTPUTS");
   return d;
@@ -362,10 +363,14 @@ class InkPass final : public RenderPass {
       p.marks_seed =
           static_cast<std::uint32_t>((in.scene.seed * 0x9E3779B97F4A7C15ull + i * 0xBF58476D1CE4E5B9ull) >> 32);
       p.marks_angle = static_cast<float>(glm::radians(mk.angle_deg));
-      // A wet stroke spans at most 0.84 of a cell (its half length ≤ 0.42).
+      // The wet strokes' cell in world units, one for the whole object: wash_size on screen at
+      // the object's centre (a group is 0.48-0.68 of a cell long plus its start: 0.6 on
+      // average), so they keep one lattice over the land, nearer strokes drawn larger, as
+      // painted strokes on the land would be.
       p.wash_density = static_cast<float>(mk.wash);
       p.wash_ink = static_cast<float>(mk.wash_ink);
-      p.wash_spacing_px = static_cast<float>(mk.wash_size / 0.76 * in.height / 1024.0);
+      p.wash_cell =
+          static_cast<float>(std::log2(std::max(mk.wash_size / 0.6 * per_1024 * d / pixels_per_unit_at_1, 1e-30)));
       p.wash_lit = static_cast<float>(mk.wash_lit);
       // The dissolving border, in the coordinates the object was uploaded in (relative to
       // its bounding-box centre).

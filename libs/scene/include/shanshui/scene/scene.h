@@ -502,6 +502,7 @@ struct Scene {
   bool usesElements() const;  //!< some object grows trees or moss dots
   bool usesWater() const { return water.enabled; }
   bool usesMarks() const;  //!< some object draws texture marks or wet strokes
+  bool usesWash() const;   //!< some object draws wet strokes (objects.N.marks.wash)
   bool hasAnimation() const;
   bool dissolvesBorders() const;
   //! Several terrains (DEM objects standing on nothing): a composition of ranges, which the
