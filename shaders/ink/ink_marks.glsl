@@ -139,7 +139,7 @@ float washGroup(vec2 d, vec2 dir, uint h, vec4 a, float density, uint seed) {
   float width = (0.04 + 0.025 * r1) * sqrt(clamp((1.0 + t) * 3.0, 0.0, 1.0)) * (1.0 - 0.5 * max(t, 0.0));
   float s = (across - 0.13 * (float(j) - 1.0)) / max(width, 1e-4);
   float cover = (1.0 - smoothstep(0.85, 1.0, abs(t))) * (1.0 - smoothstep(0.6, 1.0, abs(s))) *
-                (j != 1 && r3 < 0.33 ? 0.0 : 0.7 + 0.3 * r3);
+                (j != 1 && r3 < 0.33 ? 0.0 : 0.8 + 0.2 * r3);
   // The brush's hairs: value noise across the group, running its length, the gaps between
   // them widening towards the tail, where the brush runs dry; the ink paler there too.
   float u = 36.0 * across + 17.0 * b.w, f = fract(u);
@@ -147,8 +147,7 @@ float washGroup(vec2 d, vec2 dir, uint h, vec4 a, float density, uint seed) {
   float hair = mix(float(cellHash(uvec2(hu, 3u)) >> 8) / 16777216.0,
                    float(cellHash(uvec2(hu + 1u, 3u)) >> 8) / 16777216.0, f * f * (3.0 - 2.0 * f));
   float dry = 0.05 + 0.6 * smoothstep(-0.3, 1.0, t);
-  return keep * cover * smoothstep(dry - 0.12, dry + 0.12, hair) * mix(1.0, 0.45, smoothstep(-1.0, 1.0, t)) *
-         (0.7 + 0.3 * b.w);
+  return keep * cover * smoothstep(dry - 0.12, dry + 0.12, hair) * mix(1.0, 0.45, smoothstep(-1.0, 1.0, t));
 }
 
 // The wet strokes of both lattices over lattice point q (cells): first which of the two
