@@ -921,6 +921,27 @@ TEST(FrameParams, AgreeWithTheCameraAndTheScene) {
   EXPECT_EQ(f.u_paper, glm::vec3(0.9f, 0.85f, 0.8f));
   EXPECT_FLOAT_EQ(f.u_mist.x, 0.6f);
   EXPECT_EQ(f.u_water.x, std::numeric_limits<float>::lowest());  // no water
+  // The wet strokes' plane is the picture plane of the scene's own view: with the camera at
+  // the scene's azimuth and elevation, the view matrix's right and up rows (glm::lookAt).
+  s.camera.azimuth_deg = camera.azimuth_deg;
+  s.camera.elevation_deg = camera.elevation_deg;
+  const gpu::FrameParams g = frameParams(in);
+  const glm::mat4 view = camera.view();
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_NEAR(g.u_brush_right[i], view[i][0], 1e-5f) << i;
+    EXPECT_NEAR(g.u_brush_up[i], view[i][1], 1e-5f) << i;
+  }
+  // Turning the camera now does not move it (the strokes stay in the world); a preset's
+  // elevation does (deep distance looks from 40 degrees).
+  OrbitCamera turned = camera;
+  turned.azimuth_deg += 50.0;
+  const gpu::FrameParams t = frameParams({s, objects, bounds, turned, 640, 480});
+  EXPECT_EQ(t.u_brush_right, g.u_brush_right);
+  EXPECT_EQ(t.u_brush_up, g.u_brush_up);
+  s.camera.preset = scene::CameraPreset::Deep;
+  const gpu::FrameParams d = frameParams(in);
+  EXPECT_NEAR(std::asin(glm::dot(glm::dvec3(d.u_brush_up), glm::dvec3(0.0, 0.0, 1.0))),
+              std::acos(-1.0) / 2.0 - glm::radians(40.0), 1e-5);
 }
 
 class Variants : public test::HeadlessGl {};

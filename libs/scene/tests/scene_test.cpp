@@ -267,7 +267,7 @@ TEST(Scene, RebuildKeysAreTheOnesThatChangeVariantsOrFiles) {
       "objects.*.trees.grove_radius", "objects.*.trees.kinds", "objects.*.trees.seed", "objects.*.dots.enabled",
       "objects.*.dots.density", "objects.*.dots.cluster", "objects.*.dots.spread", "objects.*.dots.at_trees",
       "objects.*.dots.seed", "objects.*.ground.on", "objects.*.marks.style",
-      "objects.*.marks.wash",  // 0 or not: the marks code
+      "objects.*.marks.wash",  // 0 or not: the wet strokes' code (WASH)
       "shadow.pigment.name",   // builds the shadow pass
       "substrate.enabled",     // builds the substrate pass
       "substrate.texture",     // a file

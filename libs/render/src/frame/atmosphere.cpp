@@ -4,6 +4,7 @@
 #include <limits>
 
 #include "shanshui/render/frame_params.h"
+#include "shanshui/render/ink_renderer.h"
 #include "shanshui/scene/grounding.h"
 
 namespace shanshui::render {
@@ -102,9 +103,9 @@ gpu::FrameParams frameParams(const FrameInputs& in) {
   f.u_water_bank = static_cast<float>(w.bank * in.height / 1024.0);
   f.u_viewport = glm::vec2(in.width, in.height);
   f.u_pixel_angle = static_cast<float>(2.0 * std::tan(glm::radians(camera.fov_y_deg) * 0.5) / std::max(in.height, 1));
-  // The picture plane of the view the scene is composed for (its own azimuth and elevation,
-  // not the camera's now), as glm::lookAt lays out its right and up.
-  const double az = glm::radians(s.camera.azimuth_deg), el = glm::radians(s.camera.elevation_deg);
+  // The picture plane of the view the scene is composed for (its own azimuth and its camera's
+  // or preset's elevation, not the camera's now), as glm::lookAt lays out its right and up.
+  const double az = glm::radians(s.camera.azimuth_deg), el = glm::radians(composedElevation(s));
   const glm::dvec3 forward = -glm::dvec3(std::cos(el) * std::cos(az), std::cos(el) * std::sin(az), std::sin(el));
   glm::dvec3 right = glm::cross(forward, glm::dvec3(0.0, 0.0, 1.0));
   right = glm::length(right) > 1e-9 ? glm::normalize(right) : glm::dvec3(1.0, 0.0, 0.0);

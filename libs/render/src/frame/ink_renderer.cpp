@@ -69,6 +69,10 @@ std::vector<glm::dvec3> reliefSample(const mesh::Mesh& m) {
 
 }  // namespace
 
+double composedElevation(const scene::Scene& s) {
+  return presetView(s, {s.camera.azimuth_deg, s.camera.elevation_deg, s.camera.zoom}).elevation_deg;
+}
+
 OrbitCamera sceneCamera(const scene::Scene& s, const mesh::Bounds& world_bounds, double aspect,
                         const scene::CameraKey& key, const Relief* relief, const mesh::Bounds* inked,
                         const std::vector<glm::dvec3>* drawn) {

@@ -55,6 +55,9 @@ OrbitCamera sceneCamera(const scene::Scene& s, const mesh::Bounds& world_bounds,
                         const scene::CameraKey& key, const Relief* relief = nullptr,
                         const mesh::Bounds* inked = nullptr, const std::vector<glm::dvec3>* drawn = nullptr);
 
+//! The elevation of the view the scene is composed for: its camera's, or its preset's.
+double composedElevation(const scene::Scene& s);
+
 //! The camera key of frame `index` of `count`: along camera.path when the scene has one,
 //! else the scene camera turned by orbit_deg · index / count around +Z.
 //! A fractional index gives the camera between frames (or, below 0, before the first).
