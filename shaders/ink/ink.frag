@@ -117,12 +117,15 @@ float objectMarks(ObjectParams o, ivec2 p, vec3 P, vec3 n, float k, float here) 
   float wash = o.wash_density * smoothstep(0.02, 0.12, length(down)) *
                mix(o.wash_lit, 1.0, smoothstep(0.2, 0.6, shade)) * smoothstep(0.05, 0.4, here);
   for (int i = wash > 0.0 ? 0 : 1; i < 1; ++i) {
-    // On the picture plane of the scene's view, down the fall line as it looks there (on
-    // gentle ground, where that wanders, leaning to straight down the sheet, as a painter's
-    // strokes do), in cells of one size over the object.
+    // On the picture plane of the scene's view, in cells of one size over the object, down
+    // the fall line as it looks there (on gentle ground, where that wanders, leaning to
+    // straight down the sheet) or, by wash_follow, straight down the sheet: on rough ground
+    // the fall line turns from pixel to pixel and breaks a stroke into blotches.
     vec3 r = u_brush_right, u = u_brush_up;
+    vec2 fall = vec2(dot(r, down), dot(u, down) - 0.1);
+    fall = length(fall) > 1e-6 ? normalize(fall) : vec2(0.0, -1.0);
     ink += (1.0 - ink) * o.wash_ink *
-           washMarks(vec2(dot(r, P), dot(u, P)), o.wash_cell, turn * vec2(dot(r, down), dot(u, down) - 0.1),
+           washMarks(vec2(dot(r, P), dot(u, P)), o.wash_cell, turn * mix(vec2(0.0, -1.0), fall, o.wash_follow),
                      min(wash, 1.0), o.marks_seed ^ 0x5bd1e995u);
   }
 #endif

@@ -99,12 +99,12 @@ struct SlopeInk {
   int pixels = 0, flat_inked = 0;
 };
 
-SlopeInk wetStrokesOnTheNearSlope(const json& marks, const glm::dvec3& light) {
-  const scene::Scene s = sceneOf(
-      json::array({plainObject({{"marks", marks}})}),
-      {{"light", {{"direction", {light.x, light.y, light.z}}}}, {"camera", {{"azimuth", -90.0}, {"elevation", 35.0}}}});
+SlopeInk wetStrokesOnTheNearSlope(const json& marks, const glm::dvec3& light, double azimuth = -90.0) {
+  const scene::Scene s = sceneOf(json::array({plainObject({{"marks", marks}})}),
+                                 {{"light", {{"direction", {light.x, light.y, light.z}}}},
+                                  {"camera", {{"azimuth", azimuth}, {"elevation", 35.0}}}});
   InkRenderer r(s, load(s, {ridge()}));
-  const OrbitCamera cam = r.camera({-90, 35, 1.3}, static_cast<double>(kWidth) / kHeight);
+  const OrbitCamera cam = r.camera({azimuth, 35, 1.3}, static_cast<double>(kWidth) / kHeight);
   const image::Image c = r.render(cam, kWidth, kHeight).colour(0).download(3);
   const image::Image pos = r.worldPositions();
   std::vector<char> inked(static_cast<std::size_t>(kWidth) * kHeight, 0);
@@ -161,6 +161,22 @@ TEST_F(Composition, WetStrokesDarkenTheShadowedSlopeRunningDownThePictureAndLeav
   // The fine marks alone (no wash) leave the slope far lighter: the strokes are the wash's.
   const SlopeInk none = wetStrokesOnTheNearSlope({{"style", "hemp"}, {"density", 0.0}}, {0.0, 1.0, 0.6});
   EXPECT_LT(none.share, 0.01);
+}
+
+TEST_F(Composition, WetStrokesFollowTheFallLineOrRunStraightDownThePicture) {
+  // Seen from 50 degrees off the slope's facing, its fall line runs across the picture
+  // diagonally: followed (wash_follow 1) the strokes lean with it, otherwise (0) they run
+  // down the columns.
+  json marks = {{"style", "none"}, {"wash", 1.0}, {"wash_size", 120}, {"wash_ink", 0.8}, {"wash_lit", 1.0}};
+  marks["wash_follow"] = 1.0;
+  const SlopeInk follow = wetStrokesOnTheNearSlope(marks, {0.0, 1.0, 0.6}, -40.0);
+  marks["wash_follow"] = 0.0;
+  const SlopeInk straight = wetStrokesOnTheNearSlope(marks, {0.0, 1.0, 0.6}, -40.0);
+  ASSERT_GT(follow.share, 0.05);
+  ASSERT_GT(straight.share, 0.05);
+  EXPECT_GT(straight.run_y / straight.run_x, 1.3 * follow.run_y / follow.run_x)
+      << "straight " << straight.run_y << "/" << straight.run_x << ", following " << follow.run_y << "/"
+      << follow.run_x;
 }
 
 TEST_F(Composition, FarRangesCarryLessInkThanNearOnes) {

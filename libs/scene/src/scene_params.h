@@ -274,6 +274,10 @@ void describe(V& v, MarksParams& m) {
   v.number({"wash_ink", "a wet stroke's darkness at its head (it pales towards its tail), share of the line colour"},
            m.wash_ink, kUnit);
   v.number({"wash_lit", "wet strokes' density on fully lit slopes relative to shadowed ones"}, m.wash_lit, kUnit);
+  v.number({"wash_follow",
+            "how far wet strokes follow the slope's fall line as it looks on the picture (1) rather than run "
+            "straight down it (0: clean strokes on rough ground, where the fall line turns from pixel to pixel)"},
+           m.wash_follow, kUnit);
 }
 
 template <typename V>

@@ -199,10 +199,11 @@ struct MarksParams {
   double ridge = 1.0;                 //!< extra density at ridges and creases, times the curvature
   double angle_deg = 0;               //!< turn from the fall line: 90 lays them along the contours
   //! Broad wet strokes on the shadowed slopes, on a lattice of their own beside the marks.
-  double wash = 0.0;        //!< share of lattice cells holding one in full shadow; 0: none
-  double wash_size = 70.0;  //!< a wet stroke's length, pixels at 1024 high
-  double wash_ink = 0.6;    //!< its darkness at the head, share of the line colour
-  double wash_lit = 0.3;    //!< density on fully lit slopes relative to shadowed ones
+  double wash = 0.0;         //!< share of lattice cells holding one in full shadow; 0: none
+  double wash_size = 70.0;   //!< a wet stroke's length, pixels at 1024 high
+  double wash_ink = 0.6;     //!< its darkness at the head, share of the line colour
+  double wash_lit = 0.3;     //!< density on fully lit slopes relative to shadowed ones
+  double wash_follow = 1.0;  //!< 1: down the fall line as it looks; 0: straight down the picture
   bool enabled() const { return style != MarkStyle::None; }
   bool washes() const { return wash > 0.0; }
 };
