@@ -118,7 +118,7 @@ float textureMarks(vec2 uv, float scale, vec2 down, float density, uint style, u
 // rasteriser runs both sides of a branch for a whole group of pixels, but leaves a loop once
 // none of them has a turn left.
 
-// The ink of the group of cell c (lattice hash h, its first numbers a) at d from its centre.
+// The ink of one group (its cell's hash h, the hash's first numbers a) at d from its centre.
 float washGroup(vec2 d, vec2 dir, uint h, vec4 a, float density, uint seed) {
   float keep = smoothstep(a.z - 0.06, a.z + 0.06, density);
   vec4 b = unpack4(cellHash(uvec2(h, seed + 7u)));
