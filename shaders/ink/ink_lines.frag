@@ -81,11 +81,38 @@ float suggestiveTrough(ivec2 p, vec3 position, vec3 n, float z) {
 layout(early_fragment_tests) in;
 #endif
 
-// The stroke centre at p, if p is one, stamped into u_stroke_ink: p's depth, its
-// neighbours' (the two gathers), its world position and the unprojection's pieces, and what
-// the atmosphere leaves there (here > 0).
-void stampStroke(ivec2 p, ObjectParams o, float depth, vec4 upper, vec4 lower, vec3 position, mat4 m, vec4 column,
-                 vec4 per_depth, vec2 texel, float here) {
+void shadePixel() {
+  ivec2 p = ivec2(PIXEL_COORD);
+  // Every test below reads p's neighbourhood; each texel is read once. The depth of p, its
+  // four neighbours and two diagonal ones come from two gathers (a texel fetch costs a
+  // software rasteriser several image loads, and it runs every test's code whether or not a
+  // pixel takes it), the neighbours' normal and curvature from four image loads.
+  vec2 texel = 1.0 / vec2(textureSize(u_depth, 0));
+  vec2 centre = (vec2(p) + 0.5) * texel;
+  vec4 upper = textureGather(u_depth, centre + 0.5 * texel);  // p+y, p+x+y, p+x, p
+  vec4 lower = textureGather(u_depth, centre - 0.5 * texel);  // p−x, p, p−y, p−x−y
+  float depth = upper.w;
+  if (depth >= 1.0) return;
+#ifdef SINGLE_OBJECT
+  ObjectParams o = objects[0];
+#else
+  ObjectParams o = objects[int(imageLoad(u_surface_id, p).a * 255.0 + 0.5) - 1];
+#endif
+  // p's world position, unprojected so that its neighbours' cost two multiply-adds each:
+  // M·(ndc, 2d − 1, 1) is `column` + d·`per_depth`, and a neighbour along x or y adds ±
+  // one pixel's step of M's first or second column.
+  mat4 m = u_inverse_view_projection;
+  vec4 column = m * vec4(centre * 2.0 - 1.0, -1.0, 1.0), per_depth = 2.0 * m[2];
+  vec4 h = column + depth * per_depth;
+  vec3 position = h.xyz / h.w;
+#ifdef WATER
+  // Land under the water is hidden: the atmosphere there is the water surface's above it.
+  float here = presence(o, vec3(position.xy, max(position.z, u_water.x)));
+#else
+  float here = presence(o, position);
+#endif
+  o_presence_noise = vec4(here, surfaceNoise(o, position), 0.0);
+  if ((o.line_flags & kStrokes) == 0u) return;
   vec4 nc = imageLoad(u_normal_curvature, p);
   // The neighbours −x, +x, −y, +y: offset, depth, encoded normal and curvature.
   const ivec2 kSide[4] = ivec2[4](ivec2(-1, 0), ivec2(1, 0), ivec2(0, -1), ivec2(0, 1));
@@ -206,43 +233,5 @@ void stampStroke(ivec2 p, ObjectParams o, float depth, vec4 upper, vec4 lower, v
       if (v > 0u) imageAtomicMax(u_stroke_ink, p + ivec2(dx, dy), v);
     }
   }
-}
-
-void shadePixel() {
-  ivec2 p = ivec2(PIXEL_COORD);
-  // Every test below reads p's neighbourhood; each texel is read once. The depth of p, its
-  // four neighbours and two diagonal ones come from two gathers (a texel fetch costs a
-  // software rasteriser several image loads, and it runs every test's code whether or not a
-  // pixel takes it), the neighbours' normal and curvature from four image loads.
-  vec2 texel = 1.0 / vec2(textureSize(u_depth, 0));
-  vec2 centre = (vec2(p) + 0.5) * texel;
-  vec4 upper = textureGather(u_depth, centre + 0.5 * texel);  // p+y, p+x+y, p+x, p
-  vec4 lower = textureGather(u_depth, centre - 0.5 * texel);  // p−x, p, p−y, p−x−y
-  float depth = upper.w;
-  if (depth >= 1.0) return;
-#ifdef SINGLE_OBJECT
-  ObjectParams o = objects[0];
-#else
-  ObjectParams o = objects[int(imageLoad(u_surface_id, p).a * 255.0 + 0.5) - 1];
-#endif
-  // p's world position, unprojected so that its neighbours' cost two multiply-adds each:
-  // M·(ndc, 2d − 1, 1) is `column` + d·`per_depth`, and a neighbour along x or y adds ±
-  // one pixel's step of M's first or second column.
-  mat4 m = u_inverse_view_projection;
-  vec4 column = m * vec4(centre * 2.0 - 1.0, -1.0, 1.0), per_depth = 2.0 * m[2];
-  vec4 h = column + depth * per_depth;
-  vec3 position = h.xyz / h.w;
-#ifdef WATER
-  // Land under the water is hidden: the atmosphere there is the water surface's above it.
-  float here = presence(o, vec3(position.xy, max(position.z, u_water.x)));
-#else
-  float here = presence(o, position);
-#endif
-  o_presence_noise = vec4(here, surfaceNoise(o, position), 0.0);
-  // Only where some object draws strokes and the atmosphere leaves some ink (a stroke's ink
-  // is × here): a loop of at most one turn, not a branch, which a software rasteriser would
-  // run for the whole group of pixels; it skips the mist and the dissolved border.
-  for (int once = (o.line_flags & kStrokes) != 0u && here > 0.0 ? 0 : 1; once < 1; ++once)
-    stampStroke(p, o, depth, upper, lower, position, m, column, per_depth, texel, here);
 }
 #include "pixel_main.glsl"
