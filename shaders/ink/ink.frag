@@ -12,9 +12,9 @@
 // the land below it hidden, paper with wave strokes, bank lines), MARKS (some object's
 // texture strokes as discrete marks, ink_marks.glsl; WASH: some object's broad wet strokes),
 // DEBUG_OUTPUTS (line weight, tone and wrinkle luma as extra targets, for tests). PAPER
-// builds the background's program, which the pass draws apart by the depth test; BARE the surfaces' where the
-// atmosphere leaves nothing of the land (ink_classes.frag sorts them out for a fragment
-// pass). With PIXEL_COMPUTE the surfaces' and the background's are compute shaders
+// builds the background's program, which the pass draws apart by the depth test; BARE the
+// surfaces' where the atmosphere leaves nothing of the land (ink_classes.frag sorts them out
+// for a fragment pass). With PIXEL_COMPUTE the surfaces' and the background's are compute shaders
 // (pixel_main.glsl) testing the depth themselves; DEBUG_OUTPUTS stays a fragment pass.
 #include "pixel_stage.glsl"
 #include "ink_objects.glsl"

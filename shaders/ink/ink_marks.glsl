@@ -150,28 +150,32 @@ float washGroup(vec2 d, vec2 dir, uint h, vec4 a, float density, uint seed) {
   return keep * cover * smoothstep(dry - 0.12, dry + 0.12, hair) * mix(1.0, 0.45, smoothstep(-1.0, 1.0, t));
 }
 
+// Lattice k's cell over lattice point q (the second lattice offset by half a cell, with a
+// seed of its own, s): its hash, and q's offset d from the cell's group centre.
+uint washCell(vec2 q, int k, uint seed, out uint s, out vec2 d) {
+  vec2 p = q + 0.5 * float(k);
+  s = k == 0 ? seed : seed ^ 0x68e31da4u;
+  ivec2 c = ivec2(floor(p));
+  uint h = cellHash(uvec2(c + 32768) ^ uvec2(s, s * 0x9e3779b9u));
+  d = p - (vec2(c) + 0.5 + 0.16 * (unpack4(h).xy - 0.5));
+  return h;
+}
+
 // The wet strokes of both lattices over lattice point q (cells): first which of the two
 // cells hold a group that is kept and within reach of q (one hash each), then those alone.
 float washOctave(vec2 q, vec2 dir, float density, uint seed) {
-  uint todo = 0u;
+  uint todo = 0u, s;
+  vec2 d;
   for (int k = 0; k < 2; ++k) {
-    vec2 p = q + 0.5 * float(k);
-    uint s = k == 0 ? seed : seed ^ 0x68e31da4u;
-    ivec2 c = ivec2(floor(p));
-    vec4 a = unpack4(cellHash(uvec2(c + 32768) ^ uvec2(s, s * 0x9e3779b9u)));
-    vec2 d = p - (vec2(c) + 0.5 + 0.16 * (a.xy - 0.5));
-    if (dot(d, d) < 0.1764 && density > a.z - 0.06) todo |= 1u << k;
+    uint h = washCell(q, k, seed, s, d);
+    if (dot(d, d) < 0.1764 && density > unpack4(h).z - 0.06) todo |= 1u << k;
   }
   float ink = 0.0;
   while (todo != 0u) {
     int k = findLSB(todo);
     todo &= todo - 1u;
-    vec2 p = q + 0.5 * float(k);
-    uint s = k == 0 ? seed : seed ^ 0x68e31da4u;
-    ivec2 c = ivec2(floor(p));
-    uint h = cellHash(uvec2(c + 32768) ^ uvec2(s, s * 0x9e3779b9u));
-    vec4 a = unpack4(h);
-    ink = max(ink, washGroup(p - (vec2(c) + 0.5 + 0.16 * (a.xy - 0.5)), dir, h, a, density, s));
+    uint h = washCell(q, k, seed, s, d);
+    ink = max(ink, washGroup(d, dir, h, unpack4(h), density, s));
   }
   return ink;
 }

@@ -104,13 +104,13 @@ gpu::FrameParams frameParams(const FrameInputs& in) {
   f.u_viewport = glm::vec2(in.width, in.height);
   f.u_pixel_angle = static_cast<float>(2.0 * std::tan(glm::radians(camera.fov_y_deg) * 0.5) / std::max(in.height, 1));
   // The picture plane of the view the scene is composed for (its own azimuth and its camera's
-  // or preset's elevation, not the camera's now), as glm::lookAt lays out its right and up.
-  const double az = glm::radians(s.camera.azimuth_deg), el = glm::radians(composedElevation(s));
-  const glm::dvec3 forward = -glm::dvec3(std::cos(el) * std::cos(az), std::cos(el) * std::sin(az), std::sin(el));
-  glm::dvec3 right = glm::cross(forward, glm::dvec3(0.0, 0.0, 1.0));
-  right = glm::length(right) > 1e-9 ? glm::normalize(right) : glm::dvec3(1.0, 0.0, 0.0);
-  f.u_brush_right = glm::vec3(right);
-  f.u_brush_up = glm::vec3(glm::normalize(glm::cross(right, forward)));
+  // or preset's elevation, not the camera's now): that view's right and up rows.
+  OrbitCamera composed;
+  composed.azimuth_deg = s.camera.azimuth_deg;
+  composed.elevation_deg = composedElevation(s);
+  const glm::mat4 view = composed.view();
+  f.u_brush_right = glm::vec3(view[0][0], view[1][0], view[2][0]);
+  f.u_brush_up = glm::vec3(view[0][1], view[1][1], view[2][1]);
   return f;
 }
 
