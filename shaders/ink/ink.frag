@@ -126,7 +126,7 @@ float objectMarks(ObjectParams o, ivec2 p, vec3 P, vec3 n, float k, float here) 
     fall = length(fall) > 1e-6 ? normalize(fall) : vec2(0.0, -1.0);
     ink += (1.0 - ink) * o.wash_ink *
            washMarks(vec2(dot(r, P), dot(u, P)), o.wash_cell, turn * mix(vec2(0.0, -1.0), fall, o.wash_follow),
-                     min(wash, 1.0), o.marks_seed ^ 0x5bd1e995u);
+                     min(wash, 1.0), o.wash_width, o.marks_seed ^ 0x5bd1e995u);
   }
 #endif
   return ink;

@@ -118,8 +118,9 @@ float textureMarks(vec2 uv, float scale, vec2 down, float density, uint style, u
 // rasteriser runs both sides of a branch for a whole group of pixels, but leaves a loop once
 // none of them has a turn left.
 
-// The ink of one group (its cell's hash h, the hash's first numbers a) at d from its centre.
-float washGroup(vec2 d, vec2 dir, uint h, vec4 a, float density, uint seed) {
+// The ink of one group (its cell's hash h, the hash's first numbers a) at d from its centre,
+// its strokes `breadth` times their thin width.
+float washGroup(vec2 d, vec2 dir, uint h, vec4 a, float density, float breadth, uint seed) {
   float keep = smoothstep(a.z - 0.06, a.z + 0.06, density);
   vec4 b = unpack4(cellHash(uvec2(h, seed + 7u)));
   // Turned together up to ±15 degrees (cos and sin to the cubic and quadratic terms) and bent
@@ -129,25 +130,43 @@ float washGroup(vec2 d, vec2 dir, uint h, vec4 a, float density, uint seed) {
   vec2 along_dir = cs * dir + sn * vec2(-dir.y, dir.x);
   float along = dot(d, along_dir), across = dot(d, vec2(-along_dir.y, along_dir.x));
   across -= (b.x < 0.5 ? 0.025 : -0.025) * (1.0 - 5.0 * along * along);
-  // Of up to three strokes 0.13 apart and at most 0.13 wide only the nearest can cover q;
-  // each its own length (half: 0.24-0.34), start (±0.04), width and ink, and either side
-  // stroke missing from a third of the groups, so groups of one to three.
-  int j = clamp(int(floor(across / 0.13 + 1.5)), 0, 2);
-  float r1 = fract(b.y + 0.618 * float(j)), r2 = fract(b.z + 0.382 * float(j)), r3 = fract(a.w + 0.618 * float(j));
-  float t = (along - 0.08 * (r2 - 0.5)) / (0.24 + 0.1 * r1);  // -1 the head .. 1 the tail
-  // Round at the head, full through the body, narrowing to the tail.
-  float width = (0.04 + 0.025 * r1) * sqrt(clamp((1.0 + t) * 3.0, 0.0, 1.0)) * (1.0 - 0.5 * max(t, 0.0));
-  float s = (across - 0.13 * (float(j) - 1.0)) / max(width, 1e-4);
-  float cover = (1.0 - smoothstep(0.85, 1.0, abs(t))) * (1.0 - smoothstep(0.6, 1.0, abs(s))) *
-                (j != 1 && r3 < 0.33 ? 0.0 : 0.8 + 0.2 * r3);
   // The brush's hairs: value noise across the group, running its length, the gaps between
-  // them widening towards the tail, where the brush runs dry; the ink paler there too.
+  // them widening towards the tail, where the brush runs dry.
   float u = 36.0 * across + 17.0 * b.w, f = fract(u);
   uint hu = uint(int(floor(u)) + 64) ^ h;
   float hair = mix(float(cellHash(uvec2(hu, 3u)) >> 8) / 16777216.0,
                    float(cellHash(uvec2(hu + 1u, 3u)) >> 8) / 16777216.0, f * f * (3.0 - 2.0 * f));
-  float dry = 0.05 + 0.6 * smoothstep(-0.3, 1.0, t);
-  return keep * cover * smoothstep(dry - 0.12, dry + 0.12, hair) * mix(1.0, 0.45, smoothstep(-1.0, 1.0, t));
+  // Strokes side by side, each its own length (half: 0.24-0.34, less towards a broad group's
+  // edges), start, width (half: 0.04-0.065) and ink, and any but the middle one missing from
+  // a third of the groups. Thin (breadth 1): three 0.13 apart, of which only the nearest can
+  // cover q, so groups of one to three. Broader: up to seven, closer than their width, as the
+  // hairs of a brush laid on its side, their heads staggered; the two nearest q overlap and
+  // are layered, darker where both lie. Narrower than 1: thinner strokes closer together.
+  float half_extent = 0.13 * min(breadth, 2.15);
+  int m = max(1, int(half_extent / 0.1 + 0.5));
+  float gap = half_extent / float(m);
+  float pos = across / gap + float(m);
+  int j0 = clamp(int(floor(pos + 0.5)), 0, 2 * m);
+  int j1 = clamp(pos > float(j0) ? j0 + 1 : j0 - 1, 0, 2 * m);
+  float ink = 0.0;
+  for (int n = 0, strokes = breadth > 1.0 && j1 != j0 ? 2 : 1; n < strokes; ++n) {
+    int j = n == 0 ? j0 : j1;
+    float r1 = fract(b.y + 0.618 * float(j)), r2 = fract(b.z + 0.382 * float(j)), r3 = fract(a.w + 0.618 * float(j));
+    float offset = gap * float(j - m);
+    float len = (0.24 + 0.1 * r1) * (1.0 - 2.5 * max(abs(offset) - 0.13, 0.0));
+    float t = (along - 0.08 * min(breadth, 1.5) * (r2 - 0.5)) / len;  // -1 the head .. 1 the tail
+    // Round at the head, full through the body, narrowing to the tail.
+    float width = min(breadth, 1.0) * (0.04 + 0.025 * r1) * sqrt(clamp((1.0 + t) * 3.0, 0.0, 1.0)) *
+                  (1.0 - 0.5 * max(t, 0.0));
+    float s = (across - offset) / max(width, 1e-4);
+    float cover = (1.0 - smoothstep(0.85, 1.0, abs(t))) * (1.0 - smoothstep(0.6, 1.0, abs(s))) *
+                  (j != m && r3 < 0.33 ? 0.0 : 0.8 + 0.2 * r3);
+    // Drier and paler towards the tail.
+    float dry = 0.05 + 0.6 * smoothstep(-0.3, 1.0, t);
+    float one = cover * smoothstep(dry - 0.12, dry + 0.12, hair) * mix(1.0, 0.45, smoothstep(-1.0, 1.0, t));
+    ink += (1.0 - ink) * one;
+  }
+  return keep * ink;
 }
 
 // Lattice k's cell over lattice point q (the second lattice offset by half a cell, with a
@@ -163,7 +182,7 @@ uint washCell(vec2 q, int k, uint seed, out uint s, out vec2 d) {
 
 // The wet strokes of both lattices over lattice point q (cells): first which of the two
 // cells hold a group that is kept and within reach of q (one hash each), then those alone.
-float washOctave(vec2 q, vec2 dir, float density, uint seed) {
+float washOctave(vec2 q, vec2 dir, float density, float breadth, uint seed) {
   uint todo = 0u, s;
   vec2 d;
   for (int k = 0; k < 2; ++k) {
@@ -175,7 +194,7 @@ float washOctave(vec2 q, vec2 dir, float density, uint seed) {
     int k = findLSB(todo);
     todo &= todo - 1u;
     uint h = washCell(q, k, seed, s, d);
-    ink = max(ink, washGroup(d, dir, h, unpack4(h), density, s));
+    ink += (1.0 - ink) * washGroup(d, dir, h, unpack4(h), density, breadth, s);
   }
   return ink;
 }
@@ -184,7 +203,7 @@ float washOctave(vec2 q, vec2 dir, float density, uint seed) {
 // `down` there (unit or zero: then straight down the plane's v). Across the two octaves
 // around the scale the groups are shared out, not faded: each lattice keeps its share of
 // them at full strength.
-float washMarks(vec2 uv, float scale, vec2 down, float density, uint seed) {
+float washMarks(vec2 uv, float scale, vec2 down, float density, float breadth, uint seed) {
   vec2 dir = length(down) > 1e-6 ? normalize(down) : vec2(0.0, -1.0);
   float level = floor(scale);
   float size0 = exp2(level);
@@ -192,7 +211,7 @@ float washMarks(vec2 uv, float scale, vec2 down, float density, uint seed) {
   int octave = int(level);
   float ink = 0.0;
   for (int k = blend < 1.0 ? 0 : 1, last = blend > 0.0 ? 1 : 0; k <= last; ++k)
-    ink = max(ink, washOctave(uv / (k == 0 ? size0 : 2.0 * size0), dir, density * (k == 0 ? 1.0 - blend : blend),
-                              seed + uint((octave + k) & 1023) * 131u));
+    ink += (1.0 - ink) * washOctave(uv / (k == 0 ? size0 : 2.0 * size0), dir, density * (k == 0 ? 1.0 - blend : blend),
+                                    breadth, seed + uint((octave + k) & 1023) * 131u);
   return ink;
 }

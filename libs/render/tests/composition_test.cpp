@@ -110,6 +110,7 @@ SlopeInk wetStrokesOnTheNearSlope(const json& marks, const glm::dvec3& light, do
   std::vector<char> inked(static_cast<std::size_t>(kWidth) * kHeight, 0);
   SlopeInk out;
   int inked_pixels = 0;
+  double dbg_max = 0;
   for (int y = 0; y < kHeight; ++y)
     for (int x = 0; x < kWidth; ++x) {
       if (pos.at(x, y, 3) < 0.5f) continue;
@@ -119,9 +120,11 @@ SlopeInk wetStrokesOnTheNearSlope(const json& marks, const glm::dvec3& light, do
       if (wy >= 85.0) continue;
       ++out.pixels;
       inked_pixels += ink;
+      dbg_max = std::max(dbg_max, inkAt(c, x, y, s) / s.output.paper.x);
       inked[static_cast<std::size_t>(y) * kWidth + x] = ink;
     }
   out.share = out.pixels > 0 ? static_cast<double>(inked_pixels) / out.pixels : 0.0;
+  fprintf(stderr, "max %g share %g pixels %d\n", dbg_max, static_cast<double>(inked_pixels) / out.pixels, out.pixels);
   // Mean run length of inked pixels along rows, then along columns.
   auto meanRun = [&](bool rows) {
     int runs = 0, total = 0;
@@ -177,6 +180,21 @@ TEST_F(Composition, WetStrokesFollowTheFallLineOrRunStraightDownThePicture) {
   EXPECT_GT(straight.run_y / straight.run_x, 1.3 * follow.run_y / follow.run_x)
       << "straight " << straight.run_y << "/" << straight.run_x << ", following " << follow.run_y << "/"
       << follow.run_x;
+}
+
+TEST_F(Composition, BroadWetStrokesCoverMoreOfTheSlopeInWiderBundlesStillRunningDownIt) {
+  json marks = {{"style", "none"}, {"wash", 1.0}, {"wash_size", 120}, {"wash_ink", 0.8}, {"wash_lit", 0.1}};
+  marks["wash_width"] = 1.0;
+  const SlopeInk thin = wetStrokesOnTheNearSlope(marks, {0.0, 1.0, 0.6});
+  marks["wash_width"] = 2.0;
+  const SlopeInk broad = wetStrokesOnTheNearSlope(marks, {0.0, 1.0, 0.6});
+  ASSERT_GT(thin.share, 0.05);
+  EXPECT_GT(broad.share, 1.4 * thin.share) << "broad " << broad.share << ", thin " << thin.share;
+  // A broad group's strokes lie side by side, closer than their width, so an inked run along
+  // a row crosses several of them.
+  EXPECT_GT(broad.run_x, 1.3 * thin.run_x) << "across: broad " << broad.run_x << ", thin " << thin.run_x;
+  // Still strokes down the slope, not a flat tone.
+  EXPECT_GT(broad.run_y, 1.3 * broad.run_x) << "down " << broad.run_y << ", across " << broad.run_x;
 }
 
 TEST_F(Composition, FarRangesCarryLessInkThanNearOnes) {

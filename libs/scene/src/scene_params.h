@@ -278,6 +278,10 @@ void describe(V& v, MarksParams& m) {
             "how far wet strokes follow the slope's fall line as it looks on the picture (1) rather than run "
             "straight down it (0: clean strokes on rough ground, where the fall line turns from pixel to pixel)"},
            m.wash_follow, kUnit);
+  v.number({"wash_width",
+            "a wet stroke group's breadth: 1 up to three strokes apart; more, up to seven closer than their "
+            "width, as a brush laid on its side, darker where two overlap; under 1 thinner strokes closer together"},
+           m.wash_width, {0.5, 2.5});
 }
 
 template <typename V>

@@ -373,6 +373,7 @@ class InkPass final : public RenderPass {
           static_cast<float>(std::log2(std::max(mk.wash_size / 0.6 * per_1024 * d / pixels_per_unit_at_1, 1e-30)));
       p.wash_lit = static_cast<float>(mk.wash_lit);
       p.wash_follow = static_cast<float>(mk.wash_follow);
+      p.wash_width = static_cast<float>(mk.wash_width);
       // The dissolving border, in the coordinates the object was uploaded in (relative to
       // its bounding-box centre).
       const glm::dmat4 to_model = glm::inverse(in.modelAt(i));

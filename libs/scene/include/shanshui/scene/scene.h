@@ -204,6 +204,7 @@ struct MarksParams {
   double wash_ink = 0.6;     //!< its darkness at the head, share of the line colour
   double wash_lit = 0.3;     //!< density on fully lit slopes relative to shadowed ones
   double wash_follow = 1.0;  //!< 1: down the fall line as it looks; 0: straight down the picture
+  double wash_width = 1.0;   //!< breadth: 1 three thin strokes apart, 2+ one broad side-brush stroke
   bool enabled() const { return style != MarkStyle::None; }
   bool washes() const { return wash > 0.0; }
 };
