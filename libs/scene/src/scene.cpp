@@ -250,6 +250,12 @@ Scene loadSceneInput(const std::filesystem::path& path, const std::vector<std::s
   } else {
     j["camera"] = {{"preset", "deep"}};
     j["mist"] = {{"density", 0.75}, {"height", 0.12}, {"softness", 0.35}};
+    // Land gets broad wet strokes on its shadowed flanks, as a painter builds a slope's mass:
+    // in three cells of five (so no regular rows on a smooth hill), halfway between the fall
+    // line, which they follow round a hill's form, and straight down the sheet, which keeps
+    // them whole on a DEM's rough ground. A lone mesh may be a building or a boat: none.
+    j["objects"][0]["marks"] = {
+        {"wash", 0.6}, {"wash_size", 100}, {"wash_width", 1.8}, {"wash_ink", 0.7}, {"wash_follow", 0.5}};
   }
   for (const std::string& o : overrides) applyOverride(j, o);
   return parseScene(j, path.filename().string(), ".");

@@ -359,12 +359,15 @@ TEST(Scene, ALoneMeshOrDemGetsTheSampleStyleAndAFramedView) {
   EXPECT_EQ(dem.camera.preset, CameraPreset::Deep);
   EXPECT_TRUE(dem.mist.enabled());
   EXPECT_TRUE(dem.objects[0].dissolvesBorder());
+  EXPECT_TRUE(dem.objects[0].marks.washes()) << "land gets wet strokes";
+  EXPECT_GT(dem.objects[0].marks.wash_width, 1.0);
   const Scene mesh = loadSceneInput("teapot.obj", {"camera.elevation=10"});
   EXPECT_EQ(mesh.camera.preset, CameraPreset::None);
   EXPECT_EQ(mesh.camera.framing, Framing::Fill);
   EXPECT_EQ(mesh.camera.elevation_deg, 10.0);
   EXPECT_FALSE(mesh.mist.enabled()) << "mist is a DEM's: it would hide a lone object's foot";
   EXPECT_FALSE(mesh.objects[0].dissolvesBorder());
+  EXPECT_FALSE(mesh.objects[0].marks.washes()) << "a lone object may be a building";
   // The defaults of a scene file stay the plain ones.
   EXPECT_EQ(plain.canvas.type, CanvasType::None);
   EXPECT_EQ(plain.camera.preset, CameraPreset::None);
