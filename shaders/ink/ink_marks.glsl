@@ -106,13 +106,15 @@ float textureMarks(vec2 uv, float scale, vec2 down, float density, uint style, u
   return mix(a, b, blend);
 }
 
-// Broad wet strokes (objects.N.marks.wash): groups of up to three strokes side by side, as a
+// Broad wet strokes (objects.N.marks.wash): groups of up to three strokes side by side (up to
+// seven, closer together, as wash_width broadens them into a brush laid on its side), as a
 // painter lays a wet cun, each with a dark round head uphill and a body that pales and parts
 // into dry-brush streaks towards its tail, the group turned a little and gently bent. Two
 // lattices, the second offset by half a cell along both axes, so groups stand in staggered
-// rows as strokes laid overlapping down a slope. A group's centre stays within 0.08 of its
-// cell's middle and the group within 0.42 of its centre, so of each lattice only q's own
-// cell can cover q: two cells a pixel, not four.
+// rows as strokes laid overlapping down a slope; where they overlap the ink is layered
+// (1 - (1 - a)(1 - b)), as one wet stroke laid over another darkens it. A group's centre
+// stays within 0.08 of its cell's middle and the group within 0.42 of its centre, so of
+// each lattice only q's own cell can cover q: two cells a pixel, not four.
 //
 // As textureMarks, the work a pixel may skip sits in loops, not branches: a software
 // rasteriser runs both sides of a branch for a whole group of pixels, but leaves a loop once

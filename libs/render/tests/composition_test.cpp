@@ -110,7 +110,6 @@ SlopeInk wetStrokesOnTheNearSlope(const json& marks, const glm::dvec3& light, do
   std::vector<char> inked(static_cast<std::size_t>(kWidth) * kHeight, 0);
   SlopeInk out;
   int inked_pixels = 0;
-  double dbg_max = 0;
   for (int y = 0; y < kHeight; ++y)
     for (int x = 0; x < kWidth; ++x) {
       if (pos.at(x, y, 3) < 0.5f) continue;
@@ -120,11 +119,9 @@ SlopeInk wetStrokesOnTheNearSlope(const json& marks, const glm::dvec3& light, do
       if (wy >= 85.0) continue;
       ++out.pixels;
       inked_pixels += ink;
-      dbg_max = std::max(dbg_max, inkAt(c, x, y, s) / s.output.paper.x);
       inked[static_cast<std::size_t>(y) * kWidth + x] = ink;
     }
   out.share = out.pixels > 0 ? static_cast<double>(inked_pixels) / out.pixels : 0.0;
-  fprintf(stderr, "max %g share %g pixels %d\n", dbg_max, static_cast<double>(inked_pixels) / out.pixels, out.pixels);
   // Mean run length of inked pixels along rows, then along columns.
   auto meanRun = [&](bool rows) {
     int runs = 0, total = 0;
