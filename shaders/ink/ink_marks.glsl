@@ -120,54 +120,70 @@ float textureMarks(vec2 uv, float scale, vec2 down, float density, uint style, u
 // rasteriser runs both sides of a branch for a whole group of pixels, but leaves a loop once
 // none of them has a turn left.
 
-// The ink of one group (its cell's hash h, the hash's first numbers a) at d from its centre,
-// its strokes `breadth` times their thin width.
-float washGroup(vec2 d, vec2 dir, uint h, vec4 a, float density, float breadth, uint seed) {
-  float keep = smoothstep(a.z - 0.06, a.z + 0.06, density);
-  vec4 b = unpack4(cellHash(uvec2(h, seed + 7u)));
-  // Turned together up to ±15 degrees (cos and sin to the cubic and quadratic terms) and bent
-  // to one side, heads uphill.
+// A group at d from its centre (its cell's hash h): its second hash's numbers b, the
+// point along and across it (turned together up to ±15 degrees, cos and sin to the cubic
+// and quadratic terms, and bent to one side, heads uphill), the brush's hairs there, and
+// its strokes' spacing: 2m + 1 of them, gap apart, for strokes `breadth` times their thin
+// width.
+void washFrame(vec2 d, vec2 dir, uint h, float breadth, uint seed, out vec4 b, out float along, out float across,
+               out float hair, out int m, out float gap) {
+  b = unpack4(cellHash(uvec2(h, seed + 7u)));
   float turn = (b.x - 0.5) * 0.52, turn2 = turn * turn;
   float cs = 1.0 - 0.5 * turn2, sn = turn * (1.0 - turn2 / 6.0);
   vec2 along_dir = cs * dir + sn * vec2(-dir.y, dir.x);
-  float along = dot(d, along_dir), across = dot(d, vec2(-along_dir.y, along_dir.x));
+  along = dot(d, along_dir);
+  across = dot(d, vec2(-along_dir.y, along_dir.x));
   across -= (b.x < 0.5 ? 0.025 : -0.025) * (1.0 - 5.0 * along * along);
   // The brush's hairs: value noise across the group, running its length, the gaps between
   // them widening towards the tail, where the brush runs dry.
   float u = 36.0 * across + 17.0 * b.w, f = fract(u);
   uint hu = uint(int(floor(u)) + 64) ^ h;
-  float hair = mix(float(cellHash(uvec2(hu, 3u)) >> 8) / 16777216.0,
-                   float(cellHash(uvec2(hu + 1u, 3u)) >> 8) / 16777216.0, f * f * (3.0 - 2.0 * f));
+  hair = mix(float(cellHash(uvec2(hu, 3u)) >> 8) / 16777216.0, float(cellHash(uvec2(hu + 1u, 3u)) >> 8) / 16777216.0,
+             f * f * (3.0 - 2.0 * f));
   // Strokes side by side, each its own length (half: 0.24-0.34, less towards a broad group's
   // edges), start, width (half: 0.04-0.065) and ink, and any but the middle one missing from
-  // a third of the groups. Thin (breadth 1): three 0.13 apart, of which only the nearest can
-  // cover q, so groups of one to three. Broader: up to seven, closer than their width, as the
-  // hairs of a brush laid on its side, their heads staggered; the two nearest q overlap and
-  // are layered, darker where both lie. Narrower than 1: thinner strokes closer together.
+  // a third of the groups. Thin (breadth 1): three 0.13 apart, so groups of one to three.
+  // Broader: up to seven, closer than their width, as the hairs of a brush laid on its
+  // side, their heads staggered. Narrower than 1: thinner strokes closer together. In every
+  // case a stroke's half-width is under its gap, so of the strokes only the two nearest a
+  // point can cover it.
   float half_extent = 0.13 * min(breadth, 2.15);
-  int m = max(1, int(half_extent / 0.1 + 0.5));
-  float gap = half_extent / float(m);
+  m = max(1, int(half_extent / 0.1 + 0.5));
+  gap = half_extent / float(m);
+}
+
+// Stroke j (0 .. 2m) of a group framed by washFrame: its ink at (along, across).
+float washStroke(int j, float along, float across, float hair, int m, float gap, float breadth, vec4 a, vec4 b) {
+  float r1 = fract(b.y + 0.618 * float(j)), r2 = fract(b.z + 0.382 * float(j)), r3 = fract(a.w + 0.618 * float(j));
+  float offset = gap * float(j - m);
+  float len = (0.24 + 0.1 * r1) * (1.0 - 2.5 * max(abs(offset) - 0.13, 0.0));
+  float t = (along - 0.08 * min(breadth, 1.5) * (r2 - 0.5)) / len;  // -1 the head .. 1 the tail
+  // Round at the head, full through the body, narrowing to the tail.
+  float width =
+      min(breadth, 1.0) * (0.04 + 0.025 * r1) * sqrt(clamp((1.0 + t) * 3.0, 0.0, 1.0)) * (1.0 - 0.5 * max(t, 0.0));
+  float s = (across - offset) / max(width, 1e-4);
+  float cover = (1.0 - smoothstep(0.85, 1.0, abs(t))) * (1.0 - smoothstep(0.6, 1.0, abs(s))) *
+                (j != m && r3 < 0.33 ? 0.0 : 0.8 + 0.2 * r3);
+  // Drier and paler towards the tail.
+  float dry = 0.05 + 0.6 * smoothstep(-0.3, 1.0, t);
+  return cover * smoothstep(dry - 0.12, dry + 0.12, hair) * mix(1.0, 0.45, smoothstep(-1.0, 1.0, t));
+}
+
+// The ink of one group (its cell's hash h, the hash's first numbers a) at d from its centre:
+// the two strokes nearest d across the group, the second laid over the first, darker where
+// both lie (wash_probe.comp holds this to all 2m + 1 strokes layered).
+float washGroup(vec2 d, vec2 dir, uint h, vec4 a, float density, float breadth, uint seed) {
+  float keep = smoothstep(a.z - 0.06, a.z + 0.06, density);
+  vec4 b;
+  float along, across, hair, gap;
+  int m;
+  washFrame(d, dir, h, breadth, seed, b, along, across, hair, m, gap);
   float pos = across / gap + float(m);
   int j0 = clamp(int(floor(pos + 0.5)), 0, 2 * m);
   int j1 = clamp(pos > float(j0) ? j0 + 1 : j0 - 1, 0, 2 * m);
   float ink = 0.0;
-  for (int n = 0, strokes = breadth > 1.0 && j1 != j0 ? 2 : 1; n < strokes; ++n) {
-    int j = n == 0 ? j0 : j1;
-    float r1 = fract(b.y + 0.618 * float(j)), r2 = fract(b.z + 0.382 * float(j)), r3 = fract(a.w + 0.618 * float(j));
-    float offset = gap * float(j - m);
-    float len = (0.24 + 0.1 * r1) * (1.0 - 2.5 * max(abs(offset) - 0.13, 0.0));
-    float t = (along - 0.08 * min(breadth, 1.5) * (r2 - 0.5)) / len;  // -1 the head .. 1 the tail
-    // Round at the head, full through the body, narrowing to the tail.
-    float width = min(breadth, 1.0) * (0.04 + 0.025 * r1) * sqrt(clamp((1.0 + t) * 3.0, 0.0, 1.0)) *
-                  (1.0 - 0.5 * max(t, 0.0));
-    float s = (across - offset) / max(width, 1e-4);
-    float cover = (1.0 - smoothstep(0.85, 1.0, abs(t))) * (1.0 - smoothstep(0.6, 1.0, abs(s))) *
-                  (j != m && r3 < 0.33 ? 0.0 : 0.8 + 0.2 * r3);
-    // Drier and paler towards the tail.
-    float dry = 0.05 + 0.6 * smoothstep(-0.3, 1.0, t);
-    float one = cover * smoothstep(dry - 0.12, dry + 0.12, hair) * mix(1.0, 0.45, smoothstep(-1.0, 1.0, t));
-    ink += (1.0 - ink) * one;
-  }
+  for (int n = 0, strokes = breadth > 1.0 && j1 != j0 ? 2 : 1; n < strokes; ++n)
+    ink += (1.0 - ink) * washStroke(n == 0 ? j0 : j1, along, across, hair, m, gap, breadth, a, b);
   return keep * ink;
 }
 
