@@ -4,6 +4,8 @@
 // (shaders/ink/wash_probe.comp).
 #include <algorithm>
 #include <cmath>
+#include <string>
+#include <vector>
 
 #include "gl_test.h"
 #include "shanshui/render/shader_program.h"
@@ -25,7 +27,8 @@ std::vector<GroupInk> probeGroups(float breadth, int groups, int grid) {
   for (int g = 0; g < groups; ++g)
     for (int y = 0; y < grid; ++y)
       for (int x = 0; x < grid; ++x)
-        points.push_back({-0.42f + 0.84f * x / (grid - 1), -0.42f + 0.84f * y / (grid - 1), breadth, static_cast<float>(g)});
+        points.push_back(
+            {-0.42f + 0.84f * x / (grid - 1), -0.42f + 0.84f * y / (grid - 1), breadth, static_cast<float>(g)});
   Program program({"wash_probe.comp"});
   GLuint buffers[2];
   glCreateBuffers(2, buffers);
