@@ -16,7 +16,7 @@
   F(vec4, u_water_extent) \
   F(vec2, u_near_far)       F(vec2, u_fade_range) \
   F(vec2, u_viewport)       F(vec2, u_water_right) \
-  F(float, u_water_bank)    F(float, u_pixel_angle) F(float, u_frame_unused0) F(float, u_frame_unused1) \
+  F(float, u_water_bank)    F(float, u_pixel_angle) F(float, u_water_bank_break) F(float, u_frame_unused1) \
   F(vec3, u_brush_right)    F(float, u_frame_unused2) \
   F(vec3, u_brush_up)       F(float, u_frame_unused3)
 
@@ -31,7 +31,7 @@
 // u_water_extent: the open water's rectangle in world xy (min, max); u_near_far: the
 // projection's planes; u_viewport: the frame's size in pixels; u_water_right: the picture's
 // horizontal laid on the water (unit, world xy); u_water_bank: the bank line's width in
-// pixels; u_pixel_angle: a pixel's height at distance 1 (world units); u_brush_right,
+// pixels; u_water_bank_break: how far it breaks into strokes along the shore (0: even); u_pixel_angle: a pixel's height at distance 1 (world units); u_brush_right,
 // u_brush_up: the picture plane of the scene's own view (camera.azimuth and elevation, unit,
 // world), where the broad wet strokes lie (ink_marks.glsl), so a painter's strokes keep their
 // shape on a slope facing the viewer and stay fixed in the world when the view turns.

@@ -241,7 +241,7 @@ vec3 landColour(ObjectParams o, ivec2 p, float depth, vec4 surface, vec3 positio
   }
 #endif
 #ifdef WATER
-  line_weight = max(line_weight, bankLine(p, position.z, z_per_pixel));
+  line_weight = max(line_weight, bankLine(p, position, z_per_pixel));
 #endif
 
   // Interior shading: diffuse term eroded by noise, or by the wrinkle texture where the

@@ -89,22 +89,37 @@ float openWaterInk(ivec2 p) {
   return waveInkAt(w, t, d, f);
 }
 
-// 1 on the land's side of a bank: a neighbour within the line's width is under water. z is
-// the pixel's height and z_per_pixel how much it changes to a neighbour (a 2 × 2 quad's
+// The bank line's ink at world xy along the shore: 1, an even line; with u_water_bank_break,
+// value noise over cells of half a wave cell leaves gaps where it is low (below 0.33: a
+// quarter of the shore, fading in up to 0.43) and varies the ink of what stays, as a brush
+// drawn along a shore lifts and presses.
+float bankInk(vec2 xy) {
+  vec2 q = xy / max(0.5 * u_water.y, 1e-6), f = fract(q);
+  uvec2 c = uvec2(ivec2(floor(q)) + 32768);
+  f = f * f * (3.0 - 2.0 * f);
+  vec4 h = vec4(cellHash(c), cellHash(c + uvec2(1u, 0u)), cellHash(c + uvec2(0u, 1u)), cellHash(c + uvec2(1u, 1u))) /
+           4294967296.0;
+  float n = mix(mix(h.x, h.y, f.x), mix(h.z, h.w, f.x), f.y);
+  return mix(1.0, smoothstep(0.33, 0.43, n) * (0.6 + 0.4 * n), u_water_bank_break);
+}
+
+// On the land's side of a bank (a neighbour within the line's width is under water) the
+// line's ink there (bankInk), elsewhere 0. position is the
+// pixel's point (world) and z_per_pixel how much it changes to a neighbour (a 2 × 2 quad's
 // screen derivative): a pixel higher above the water than r such steps (with room for the
 // quad's estimate to be low) has no neighbour under it, and reads none.
-float bankLine(ivec2 p, float z, float z_per_pixel) {
+float bankLine(ivec2 p, vec3 position, float z_per_pixel) {
   if (u_water_bank <= 0.0) return 0.0;
   int r = max(1, int(round(u_water_bank)));
   // Elsewhere a loop of no turns: a software rasteriser runs a branch for its whole group of
   // pixels, but leaves a loop once none of them has a turn left.
-  int sides = z - u_water.x > 4.0 * float(r) * z_per_pixel + 1e-4 * abs(u_water.x) + 1e-6 ? 0 : 4;
+  int sides = position.z - u_water.x > 4.0 * float(r) * z_per_pixel + 1e-4 * abs(u_water.x) + 1e-6 ? 0 : 4;
   ivec2 size = textureSize(u_depth, 0);
   for (int k = 0; k < sides; ++k) {
     ivec2 q = p + r * ivec2(k == 0 ? 1 : (k == 1 ? -1 : 0), k == 2 ? 1 : (k == 3 ? -1 : 0));
     if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, size))) continue;
     float depth = texelFetch(u_depth, q, 0).r;
-    if (depth < 1.0 && underWater(worldPosition(q, depth))) return 1.0;
+    if (depth < 1.0 && underWater(worldPosition(q, depth))) return bankInk(position.xy);
   }
   return 0.0;
 }

@@ -113,6 +113,48 @@ TEST_F(Water, WavesAreHorizontalStrokesAndTheBankIsALine) {
   EXPECT_GT(static_cast<double>(bank) / static_cast<double>(shore), 0.9) << "the shore is drawn";
 }
 
+// water.bank_break: the bank line breaks into strokes along the shore. It only takes ink
+// away (no pixel darker than with the even line), leaves a share of the shore as gaps, and
+// the gaps are stretches of the shore (value noise over half a wave cell), not single pixels.
+TEST_F(Water, ABrokenBankLeavesStretchesOfTheShoreBareAndInksNothingElse) {
+  const mesh::Mesh m = ramp();
+  const json water = {{"enabled", true}, {"level", 0.5}, {"waves", 0.0}, {"bank", 2.0}, {"spacing", 0.08}};
+  const json plain = {{"shading", {{"enabled", false}}}};
+  json broken_water = water;
+  broken_water["bank_break"] = 1.0;
+  const Picture even = paint(waterScene(water, plain), m, 200.0, 1.8);
+  const Picture broken = paint(waterScene(broken_water, plain), m, 200.0, 1.8);
+  const double paper = waterScene(water).output.paper.x;
+  std::vector<std::pair<float, bool>> shore;  // world y along the shore, drawn
+  long drawn_even = 0;
+  for (int y = 1; y + 1 < kHeight; ++y) {
+    for (int x = 1; x + 1 < kWidth; ++x) {
+      for (int c = 0; c < 3; ++c)
+        ASSERT_GE(broken.colour.at(x, y, c), even.colour.at(x, y, c) - 1.0f / 255) << x << "," << y;
+      const image::Image& pos = even.position;
+      if (pos.at(x, y, 3) < 0.5f || pos.at(x, y, 2) < 0.0f) continue;
+      if (pos.at(x + 1, y, 2) < 0.0f || pos.at(x - 1, y, 2) < 0.0f || pos.at(x, y + 1, 2) < 0.0f ||
+          pos.at(x, y - 1, 2) < 0.0f) {
+        drawn_even += even.colour.at(x, y, 0) < paper - 0.25;
+        shore.emplace_back(pos.at(x, y, 1), broken.colour.at(x, y, 0) < paper - 0.25);
+      }
+    }
+  }
+  ASSERT_GT(shore.size(), 100u);
+  const double n = static_cast<double>(shore.size());
+  EXPECT_GT(static_cast<double>(drawn_even) / n, 0.9) << "the even line draws the shore";
+  long drawn = 0, switches = 0;
+  std::sort(shore.begin(), shore.end());
+  for (std::size_t i = 0; i < shore.size(); ++i) {
+    drawn += shore[i].second;
+    if (i > 0 && shore[i].second != shore[i - 1].second) ++switches;
+  }
+  EXPECT_GT(drawn / n, 0.45) << "most of the shore is still drawn";
+  EXPECT_LT(drawn / n, 0.85) << "a share of it is left bare";
+  EXPECT_GE(switches, 4) << "several gaps";
+  EXPECT_LT(switches, n / 6) << "stretches, not scattered pixels";
+}
+
 // A wave thinner than two pixels is one stroke, not a row of dashes. The strokes are
 // 0.7-1.6 cells long, over 10 pixels at this framing, and each is one 8-connected dark mark:
 // few dark pixels lie in marks under 6 pixels across. (A test of each pixel's centre alone

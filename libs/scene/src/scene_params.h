@@ -683,6 +683,11 @@ void describe(V& v, Water& w) {
   v.number({"bank", "width of the bank line where land meets the water, pixels at a picture height of 1024; 0: none",
             Effect::Uniform, "pixels"},
            w.bank, {0, 16});
+  v.number({"bank_break",
+            "how far the bank line breaks into strokes of varying ink along the shore, as a brush draws a shore: "
+            "at 1 about a third of it is left as gaps; 0: one even line",
+            Effect::Uniform},
+           w.bank_break, kUnit);
 }
 
 template <typename V>

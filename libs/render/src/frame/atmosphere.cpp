@@ -101,6 +101,7 @@ gpu::FrameParams frameParams(const FrameInputs& in) {
   f.u_water_extent =
       glm::vec4(in.world_bounds.min.x, in.world_bounds.min.y, in.world_bounds.max.x, in.world_bounds.max.y);
   f.u_water_bank = static_cast<float>(w.bank * in.height / 1024.0);
+  f.u_water_bank_break = static_cast<float>(w.bank_break);
   f.u_viewport = glm::vec2(in.width, in.height);
   f.u_pixel_angle = static_cast<float>(2.0 * std::tan(glm::radians(camera.fov_y_deg) * 0.5) / std::max(in.height, 1));
   // The picture plane of the view the scene is composed for (its own azimuth and its camera's

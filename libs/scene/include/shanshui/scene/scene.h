@@ -408,12 +408,13 @@ struct Mist {
 //! Water (a lake, a river in its valley, the sea): a level below which the land is hidden
 //! and left as paper with a few horizontal wave strokes, its banks drawn as a line.
 struct Water {
-  bool enabled = false;    //!< builds the water code into the ink pass
-  double level = 0.15;     //!< the water's surface, fraction of the scene's vertical extent from its lowest point
-  double waves = 0.25;     //!< share of the wave cells that hold a stroke; 0 = bare paper
-  double spacing = 0.025;  //!< wave cell size, fraction of the scene's larger horizontal side
-  double ink = 0.75;       //!< darkness of a wave stroke, 0..1 of the line colour
-  double bank = 1.5;       //!< width of the bank line in pixels at a height of 1024; 0 = none
+  bool enabled = false;     //!< builds the water code into the ink pass
+  double level = 0.15;      //!< the water's surface, fraction of the scene's vertical extent from its lowest point
+  double waves = 0.25;      //!< share of the wave cells that hold a stroke; 0 = bare paper
+  double spacing = 0.025;   //!< wave cell size, fraction of the scene's larger horizontal side
+  double ink = 0.75;        //!< darkness of a wave stroke, 0..1 of the line colour
+  double bank = 1.5;        //!< width of the bank line in pixels at a height of 1024; 0 = none
+  double bank_break = 0.0;  //!< how far the bank line breaks into strokes of varying ink along the shore; 0 = even
 };
 
 //! The paper's body (seed 000): its relief (a scanned paper, the canvas's grain, or value
