@@ -520,8 +520,8 @@ int main(int argc, char** argv) {
           "leafy trees of dot leaves, bare branches, distant trees as a few dots, in groves on ridges, in hollows "
           "and on valley floors, with clusters of moss dots:\n\n![grove](grove.png)";
     md << "\n\nWater (`samples/scenes/lake.json`, `water.level`): the land below the level is hidden and left as "
-          "paper with a few horizontal wave strokes laid on the water, the shore drawn as a line, the boat on the "
-          "lake, nothing growing under it:\n\n![lake](lake.png)";
+          "paper with a few horizontal wave strokes laid on the water, the shore drawn as a broken line "
+          "(`water.bank_break`), the boat on the lake, nothing growing under it:\n\n![lake](lake.png)";
     md << "\n\nThe level distance with seed 002's brush strokes along its silhouettes and creases "
           "(`objects.N.strokes.style: liuye`, willow leaf: thin, thick, thin):\n\n"
           "![level strokes](level_strokes.png)\n\nOn a mesh (the sample boat): its feature lines, and liuye brush "
