@@ -104,10 +104,10 @@ float bankInk(vec2 xy) {
 }
 
 // On the land's side of a bank (a neighbour within the line's width is under water) the
-// line's ink there (bankInk), elsewhere 0. position is the
-// pixel's point (world) and z_per_pixel how much it changes to a neighbour (a 2 × 2 quad's
-// screen derivative): a pixel higher above the water than r such steps (with room for the
-// quad's estimate to be low) has no neighbour under it, and reads none.
+// line's ink there (bankInk), elsewhere 0. position is the pixel's point (world) and
+// z_per_pixel how much its height changes to a neighbour (a 2 × 2 quad's screen
+// derivative): a pixel higher above the water than r such steps (with room for the quad's
+// estimate to be low) has no neighbour under it, and reads none.
 float bankLine(ivec2 p, vec3 position, float z_per_pixel) {
   if (u_water_bank <= 0.0) return 0.0;
   int r = max(1, int(round(u_water_bank)));
