@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "gl_probe.h"
 #include "gl_test.h"
 #include "shanshui/render/shader_program.h"
 #include "test_support.h"
@@ -29,21 +30,7 @@ std::vector<GroupInk> probeGroups(float breadth, int groups, int grid) {
       for (int x = 0; x < grid; ++x)
         points.push_back(
             {-0.42f + 0.84f * x / (grid - 1), -0.42f + 0.84f * y / (grid - 1), breadth, static_cast<float>(g)});
-  Program program({"wash_probe.comp"});
-  GLuint buffers[2];
-  glCreateBuffers(2, buffers);
-  glNamedBufferStorage(buffers[0], static_cast<GLsizeiptr>(points.size() * sizeof(glm::vec4)), points.data(), 0);
-  glNamedBufferStorage(buffers[1], static_cast<GLsizeiptr>(points.size() * sizeof(GroupInk)), nullptr, 0);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, buffers[0]);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, buffers[1]);
-  program.use();
-  program.set("u_count", static_cast<int>(points.size()));
-  glDispatchCompute(static_cast<GLuint>((points.size() + 63) / 64), 1, 1);
-  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-  std::vector<GroupInk> values(points.size());
-  glGetNamedBufferSubData(buffers[1], 0, static_cast<GLsizeiptr>(values.size() * sizeof(GroupInk)), values.data());
-  glDeleteBuffers(2, buffers);
-  return values;
+  return test::runProbe<GroupInk>(Program({"wash_probe.comp"}), points);
 }
 
 TEST_F(MarksGlsl, TwoNearestStrokesLayeredAreTheWholeGroupLayeredAtEveryBreadth) {

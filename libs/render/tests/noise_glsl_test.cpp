@@ -4,6 +4,7 @@
 #include <cmath>
 #include <random>
 
+#include "gl_probe.h"
 #include "gl_test.h"
 #include "shanshui/noise/gabor.h"
 #include "shanshui/noise/perlin.h"
@@ -18,24 +19,11 @@ using NoiseGlsl = test::HeadlessGl;
 // Runs shaders/common/noise_probe.comp over `points` (xyz) with kind 0 (Perlin) or 1 (Gabor).
 std::vector<float> probe(const std::vector<glm::vec4>& points, int kind, const noise::GaborOptions& g = {}) {
   Program program({"noise_probe.comp"});
-  GLuint buffers[2];
-  glCreateBuffers(2, buffers);
-  glNamedBufferStorage(buffers[0], static_cast<GLsizeiptr>(points.size() * sizeof(glm::vec4)), points.data(), 0);
-  glNamedBufferStorage(buffers[1], static_cast<GLsizeiptr>(points.size() * sizeof(float)), nullptr, 0);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, buffers[0]);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, buffers[1]);
-  program.use();
-  program.set("u_count", static_cast<int>(points.size()));
   program.set("u_kind", kind);
   program.set("u_gabor", glm::vec4(g.K, g.a, g.F0, g.omega0));
   program.set("u_gabor_misc", glm::vec2(g.isotropic ? 1.0f : 0.0f, static_cast<float>(g.impulses)));
   program.set("u_seed", noise::noiseSeed32(g.seed));
-  glDispatchCompute(static_cast<GLuint>((points.size() + 63) / 64), 1, 1);
-  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-  std::vector<float> values(points.size());
-  glGetNamedBufferSubData(buffers[1], 0, static_cast<GLsizeiptr>(values.size() * sizeof(float)), values.data());
-  glDeleteBuffers(2, buffers);
-  return values;
+  return test::runProbe<float>(program, points);
 }
 
 TEST_F(NoiseGlsl, PerlinGivesThePublishedValuesInFloat) {
