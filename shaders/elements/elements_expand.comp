@@ -3,7 +3,7 @@
 // of an object. It places the element in the world, culls what is out of view, weighs the
 // levels of detail by its height on screen (elements::levelWeights), finds the ink the
 // distance fade, the mist and the border leave at its foot (atmosphere.cpp's presence(), the
-// noise at its mean), and appends one entry per mark of the active levels for
+// noise at its mean; the border's taken later, presence() here), and appends one entry per mark of the active levels for
 // elements.vert to draw; the count goes into the indirect draw's instance count.
 layout(local_size_x = 64) in;
 
@@ -70,7 +70,12 @@ float presence(vec3 world) {
     vec4 w = vec4(world, 1.0);
     vec2 m = vec2(dot(u_to_model_x, w), dot(u_to_model_y, w));
     vec2 inside = u_half_extent - abs(m);
-    f *= smoothstep(0.0, 1.0, min(inside.x, inside.y) / u_border_width - 0.5 * u_border_roughness);
+    float left = smoothstep(0.0, 1.0, min(inside.x, inside.y) / u_border_width - 0.5 * u_border_roughness);
+    // What the border leaves of the land (the ink pass's, at the noise's mean), taken to the
+    // element later: full ink where the land keeps half of its own, none where a twentieth.
+    // The ground washes out over the whole band, but a painter keeps a tree dark until near
+    // the edge, so the trees of a bank that dissolves at its front stay its darkest marks.
+    f *= smoothstep(0.05, 0.5, left);
   }
   return clamp(f, 0.0, 1.0);
 }

@@ -192,6 +192,43 @@ TEST_F(Elements, ATreesInkChangesContinuouslyAsItRecedes) {
   }
 }
 
+// The dissolving border washes the ground out over its whole band, but a tree keeps its ink
+// until the ground is half gone, and fades out only at the band's outer part (a painter's
+// nearest trees stay dark where the bank dissolves at its front). A tree at several depths
+// into the band (roughness 0: the border is smoothstep(t), t the depth over the width)
+// against the same tree with a hard edge: its ink is smoothstep(0.05, 0.5, border).
+TEST_F(Elements, ATreeInADissolvingBorderKeepsItsInkUntilTheGroundIsHalfGone) {
+  const mesh::Mesh m = plane();  // 200 x 200: half-extent 100, so a width of 0.3 is 30
+  const double width = 30.0;
+  for (double inside : {4.5, 7.5, 10.5, 12.0, 15.0, 24.0}) {
+    SCOPED_TRACE(inside);
+    elements::Instance tree;
+    tree.kind = elements::Kind::Leafy;
+    tree.position = glm::vec3(100.0 - inside, 0.0f, 0.0f);
+    tree.size = 40.0f;
+    tree.seed = 7;
+    auto ink = [&](const char* mode) {
+      const scene::Scene s = elementScene({{"dots", {{"enabled", false}}},
+                                           {"trees", {{"enabled", true}}},
+                                           {"border", {{"mode", mode}, {"width", width / 100.0}, {"roughness", 0.0}}}});
+      InkRenderer r(s, withElements(s, m, {tree}));
+      r.render(r.camera({-60.0, 15.0, 1.0}, static_cast<double>(kWidth) / kHeight), kWidth, kHeight);
+      const image::Image e = elementInk(r);
+      double sum = 0.0;
+      for (float v : e.pixels) sum += v;
+      return sum;
+    };
+    const double whole = ink("keep"), kept = ink("dissolve");
+    ASSERT_GT(whole, 50.0) << "the tree is in view";
+    const double t = inside / width, ground = t * t * (3.0 - 2.0 * t);
+    const double x = std::clamp((ground - 0.05) / 0.45, 0.0, 1.0), expected = x * x * (3.0 - 2.0 * x);
+    EXPECT_NEAR(kept / whole, expected, 0.03) << "the ground keeps " << ground;
+    if (ground > 0.25) {
+      EXPECT_GT(kept / whole, ground + 0.05) << "darker than the ground under it";
+    }
+  }
+}
+
 TEST_F(Elements, TheSameSeedPaintsTheSamePicture) {
   const mesh::Mesh m = mesh::heightGrid(
       41, 41, 10.0, [](double x, double y) { return 30.0 * std::sin(x / 60.0) * std::cos(y / 50.0); },
