@@ -48,7 +48,7 @@ uniform float u_pixels_at_1;  // pixels per world unit at distance 1
 uniform float u_per_1024;     // picture height / 1024
 uniform float u_height_px;
 uniform float u_scale;        // of u_model (cube root of its determinant)
-uniform uint u_first;         // this object's first element in frame_instances
+uniform uint u_first;         // this object's first element in instances and frame_instances
 uniform uint u_count;
 uniform uint u_capacity;      // entries
 uniform float u_tree_ink, u_dot_ink, u_dot_px;
@@ -88,7 +88,7 @@ shared uint group_count, group_base;
 int marks(uint i, out vec3 world, out float ppu, out float height, out float ink, out vec3 w, out float far_size,
           out int lo, out uint t, out bool dot, out float bias) {
   if (i >= u_count) return 0;
-  Instance e = instances[i];
+  Instance e = instances[u_first + i];
   world = (u_model * vec4(e.position_size.xyz, 1.0)).xyz;
   if (world.z < u_water.x) return 0;  // nothing grows under water (u_water.x: the lowest float without water)
   vec4 clip = u_view_projection * vec4(world, 1.0);
@@ -138,7 +138,7 @@ void main() {
   if (gl_LocalInvocationIndex == 0u && group_count > 0u) group_base = atomicAdd(instance_count, group_count);
   barrier();
   if (count == 0) return;
-  Instance e = instances[i];
+  Instance e = instances[u_first + i];
   uint slot = u_first + i;
   frame_instances[slot].anchor_ppu = vec4(world, ppu);
   float seed_angle = 6.2831853 * e.lean_seed.y;

@@ -229,6 +229,56 @@ TEST_F(Elements, ATreeInADissolvingBorderKeepsItsInkUntilTheGroundIsHalfGone) {
   }
 }
 
+// Two objects side by side on one mesh, each with a tree at a different model point: each
+// object draws its own, where its transform puts it, and not the other's. (The expand pass
+// read every object's elements from the start of the buffer: the second object drew the
+// first's trees, and none of its own beyond their number, and nothing looked amiss where
+// the objects shared a mesh: the painting's near bank showed the middle range's trees.)
+TEST_F(Elements, EachObjectDrawsItsOwnElements) {
+  const mesh::Mesh m = plane();
+  json o = {{"mesh", "memory.obj"},
+            {"up", "z"},
+            {"recentre", false},
+            {"lines", {{"enabled", false}}},
+            {"shading", {{"enabled", false}}},
+            {"border", {{"mode", "keep"}}},
+            {"trees", {{"enabled", true}}}};
+  json a = o, b = o;
+  a["transform"] = {{"translate", {-120.0, 0.0, 0.0}}};
+  b["transform"] = {{"translate", {120.0, 0.0, 0.0}}};
+  const scene::Scene s = scene::parseScene(
+      {{"objects", {a, b}}, {"output", {{"fade", 0.0}, {"width", kWidth}, {"height", kHeight}}}}, "test", ".");
+  auto treeAt = [](glm::vec3 p) {
+    elements::Instance t;
+    t.kind = elements::Kind::Pine;
+    t.position = p;
+    t.size = 40.0f;
+    t.seed = 5;
+    auto set = std::make_shared<scene::ElementSet>();
+    set->instances = {t};
+    return set;
+  };
+  std::vector<scene::LoadedObject> loaded;
+  for (std::size_t i = 0; i < 2; ++i)
+    loaded.push_back({std::make_shared<const scene::ObjectAsset>(scene::prepareAsset(m, s.objects[i])), nullptr});
+  loaded[0].elements = treeAt({0.0f, 0.0f, 0.0f});
+  loaded[1].elements = treeAt({60.0f, 0.0f, 0.0f});
+  InkRenderer r(s, loaded);
+  const OrbitCamera cam = r.camera({-90.0, 20.0, 1.0}, static_cast<double>(kWidth) / kHeight);
+  r.render(cam, kWidth, kHeight);
+  const image::Image e = elementInk(r);
+  // The ink within reach of a point half a tree above a foot (world).
+  auto inkAbove = [&](glm::dvec3 foot) {
+    const glm::dvec2 top = projected(cam, foot + glm::dvec3(0.0, 0.0, 40.0));
+    const glm::dvec2 base = projected(cam, foot);
+    return inkCentre(e, 0.5 * (top + base), 0.6 * glm::length(top - base)).z;
+  };
+  const double first = inkAbove({-120.0, 0.0, 0.0}), second = inkAbove({180.0, 0.0, 0.0});
+  EXPECT_GT(first, 5.0) << "the first object's tree";
+  EXPECT_GT(second, 5.0) << "the second object's tree";
+  EXPECT_LT(inkAbove({120.0, 0.0, 0.0}), 0.02 * second) << "the first object's tree drawn on the second";
+}
+
 TEST_F(Elements, TheSameSeedPaintsTheSamePicture) {
   const mesh::Mesh m = mesh::heightGrid(
       41, 41, 10.0, [](double x, double y) { return 30.0 * std::sin(x / 60.0) * std::cos(y / 50.0); },
