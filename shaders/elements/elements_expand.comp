@@ -2,9 +2,10 @@
 // The elements pass's first step (libs/render/src/passes/elements_pass.cpp): one thread per element
 // of an object. It places the element in the world, culls what is out of view, weighs the
 // levels of detail by its height on screen (elements::levelWeights), finds the ink the
-// distance fade, the mist and the border leave at its foot (atmosphere.cpp's presence(), the
-// noise at its mean; the border's taken later, presence() here), and appends one entry per mark of the active levels for
-// elements.vert to draw; the count goes into the indirect draw's instance count.
+// distance fade, the mist and the border leave at its foot (atmosphere.cpp's presence(),
+// the mist's noise at its mean; the border's taken later: borderInk), and appends one entry
+// per mark of the active levels for elements.vert to draw; the count goes into the indirect
+// draw's instance count.
 layout(local_size_x = 64) in;
 
 struct Instance {
@@ -60,24 +61,34 @@ uniform vec4 u_to_model_x, u_to_model_y;
 uniform vec2 u_half_extent;
 uniform float u_border_width;  // 0: no border
 uniform float u_border_roughness;
+layout(r8, binding = 0) readonly uniform image2D u_value_noise;  // the border's noise (with a border)
+#include "border_noise.glsl"
 
+// What the distance fade and the mist leave at a foot (world).
 float presence(vec3 world) {
   float far = smoothstep(u_fade_range.x, u_fade_range.y, distance(world, u_eye));
   float f = 1.0 - u_fade * far;
   if (u_mist.x > 0.0)
     f *= 1.0 - u_mist.x * mix(u_mist_near, 1.0, far) * (1.0 - smoothstep(0.0, 1.0, (world.z - u_mist.y) / u_mist.z));
-  if (u_border_width > 0.0) {
-    vec4 w = vec4(world, 1.0);
-    vec2 m = vec2(dot(u_to_model_x, w), dot(u_to_model_y, w));
-    vec2 inside = u_half_extent - abs(m);
-    float left = smoothstep(0.0, 1.0, min(inside.x, inside.y) / u_border_width - 0.5 * u_border_roughness);
-    // What the border leaves of the land (the ink pass's, at the noise's mean), taken to the
-    // element later: full ink where the land keeps half of its own, none where a twentieth.
-    // The ground washes out over the whole band, but a painter keeps a tree dark until near
-    // the edge, so the trees of a bank that dissolves at its front stay its darkest marks.
-    f *= smoothstep(0.05, 0.5, left);
-  }
   return clamp(f, 0.0, 1.0);
+}
+
+// What the dissolving border leaves of an element at a foot (world), `near` the share of its
+// near level of detail (a tree drawn large, with its full brushwork). Taken from what it
+// leaves of the ground there, later than the ground: full ink where the ground keeps half
+// of its own, none where it keeps a twentieth; the ground washes out over the whole band,
+// but a painter keeps a tree dark until near the edge. Small elements (far dabs, moss dots)
+// read the ground's ragged edge itself (the ink pass's noise), so none stands on the paper
+// beyond it; a large tree reads the band at the noise's mean, so the trees of a bank that
+// dissolves at its front stay its darkest marks, their feet in the mist.
+float borderInk(vec3 world, float near) {
+  if (u_border_width <= 0.0) return 1.0;
+  vec4 w = vec4(world, 1.0);
+  vec2 m = vec2(dot(u_to_model_x, w), dot(u_to_model_y, w));
+  vec2 inside = u_half_extent - abs(m);
+  float mean = smoothstep(0.0, 1.0, min(inside.x, inside.y) / u_border_width - 0.5 * u_border_roughness);
+  float ragged = borderLeft(m, u_half_extent, u_border_width, u_border_roughness);
+  return smoothstep(0.05, 0.5, mix(ragged, mean, near));
 }
 
 // The work group's marks are appended with one global atomic: each element takes its place
@@ -101,12 +112,12 @@ int marks(uint i, out vec3 world, out float ppu, out float height, out float ink
   float reach = 2.0 * height * ppu / u_height_px + 0.05;
   vec2 ndc = clip.xy / clip.w;
   if (abs(ndc.x) > 1.0 + reach || ndc.y > 1.05 || ndc.y < -1.0 - reach) return 0;
-  float here = presence(world);
-  if (here < 0.004) return 0;
-  ink = dot ? u_dot_ink * here : u_tree_ink * here;
   float px = height * ppu / u_per_1024;
   float middle_in = dot ? 0.0 : smoothstep(u_level_bands.x, u_level_bands.y, px);
   float near_in = smoothstep(u_level_bands.z, u_level_bands.w, px);
+  float here = presence(world) * borderInk(world, dot ? 0.0 : near_in);
+  if (here < 0.004) return 0;
+  ink = dot ? u_dot_ink * here : u_tree_ink * here;
   w = vec3(1.0 - middle_in, middle_in * (1.0 - near_in), middle_in * near_in);
   // A far tree stays a dab a painter can see: its far marks grow to the least width.
   far_size = height * max(1.0, u_least_far_px / max(0.3 * px, 1e-9));

@@ -3,18 +3,8 @@
 // (distance fade, mist) and the dissolving border leave standing. Include after
 // ink_objects.glsl.
 #if defined(BORDER) || defined(MIST)
-// Tiled fractal value noise in [0, 1] (libs/noise's erosion noise, 4 coarsest cells per
-// tile), sampled finely enough (kValueNoiseTexels a side) that the nearest texel stands in
-// for a filtered fetch: an image load costs llvmpipe about a quarter of a bilinear fetch,
-// and the two fetches were a sixth of the lines pass (measured side by side).
 layout(r8, binding = 5) readonly uniform image2D u_value_noise;
-const float kValueNoiseTexels = 1024.0;
-
-// The noise at `uv` (one tile per unit). The texel 1.5 back along both axes is the one whose
-// value a bilinear fetch of the 256² tile at uv would give on average.
-float valueNoise(vec2 uv) {
-  return imageLoad(u_value_noise, ivec2(floor(uv * kValueNoiseTexels - 1.5)) & int(kValueNoiseTexels - 1.0)).r;
-}
+#include "border_noise.glsl"
 #endif
 
 #ifdef SHADING
@@ -108,19 +98,13 @@ float decodeCurvature(float code) {
 }
 
 #ifdef BORDER
-// How much of the object is left at `position` (1 inside, 0 at its horizontal border): the
-// distance to the border over the falloff width, pulled inwards by up to `roughness` widths
-// of noise, so the edge is an irregular wash, never a straight cut, and always paper.
+// How much of the object is left at `position` (1 inside, 0 at its horizontal border:
+// borderLeft), 1 without a border.
 float borderPresence(ObjectParams o, vec3 position) {
   if (o.border_width <= 0.0) return 1.0;
   vec4 w = vec4(position, 1.0);
   vec2 m = vec2(dot(o.world_to_model_x, w), dot(o.world_to_model_y, w));
-  vec2 inside = o.half_extent.xy - abs(m);
-  float t = min(inside.x, inside.y) / o.border_width;
-  if (t >= 1.0 + o.border_roughness) return 1.0;  // beyond the band the noise can reach: no noise
-  // About one coarse noise cell per border width.
-  float n = valueNoise(m / o.border_width * 0.25);
-  return smoothstep(0.0, 1.0, t - o.border_roughness * n);
+  return borderLeft(m, o.half_extent.xy, o.border_width, o.border_roughness);
 }
 #endif
 

@@ -12,6 +12,7 @@
 #include "gl_test.h"
 #include "scene_in_memory.h"
 #include "shanshui/mesh/shapes.h"
+#include "shanshui/noise/value_noise.h"
 #include "shanshui/render/ink_renderer.h"
 #include "shanshui/scene/scene.h"
 #include "shanshui/scene/scene_assets.h"
@@ -227,6 +228,49 @@ TEST_F(Elements, ATreeInADissolvingBorderKeepsItsInkUntilTheGroundIsHalfGone) {
       EXPECT_GT(kept / whole, ground + 0.05) << "darker than the ground under it";
     }
   }
+}
+
+// A small element (a moss dot, a far tree's dab) reads the border's ragged edge itself, the
+// ink pass's noise and all, so none stands on the paper beyond it: dots at several depths
+// into a band of roughness 1.2, each against the same dot with a hard edge, carry
+// smoothstep(0.05, 0.5, smoothstep(t − 1.2 n)) of its ink, n the border's noise where the
+// ink pass reads it (libs/noise's coarse erosion noise, the texel border_noise.glsl takes).
+TEST_F(Elements, AMossDotFollowsTheBordersRaggedEdge) {
+  const mesh::Mesh m = plane();
+  const double width = 30.0, roughness = 1.2;
+  const scene::Scene probe = elementScene();
+  const image::Image noise = noise::erosionNoiseCoarse(1024, probe.seed ^ 0x5A17ull);
+  int differs = 0;
+  for (int k = 0; k < 12; ++k) {
+    const double inside = 12.0 + 12.0 * (k % 4), across = -40.0 + 40.0 * (k / 4);
+    SCOPED_TRACE(inside);
+    SCOPED_TRACE(across);
+    const glm::dvec2 at(across, 100.0 - inside);
+    auto ink = [&](const char* mode) {
+      const scene::Scene s =
+          elementScene({{"border", {{"mode", mode}, {"width", width / 100.0}, {"roughness", roughness}}}});
+      InkRenderer r(s, withElements(s, m, {dotAt(glm::vec3(at.x, at.y, 0.0))}));
+      r.render(r.camera({-60.0, 15.0, 1.0}, static_cast<double>(kWidth) / kHeight), kWidth, kHeight);
+      double sum = 0.0;
+      for (float v : elementInk(r).pixels) sum += v;
+      return sum;
+    };
+    const double whole = ink("keep"), kept = ink("dissolve");
+    ASSERT_GT(whole, 20.0) << "the dot is in view";
+    const glm::dvec2 uv = at / width * 0.25;
+    const int tx = static_cast<int>(std::floor(uv.x * 1024.0 - 1.5)) & 1023;
+    const int ty = static_cast<int>(std::floor(uv.y * 1024.0 - 1.5)) & 1023;
+    const double n = noise.at(tx, ty, 0), t = inside / width;
+    auto step = [](double lo, double hi, double x) {
+      const double u = std::clamp((x - lo) / (hi - lo), 0.0, 1.0);
+      return u * u * (3.0 - 2.0 * u);
+    };
+    const double ground = t >= 1.0 + roughness ? 1.0 : step(0.0, 1.0, t - roughness * n);
+    const double expected = step(0.05, 0.5, ground), at_mean = step(0.05, 0.5, step(0.0, 1.0, t - 0.5 * roughness));
+    EXPECT_NEAR(kept / whole, expected, 0.04) << "noise " << n;
+    differs += std::abs(expected - at_mean) > 0.15 ? 1 : 0;
+  }
+  EXPECT_GE(differs, 3) << "the noise moves the edge at some of the dots";
 }
 
 // Two objects side by side on one mesh, each with a tree at a different model point: each

@@ -20,6 +20,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <optional>
 
 #include <glm/gtc/matrix_access.hpp>
 
@@ -134,6 +135,10 @@ class ElementsPass final : public RenderPass {
   void setScene(const scene::Scene& s) override {
     scene_ = s;
     key_ = 0;
+    if (s.dissolvesBorders() && noise_seed_ != s.seed) {  // where a ragged border leaves a tree's ground
+      border_noise_ = borderNoiseTexture(s.seed);
+      noise_seed_ = s.seed;
+    }
   }
   void resize(int width, int height) override {
     target_ = Framebuffer(width, height, {nearness_ ? GLenum(GL_RG32F) : GLenum(GL_R8)}, false);
@@ -218,6 +223,7 @@ class ElementsPass final : public RenderPass {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, frame_instances_.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, entries_.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, indirect_.id());
+    if (border_noise_) glBindImageTexture(0, border_noise_->id(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_R8);
     expand_.use();
     const double per_1024 = in.height / 1024.0;
     expand_.set("u_near", static_cast<float>(in.camera.near_plane));
@@ -265,7 +271,9 @@ class ElementsPass final : public RenderPass {
   VertexArray vao_;
   Buffer marks_, templates_, instances_, frame_instances_, entries_, indirect_;
   Framebuffer target_;
-  std::uint64_t key_ = 0;  //!< FrameInputs::static_key of the cached layer (0: none)
+  std::uint64_t key_ = 0;                  //!< FrameInputs::static_key of the cached layer (0: none)
+  std::optional<Texture2D> border_noise_;  //!< the dissolving border's noise (borderNoiseTexture)
+  std::optional<std::uint64_t> noise_seed_;
 };
 
 }  // namespace

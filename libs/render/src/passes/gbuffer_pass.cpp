@@ -195,6 +195,13 @@ Texture2D erosionNoiseTexture(std::uint64_t seed) {
   return Texture2D::tiledFromImage(noise::erosionNoise(256, seed), GL_RG8, GL_NEAREST_MIPMAP_NEAREST);
 }
 
+Texture2D borderNoiseTexture(std::uint64_t seed) {
+  const image::Image coarse = noise::erosionNoiseCoarse(1024, seed ^ 0x5A17ull);
+  Texture2D t(coarse.width, coarse.height, GL_R8);
+  glTextureSubImage2D(t.id(), 0, 0, 0, coarse.width, coarse.height, GL_RED, GL_FLOAT, coarse.pixels.data());
+  return t;
+}
+
 float erosionNoiseFrequency(const scene::Object& o, const SceneObjectGpu& g) {
   const double model_radius = 0.5 * glm::length(g.model_bounds.size());
   const double tile = noise::kErosionCells * o.shading.noise_scale * model_radius;

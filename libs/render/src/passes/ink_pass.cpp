@@ -9,7 +9,6 @@
 
 #include <glm/gtc/matrix_access.hpp>
 
-#include "shanshui/noise/value_noise.h"
 #include "shanshui/render/gl_check.h"
 #include "shanshui/render/ink_object_params.h"
 #include "shanshui/render/pixel_stage.h"
@@ -146,12 +145,7 @@ class InkPass final : public RenderPass {
       surface_noise_seed_ = s.seed;
     }
     if ((s.dissolvesBorders() || s.mist.enabled()) && noise_seed_ != s.seed) {
-      // The erosion noise's coarse channel, read by nearest image loads (ink_surface.glsl's
-      // valueNoise): kValueNoiseTexels a side.
-      const image::Image coarse = noise::erosionNoiseCoarse(1024, s.seed ^ 0x5A17ull);
-      value_noise_ = Texture2D(coarse.width, coarse.height, GL_R8);
-      glTextureSubImage2D(value_noise_->id(), 0, 0, 0, coarse.width, coarse.height, GL_RED, GL_FLOAT,
-                          coarse.pixels.data());
+      value_noise_ = borderNoiseTexture(s.seed);
       noise_seed_ = s.seed;
     }
   }

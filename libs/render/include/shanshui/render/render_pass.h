@@ -153,6 +153,9 @@ inline float wrinkleTilePixels(const scene::Object& o, int height) {
 //! coarse channel (the upload expands the two-channel image as grey + alpha, so the finer
 //! channel sits unused in alpha), which is the look the samples were tuned with.
 Texture2D erosionNoiseTexture(std::uint64_t seed);
+//! The dissolving border's and the mist's noise for a scene's seed (the erosion noise's
+//! coarse channel, 1024² R8, read by nearest image loads: shaders/common/border_noise.glsl).
+Texture2D borderNoiseTexture(std::uint64_t seed);
 //! Erosion-noise tiles per model unit of an object: its coarsest cell is `noise_scale`
 //! times the model's radius.
 float erosionNoiseFrequency(const scene::Object& o, const SceneObjectGpu& g);
