@@ -17,13 +17,18 @@ float valueNoise(vec2 uv) {
   return imageLoad(u_value_noise, ivec2(floor(uv * kValueNoiseTexels - 1.5)) & int(kValueNoiseTexels - 1.0)).r;
 }
 
-// How much of an object the border leaves at model point m (x, y from its bounding box's
-// centre; half_extent the box's half size): 1 inside, 0 at the box's edge. The distance to
-// the edge over the falloff `width`, pulled inwards by up to `roughness` widths of noise, so
-// the edge is an irregular wash, never a straight cut, and always paper. width > 0.
-float borderLeft(vec2 m, vec2 half_extent, float width, float roughness) {
+// How deep model point m (x, y from its bounding box's centre; half_extent the box's half
+// size) lies inside the box's edge, in falloff widths (width > 0).
+float borderDepth(vec2 m, vec2 half_extent, float width) {
   vec2 inside = half_extent - abs(m);
-  float t = min(inside.x, inside.y) / width;
+  return min(inside.x, inside.y) / width;
+}
+
+// How much of an object the border leaves at model point m: 1 inside, 0 at the box's edge.
+// The depth (borderDepth) pulled inwards by up to `roughness` widths of noise, so the edge
+// is an irregular wash, never a straight cut, and always paper.
+float borderLeft(vec2 m, vec2 half_extent, float width, float roughness) {
+  float t = borderDepth(m, half_extent, width);
   if (t >= 1.0 + roughness) return 1.0;  // beyond the band the noise can reach: no noise
   // About one coarse noise cell per border width.
   float n = valueNoise(m / width * 0.25);

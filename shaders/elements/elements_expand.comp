@@ -85,8 +85,7 @@ float borderInk(vec3 world, float near) {
   if (u_border_width <= 0.0) return 1.0;
   vec4 w = vec4(world, 1.0);
   vec2 m = vec2(dot(u_to_model_x, w), dot(u_to_model_y, w));
-  vec2 inside = u_half_extent - abs(m);
-  float mean = smoothstep(0.0, 1.0, min(inside.x, inside.y) / u_border_width - 0.5 * u_border_roughness);
+  float mean = smoothstep(0.0, 1.0, borderDepth(m, u_half_extent, u_border_width) - 0.5 * u_border_roughness);
   float ragged = borderLeft(m, u_half_extent, u_border_width, u_border_roughness);
   return smoothstep(0.05, 0.5, mix(ragged, mean, near));
 }
