@@ -134,14 +134,16 @@ void bare(Grower& g) {
 // A distant tree: a clump of upright dots (the Mi family's dots) over a short stem.
 void distant(Grower& g) {
   g.add({0.0f, 0.0f}, {g.uniform(-0.03f, 0.03f), 0.3f}, 0.03f, 0.85f, Shape::Branch, kNear);
-  const int dots = g.count(5, 8);
+  // Drawn near, the crown is a dense clump of small upright dabs (a painter's vertical dots)
+  // overlapping into a mass, not a few large ones: five to eight, each a fifth of the tree,
+  // read as grey ovals on a tree a hundred pixels high.
+  const int dots = g.count(24, 32);
   for (int i = 0; i < dots; ++i) {
-    const float a = 2.0f * kPi * (static_cast<float>(i) + g.uniform(0.0f, 0.5f)) / static_cast<float>(dots);
-    const float r = g.uniform(0.2f, 1.0f);
-    const glm::vec2 c(0.13f * r * std::cos(a), 0.55f + 0.22f * r * std::sin(a));
-    const float len = g.uniform(0.12f, 0.2f);
-    g.add(c - glm::vec2(0.0f, 0.5f * len), c + glm::vec2(g.uniform(-0.02f, 0.02f), 0.5f * len), g.uniform(0.07f, 0.1f),
-          g.uniform(0.75f, 0.97f), Shape::Leaf, kNear);
+    const float a = g.uniform(0.0f, 2.0f * kPi), r = std::sqrt(g.uniform(0.0f, 1.0f));
+    const glm::vec2 c(0.13f * r * std::cos(a), 0.57f + 0.21f * r * std::sin(a));
+    const float len = g.uniform(0.06f, 0.09f);
+    g.add(c - glm::vec2(0.0f, 0.5f * len), c + glm::vec2(g.uniform(-0.01f, 0.01f), 0.5f * len),
+          g.uniform(0.04f, 0.055f), g.uniform(0.7f, 0.95f), Shape::Leaf, kNear);
   }
   g.add({-0.06f, 0.38f}, {-0.05f, 0.72f}, 0.14f, 0.85f, Shape::Leaf, kMiddle);
   g.add({0.06f, 0.42f}, {0.05f, 0.76f}, 0.14f, 0.85f, Shape::Leaf, kMiddle);
