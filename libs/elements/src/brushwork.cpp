@@ -134,9 +134,8 @@ void bare(Grower& g) {
 // A distant tree: a clump of upright dots (the Mi family's dots) over a short stem.
 void distant(Grower& g) {
   g.add({0.0f, 0.0f}, {g.uniform(-0.03f, 0.03f), 0.3f}, 0.03f, 0.85f, Shape::Branch, kNear);
-  // Drawn near, the crown is a dense clump of small upright dabs (a painter's vertical dots)
-  // overlapping into a mass, not a few large ones: five to eight, each a fifth of the tree,
-  // read as grey ovals on a tree a hundred pixels high.
+  // Drawn near, the crown is a dense clump of small upright dabs (a painter's vertical dots),
+  // each under a tenth of the crown's width, overlapping into one mass.
   const int dots = g.count(24, 32);
   for (int i = 0; i < dots; ++i) {
     const float a = g.uniform(0.0f, 2.0f * kPi), r = std::sqrt(g.uniform(0.0f, 1.0f));

@@ -248,5 +248,39 @@ TEST(Brushwork, EveryKindGrowsMoreMarksNearThanFarWithinItsHeight) {
   }
 }
 
+// Drawn near, a distant-kind tree (standing large on a near bank) is a mass of small upright
+// dots that fills its crown, not a few large dabs each a fifth of the tree, which read as
+// separate grey ovals. Oracle: the crown's ellipse (centre 0.57 up, half-axes 0.13 and 0.21)
+// sampled on a grid, each point covered when it lies within half a mark's width of the
+// mark's axis.
+TEST(Brushwork, ADistantTreeDrawnNearIsAMassOfSmallDots) {
+  for (std::uint32_t seed : {1u, 2u, 77u, 1234u}) {
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    std::vector<Mark> dots;
+    for (const Mark& m : growBrushwork(Kind::Distant, seed))
+      if (m.levels == kNear && m.shape == Shape::Leaf) dots.push_back(m);
+    EXPECT_GE(dots.size(), 20u);
+    for (const Mark& m : dots) {
+      EXPECT_LE(m.width, 0.06f) << "a dot a tenth of the crown's width at most";
+      EXPECT_GT(std::abs(m.b.y - m.a.y), std::abs(m.b.x - m.a.x)) << "upright";
+    }
+    int inside = 0, covered = 0;
+    for (float x = -0.13f; x <= 0.13f; x += 0.005f) {
+      for (float y = 0.36f; y <= 0.78f; y += 0.005f) {
+        const float u = x / 0.13f, v = (y - 0.57f) / 0.21f;
+        if (u * u + v * v > 1.0f) continue;
+        ++inside;
+        const glm::vec2 p(x, y);
+        covered += std::any_of(dots.begin(), dots.end(), [&](const Mark& m) {
+          const glm::vec2 ab = m.b - m.a;
+          const float t = glm::clamp(glm::dot(p - m.a, ab) / glm::dot(ab, ab), 0.0f, 1.0f);
+          return glm::length(p - (m.a + t * ab)) <= 0.5f * m.width;
+        });
+      }
+    }
+    EXPECT_GT(static_cast<double>(covered) / inside, 0.6) << covered << " of " << inside << " crown points";
+  }
+}
+
 }  // namespace
 }  // namespace shanshui::elements

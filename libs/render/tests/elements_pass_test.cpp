@@ -84,6 +84,27 @@ glm::dvec3 inkCentre(const image::Image& ink, glm::dvec2 around, double radius) 
   return sum.z > 0.0 ? glm::dvec3(glm::dvec2(sum) / sum.z, sum.z) : glm::dvec3(0.0);
 }
 
+// GLSL's smoothstep, as the oracles below take it.
+double smoothStep(double lo, double hi, double x) {
+  const double u = std::clamp((x - lo) / (hi - lo), 0.0, 1.0);
+  return u * u * (3.0 - 2.0 * u);
+}
+
+// The share of its ink an element keeps where the border leaves `ground` of the land:
+// full from half the ground up, none below a twentieth (elements_expand.comp's borderInk).
+double elementBorderInk(double ground) {
+  return smoothStep(0.05, 0.5, ground);
+}
+
+// The elements' total ink in the view both border tests take, for one element on mesh m.
+double elementInkSum(const scene::Scene& s, const mesh::Mesh& m, const elements::Instance& e) {
+  InkRenderer r(s, withElements(s, m, {e}));
+  r.render(r.camera({-60.0, 15.0, 1.0}, static_cast<double>(kWidth) / kHeight), kWidth, kHeight);
+  double sum = 0.0;
+  for (float v : elementInk(r).pixels) sum += v;
+  return sum;
+}
+
 mesh::Mesh plane() {
   return mesh::heightGrid(
       21, 21, 10.0, [](double, double) { return 0.0; }, glm::dvec3(-100.0, -100.0, 0.0));
@@ -209,21 +230,15 @@ TEST_F(Elements, ATreeInADissolvingBorderKeepsItsInkUntilTheGroundIsHalfGone) {
     tree.size = 40.0f;
     tree.seed = 7;
     auto ink = [&](const char* mode) {
-      const scene::Scene s = elementScene({{"dots", {{"enabled", false}}},
-                                           {"trees", {{"enabled", true}}},
-                                           {"border", {{"mode", mode}, {"width", width / 100.0}, {"roughness", 0.0}}}});
-      InkRenderer r(s, withElements(s, m, {tree}));
-      r.render(r.camera({-60.0, 15.0, 1.0}, static_cast<double>(kWidth) / kHeight), kWidth, kHeight);
-      const image::Image e = elementInk(r);
-      double sum = 0.0;
-      for (float v : e.pixels) sum += v;
-      return sum;
+      return elementInkSum(elementScene({{"dots", {{"enabled", false}}},
+                                         {"trees", {{"enabled", true}}},
+                                         {"border", {{"mode", mode}, {"width", width / 100.0}, {"roughness", 0.0}}}}),
+                           m, tree);
     };
     const double whole = ink("keep"), kept = ink("dissolve");
     ASSERT_GT(whole, 50.0) << "the tree is in view";
-    const double t = inside / width, ground = t * t * (3.0 - 2.0 * t);
-    const double x = std::clamp((ground - 0.05) / 0.45, 0.0, 1.0), expected = x * x * (3.0 - 2.0 * x);
-    EXPECT_NEAR(kept / whole, expected, 0.03) << "the ground keeps " << ground;
+    const double ground = smoothStep(0.0, 1.0, inside / width);
+    EXPECT_NEAR(kept / whole, elementBorderInk(ground), 0.03) << "the ground keeps " << ground;
     if (ground > 0.25) {
       EXPECT_GT(kept / whole, ground + 0.05) << "darker than the ground under it";
     }
@@ -247,13 +262,9 @@ TEST_F(Elements, AMossDotFollowsTheBordersRaggedEdge) {
     SCOPED_TRACE(across);
     const glm::dvec2 at(across, 100.0 - inside);
     auto ink = [&](const char* mode) {
-      const scene::Scene s =
-          elementScene({{"border", {{"mode", mode}, {"width", width / 100.0}, {"roughness", roughness}}}});
-      InkRenderer r(s, withElements(s, m, {dotAt(glm::vec3(at.x, at.y, 0.0))}));
-      r.render(r.camera({-60.0, 15.0, 1.0}, static_cast<double>(kWidth) / kHeight), kWidth, kHeight);
-      double sum = 0.0;
-      for (float v : elementInk(r).pixels) sum += v;
-      return sum;
+      return elementInkSum(
+          elementScene({{"border", {{"mode", mode}, {"width", width / 100.0}, {"roughness", roughness}}}}), m,
+          dotAt(glm::vec3(at.x, at.y, 0.0)));
     };
     const double whole = ink("keep"), kept = ink("dissolve");
     ASSERT_GT(whole, 20.0) << "the dot is in view";
@@ -261,12 +272,9 @@ TEST_F(Elements, AMossDotFollowsTheBordersRaggedEdge) {
     const int tx = static_cast<int>(std::floor(uv.x * 1024.0 - 1.5)) & 1023;
     const int ty = static_cast<int>(std::floor(uv.y * 1024.0 - 1.5)) & 1023;
     const double n = noise.at(tx, ty, 0), t = inside / width;
-    auto step = [](double lo, double hi, double x) {
-      const double u = std::clamp((x - lo) / (hi - lo), 0.0, 1.0);
-      return u * u * (3.0 - 2.0 * u);
-    };
-    const double ground = t >= 1.0 + roughness ? 1.0 : step(0.0, 1.0, t - roughness * n);
-    const double expected = step(0.05, 0.5, ground), at_mean = step(0.05, 0.5, step(0.0, 1.0, t - 0.5 * roughness));
+    const double ground = t >= 1.0 + roughness ? 1.0 : smoothStep(0.0, 1.0, t - roughness * n);
+    const double expected = elementBorderInk(ground);
+    const double at_mean = elementBorderInk(smoothStep(0.0, 1.0, t - 0.5 * roughness));
     EXPECT_NEAR(kept / whole, expected, 0.04) << "noise " << n;
     differs += std::abs(expected - at_mean) > 0.15 ? 1 : 0;
   }
