@@ -323,6 +323,7 @@ int main(int argc, char** argv) {
                      sc.objects[i].name.c_str(), sc.objects[i].ground.on.c_str(), at.x, at.y, at.z);
     }
     stats["frames"] = nlohmann::json::array();
+    bool warned_dropped = false;
     for (int i = 0; i < frames; ++i) {
       render::FrameStats fs;
       const double time = i / fps;
@@ -337,6 +338,19 @@ int main(int argc, char** argv) {
           {"cached", fs.cached}, {"redrawn", fs.redrawn}};
       f["passes"] = nlohmann::json::object();
       for (const auto& p : fs.passes) f["passes"][p.name] = p.gpu_ms;
+      // A frame that made more tree and dot marks than it has room for leaves some out, and
+      // not always the same ones: said, not silent.
+      if (const std::size_t dropped = renderer.marksDropped(); dropped > 0) {
+        f["marks_dropped"] = dropped;
+        if (!warned_dropped)
+          std::fprintf(
+              stderr,
+              "shanshui-render: warning: %s: %zu tree and dot marks had no room in the frame and were left out "
+              "(which ones can change from run to run); lower the objects' trees.density or "
+              "dots.density, or give fewer objects trees\n",
+              path.string().c_str(), dropped);
+        warned_dropped = true;
+      }
       if (!stats_path.empty()) {  // what a painter would look at (docs/render.md), on the scene's surfaces
         image::Image subject(img.width, img.height, 1);
         const image::Image positions = renderer.worldPositions();

@@ -109,6 +109,27 @@ TEST(RenderCli, StatsListThePassesBuiltAndTheirGpuTimePerFrame) {
   EXPECT_NE(image::loadImage(dir / "f_0000.png").pixels, image::loadImage(dir / "f_0002.png").pixels);
 }
 
+// A frame that makes more tree and dot marks than it has room for says so, once, on stderr
+// and in the statistics (the room lowered with SHANSHUI_ELEMENT_MARKS, as the renderer's
+// test does); the default room holds the sample's, and then nothing is said.
+TEST(RenderCli, MarksWithoutRoomAreReportedNotLostSilently) {
+  test::TempDir dir;
+  const std::string common = sampleScene() + " --size 160x120 --frames 2 --set objects.0.max_vertices=20000";
+  auto r = run("SHANSHUI_ELEMENT_MARKS=10 " + bin("shanshui-render") + " " + common + " -o " + quote(dir / "f.png") +
+               " --stats " + quote(dir / "s.json"));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const std::string warning = "tree and dot marks had no room in the frame";
+  const std::size_t first = r.output.find(warning);
+  EXPECT_NE(first, std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find(warning, first + 1), std::string::npos) << "said once: " << r.output;
+  const json s = readJson(dir / "s.json");
+  for (const json& f : s["frames"]) EXPECT_GT(f.value("marks_dropped", 0), 0) << f.dump();
+  r = run(bin("shanshui-render") + " " + common + " -o " + quote(dir / "g.png") + " --stats " + quote(dir / "t.json"));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_EQ(r.output.find(warning), std::string::npos) << r.output;
+  for (const json& f : readJson(dir / "t.json")["frames"]) EXPECT_FALSE(f.contains("marks_dropped")) << f.dump();
+}
+
 // The light-colour sample builds and runs the paper-and-pigment passes (the default sample,
 // above, builds none of them), each with the variant its inputs need.
 TEST(RenderCli, TheLightColourSampleRunsThePigmentShadowEdgesAndSubstratePasses) {

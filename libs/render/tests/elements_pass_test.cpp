@@ -127,6 +127,32 @@ TEST_F(Elements, ASceneWithoutElementsBuildsNothingForThem) {
   EXPECT_NE(with.variants().at("ink").front().find("ELEMENTS"), std::string::npos);
 }
 
+// A frame has room for a bounded number of marks; what does not fit is left out and counted,
+// not lost silently. Forty moss dots in view (one mark each) with room for 25: 15 dropped;
+// with the room a scene gets by default, none.
+TEST_F(Elements, MarksWithoutRoomInTheFrameAreCounted) {
+  const mesh::Mesh m = plane();
+  const scene::Scene s = elementScene();
+  std::vector<elements::Instance> dots;
+  for (int i = 0; i < 40; ++i)
+    dots.push_back(dotAt(glm::vec3(-45.0f + 10.0f * (i % 10), -30.0f + 20.0f * (i / 10), 0.0f)));
+  auto drawn = [&](const char* room, std::size_t& dropped) {
+    if (room) setenv("SHANSHUI_ELEMENT_MARKS", room, 1);
+    InkRenderer r(s, withElements(s, m, dots));
+    unsetenv("SHANSHUI_ELEMENT_MARKS");
+    r.render(r.camera({-60.0, 40.0, 1.0}, static_cast<double>(kWidth) / kHeight), kWidth, kHeight);
+    dropped = r.marksDropped();
+    double sum = 0.0;
+    for (float v : elementInk(r).pixels) sum += v;
+    return sum;
+  };
+  std::size_t all_dropped = 1, some_dropped = 0;
+  const double all = drawn(nullptr, all_dropped), some = drawn("25", some_dropped);
+  EXPECT_EQ(all_dropped, 0u);
+  EXPECT_EQ(some_dropped, 15u) << "forty dots made, room for 25";
+  EXPECT_NEAR(some / all, 25.0 / 40.0, 0.1) << "the ink of 25 dots of the 40";
+}
+
 TEST_F(Elements, ADotStaysOnItsSurfacePointThroughAnOrbit) {
   const mesh::Mesh m = plane();
   const scene::Scene s = elementScene();

@@ -225,6 +225,12 @@ const Framebuffer* InkRenderer::passTarget(const std::string& pass) const {
   return p ? p->target() : nullptr;
 }
 
+std::size_t InkRenderer::marksDropped() const {
+  std::size_t n = 0;
+  for (const Built& b : passes_) n += b.pass->marksDropped();
+  return n;
+}
+
 const Texture2D* InkRenderer::absorbency() const {
   const RenderPass* p = find("diffusion");
   return p ? absorbencyOf(*p) : nullptr;

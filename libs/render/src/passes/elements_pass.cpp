@@ -20,6 +20,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdlib>
 #include <optional>
 
 #include <glm/gtc/matrix_access.hpp>
@@ -50,6 +51,17 @@ static_assert(sizeof(GpuInstance) == 32 && sizeof(GpuMark) == 32);
 constexpr int kVariants = 16;                   // grown brushwork per tree kind
 constexpr double kLeastFarDabPx = 2.5;          // a far tree's dab is at least this wide (pixels at 1024 high)
 constexpr std::size_t kMostEntries = 1u << 21;  // marks a frame (32 MiB of entries)
+
+// The most marks a frame has room for: kMostEntries, or fewer where SHANSHUI_ELEMENT_MARKS
+// asks (so a test can fill the buffer without drawing two million marks).
+std::size_t mostEntries() {
+  if (const char* asked = std::getenv("SHANSHUI_ELEMENT_MARKS")) {
+    char* end = nullptr;
+    const unsigned long long n = std::strtoull(asked, &end, 10);
+    if (end != asked && *end == '\0' && n > 0) return std::min<std::size_t>(n, kMostEntries);
+  }
+  return kMostEntries;
+}
 
 // Marks in the order the expansion reads them: far only, middle only, middle and near, near
 // only (a dot's one mark, at every level, counts as far).
@@ -117,7 +129,7 @@ class ElementsPass final : public RenderPass {
     frame_instances_ = Buffer::create();
     glNamedBufferStorage(frame_instances_.id(),
                          static_cast<GLsizeiptr>(std::max<std::size_t>(count_, 1) * kFrameInstanceBytes), nullptr, 0);
-    capacity_ = std::clamp<std::size_t>(count_ * largest, 1, kMostEntries);
+    capacity_ = std::clamp<std::size_t>(count_ * largest, 1, mostEntries());
     entries_ = Buffer::create();
     glNamedBufferStorage(entries_.id(), static_cast<GLsizeiptr>(capacity_ * kEntryBytes), nullptr, 0);
     const GLuint draw[4] = {4, 0, 0, 0};  // a strip of four corners, one instance a mark (counted each frame)
@@ -126,6 +138,12 @@ class ElementsPass final : public RenderPass {
   }
 
   std::string name() const override { return "elements"; }
+  std::size_t marksDropped() const override {
+    // The expansion counts every mark it makes, stored or not (elements_expand.comp).
+    GLuint made = 0;
+    glGetNamedBufferSubData(indirect_.id(), sizeof made, sizeof made, &made);
+    return made > capacity_ ? made - capacity_ : 0;
+  }
   void buildPrograms() override {
     Program expand({"elements_expand.comp"});
     draw_ = Program({"elements.vert", "elements.frag"}, defines());

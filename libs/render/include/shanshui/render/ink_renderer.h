@@ -129,6 +129,11 @@ class InkRenderer {
   //! the canvas noise, R32F, unit variance; when the scene has one). Null for other names.
   const Framebuffer* passTarget(const std::string& pass) const;
 
+  //! Tree and dot marks the last frame left out because the frame's buffer for them was full
+  //! (RenderPass::marksDropped; which ones depends on the GPU's order, so a frame with any
+  //! is not repeatable). Waits for the frame.
+  std::size_t marksDropped() const;
+
   //! World positions of the last frame rebuilt from its depth buffer (as the ink pass does):
   //! RGBA, xyz and 1 where a surface was drawn, 0 on the background; row 0 at the top.
   image::Image worldPositions() const;

@@ -103,6 +103,9 @@ class RenderPass {
   virtual const Framebuffer* target() const = 0;
   //! Extra debug targets (the ink pass's line weight and tone); false if not supported.
   virtual bool setDebugOutputs(bool) { return false; }
+  //! Marks the last frame made but had no room for (the elements' buffer is bounded), so
+  //! left out; 0 for passes without such a bound. Reads from the GPU: it waits for the frame.
+  virtual std::size_t marksDropped() const { return 0; }
 };
 
 //! What a pass is built from.
