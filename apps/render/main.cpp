@@ -82,7 +82,12 @@ scene::Scene loadSized(const std::string& input, std::vector<std::string> sets, 
     sets.push_back("output.width=" + std::to_string(s.width));
     sets.push_back("output.height=" + std::to_string(s.height));
   }
-  return scene::loadSceneInput(input, sets);
+  std::vector<std::string> notes;
+  scene::Scene s = scene::loadSceneInput(input, sets, &notes);
+  // What a lone DEM was given from its own heights (raised, a sea), so it can be undone.
+  for (const std::string& n : notes)
+    std::fprintf(stderr, "shanshui-render: note: %s: %s; --set changes it\n", input.c_str(), n.c_str());
+  return s;
 }
 
 // --benchmark: frames back to back with the camera turning (no frame is a cache hit), timed

@@ -102,7 +102,10 @@ int main(int argc, char** argv) {
       if (!std::filesystem::is_directory(shader_dir)) throw makeError("--shaders: ", shader_dir, ": not a directory");
       render::setShaderDirectory(shader_dir);
     }
-    scene::Scene sc = scene::loadSceneInput(input, sets);
+    std::vector<std::string> notes;
+    scene::Scene sc = scene::loadSceneInput(input, sets, &notes);
+    for (const std::string& n : notes)
+      std::fprintf(stderr, "shanshui-view: note: %s: %s; --set changes it\n", input.c_str(), n.c_str());
     if (save_path.empty()) {
       save_path = std::filesystem::path(input).extension() == ".json"
                       ? input

@@ -1,5 +1,6 @@
 // End-to-end: shanshui-render on scene files, its statistics, and scene-file errors.
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <set>
@@ -128,6 +129,28 @@ TEST(RenderCli, MarksWithoutRoomAreReportedNotLostSilently) {
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_EQ(r.output.find(warning), std::string::npos) << r.output;
   for (const json& f : readJson(dir / "t.json")["frames"]) EXPECT_FALSE(f.contains("marks_dropped")) << f.dump();
+}
+
+// A lone coastal DEM (a quarter of it under the sea, relief 1:50) is painted raised and with
+// its sea as water, and the tool says so, each in a line naming the key that undoes it.
+TEST(RenderCli, ALoneCoastalDemSaysItIsRaisedAndGetsItsSea) {
+  test::TempDir dir;
+  {
+    std::ofstream out(dir / "coast.asc");
+    out << "ncols 60\nnrows 40\nxllcorner 0\nyllcorner 0\ncellsize 1000\nNODATA_value -9999\n";
+    for (int r = 0; r < 40; ++r)
+      for (int c = 0; c < 60; ++c)
+        out << -300.0 + 1200.0 * c / 59.0 + 50.0 * std::sin(0.5 * r) << (c < 59 ? " " : "\n");
+  }
+  const std::string base = bin("shanshui-render") + " " + quote(dir / "coast.asc") + " --size 160x120";
+  auto r = run(base + " -o " + quote(dir / "a.png"));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("raised"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("(objects.0.z_scale)"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("is sea (water.level"), std::string::npos) << r.output;
+  r = run(base + " -o " + quote(dir / "b.png") + " --set water.enabled=false --set objects.0.z_scale=1");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_EQ(r.output.find("note:"), std::string::npos) << "what the user set is not announced: " << r.output;
 }
 
 // The light-colour sample builds and runs the paper-and-pigment passes (the default sample,

@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdio>
 #include <fstream>
+#include <optional>
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <nlohmann/json.hpp>
@@ -11,6 +13,7 @@
 #include "shanshui/core/atomic_output.h"
 #include "shanshui/core/error.h"
 #include "shanshui/core/input.h"
+#include "shanshui/terrain/heightfield.h"
 
 namespace shanshui::scene {
 
@@ -224,7 +227,71 @@ Scene loadScene(const std::filesystem::path& path, const std::vector<std::string
   return parseScene(j, path.filename().string(), path.parent_path().empty() ? "." : path.parent_path());
 }
 
-Scene loadSceneInput(const std::filesystem::path& path, const std::vector<std::string>& overrides) {
+namespace {
+
+// Land flatter than this (relief over the larger horizontal side) is raised to it when a lone
+// DEM is painted: about St. Helens' and the sample hill's proportions lie above (0.13, 0.22),
+// a 1-degree SRTM tile of the Alps (~0.03) or a coast 300 km wide (~0.01) below, and those
+// drawn true to scale are a plain with a rough skin.
+constexpr double kLeastReliefRatio = 0.1;
+constexpr double kMostLoneZScale = 20.0;
+// Share of the samples at or below 0 m that makes the lone DEM's sea, and how far above 0 m
+// its surface lies (of the relief), so that a sea stored as 0 m (SRTM, ASTER) is under it.
+constexpr double kLeastSeaShare = 0.01;
+constexpr double kSeaLevelAbove = 0.002;
+
+// printf into a string (the notes' numbers are rounded as a reader wants them).
+template <typename... Args>
+std::string formatted(const char* format, Args... args) {
+  char text[256];
+  std::snprintf(text, sizeof text, format, args...);
+  return text;
+}
+
+// What a lone DEM gets from its own heights: vertical exaggeration and a sea.
+struct LoneDemLook {
+  double z_scale = 1.0;
+  std::optional<double> water_level;  //!< fraction of the relief from the lowest sample
+  std::string relief_note, sea_note;
+};
+
+// Read as the asset cache will read it (the same options); a file that does not load is left
+// to the cache to report, with the plain look.
+LoneDemLook loneDemLook(const std::filesystem::path& path) {
+  LoneDemLook look;
+  terrain::Heightfield h;
+  try {
+    terrain::HeightfieldOptions options;
+    options.image_relief_ratio = kImageReliefRatio;
+    options.max_samples = Object{}.max_vertices;
+    h = terrain::loadHeightfield(path, options);
+  } catch (const std::exception&) {
+    return look;
+  }
+  const auto [lo, hi] = h.elevationRange();
+  const double side = std::max(h.columns * h.cell_x, h.rows * h.cell_y), relief = hi - lo;
+  if (!(relief > 0.0) || !(side > 0.0)) return look;
+  const double ratio = relief / side;
+  if (ratio < kLeastReliefRatio) {
+    look.z_scale = std::min(kLeastReliefRatio / ratio, kMostLoneZScale);
+    look.relief_note = formatted("relief %.0f m over %.3g km (1:%.0f) raised %.3g times (objects.0.z_scale)", relief,
+                                 side / 1000.0, 1.0 / ratio, look.z_scale);
+  }
+  std::size_t sea = 0;
+  for (double e : h.elevation) sea += e <= 0.0 ? 1 : 0;  // NaN (no data) is not sea
+  const double share = static_cast<double>(sea) / static_cast<double>(std::max<std::size_t>(h.validCount(), 1));
+  if (hi > 0.0 && share >= kLeastSeaShare) {
+    look.water_level = std::clamp(-lo / relief + kSeaLevelAbove, 0.0, 1.0);
+    look.sea_note =
+        formatted("%.0f %% of it at or below 0 m is sea (water.level %.3f)", 100.0 * share, *look.water_level);
+  }
+  return look;
+}
+
+}  // namespace
+
+Scene loadSceneInput(const std::filesystem::path& path, const std::vector<std::string>& overrides,
+                     std::vector<std::string>* notes) {
   std::string ext = path.extension().string();
   for (char& ch : ext) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
   if (ext == ".json") return loadScene(path, overrides);
@@ -257,8 +324,19 @@ Scene loadSceneInput(const std::filesystem::path& path, const std::vector<std::s
     j["objects"][0]["marks"] = {
         {"wash", 0.6}, {"wash_size", 100}, {"wash_width", 1.8}, {"wash_ink", 0.7}, {"wash_follow", 0.5}};
   }
+  // A DEM flatter than a painter's land is raised, and a coast or a topo-bathymetric grid
+  // gets its sea as water (kLeastReliefRatio, kLeastSeaShare).
+  const LoneDemLook look = dem ? loneDemLook(path) : LoneDemLook{};
+  if (look.z_scale != 1.0) j["objects"][0]["z_scale"] = look.z_scale;
+  if (look.water_level) j["water"] = {{"enabled", true}, {"level", *look.water_level}};
   for (const std::string& o : overrides) applyOverride(j, o);
-  return parseScene(j, path.filename().string(), ".");
+  Scene s = parseScene(j, path.filename().string(), ".");
+  // Said unless an override changed it.
+  if (notes) {
+    if (!look.relief_note.empty() && s.objects[0].z_scale == look.z_scale) notes->push_back(look.relief_note);
+    if (look.water_level && s.water.enabled && s.water.level == *look.water_level) notes->push_back(look.sea_note);
+  }
+  return s;
 }
 
 void saveScene(const Scene& s, const std::filesystem::path& path) {

@@ -350,6 +350,52 @@ TEST(Scene, AMeshOrDemBecomesAOneObjectScene) {
   EXPECT_THROW(loadSceneInput("notes.txt"), Error);
 }
 
+// An ESRI ASCII grid of `columns` x `rows` cells `cell` metres across (projected: corner at
+// 0, 0), its height a function of the column.
+void writeGrid(const std::filesystem::path& path, int columns, int rows, double cell, double (*height)(int)) {
+  std::ofstream out(path);
+  out << "ncols " << columns << "\nnrows " << rows << "\nxllcorner 0\nyllcorner 0\ncellsize " << cell
+      << "\nNODATA_value -9999\n";
+  for (int r = 0; r < rows; ++r) {
+    for (int c = 0; c < columns; ++c) out << height(c) << (c + 1 < columns ? " " : "\n");
+  }
+}
+
+// A lone DEM as a painter takes it: a coast 100 km wide rising from -500 m to 1500 m (relief
+// 1:50, a quarter of it under the sea) is raised five times, to 1:10, and its sea becomes
+// water at 0 m: 500 of the 2000 m from its lowest point, and 0.2 % above so that a sea
+// stored as 0 m lies under it. A steep hill above the sea gets neither; overrides win, and
+// what they changed is not said.
+TEST(Scene, ALoneDemFlatterThanOneInTenIsRaisedAndItsSeaBecomesWater) {
+  test::TempDir dir;
+  writeGrid(dir / "coast.asc", 100, 80, 1000.0, [](int c) { return -500.0 + 2000.0 * c / 99.0; });
+  std::vector<std::string> notes;
+  const Scene coast = loadSceneInput(dir / "coast.asc", {}, &notes);
+  EXPECT_NEAR(coast.objects[0].z_scale, 0.1 / (2000.0 / 100000.0), 1e-9);
+  EXPECT_TRUE(coast.water.enabled);
+  EXPECT_NEAR(coast.water.level, 500.0 / 2000.0 + 0.002, 1e-9);
+  ASSERT_EQ(notes.size(), 2u);
+  EXPECT_NE(notes[0].find("raised 5 times"), std::string::npos) << notes[0];
+  EXPECT_NE(notes[1].find("25 % of it at or below 0 m is sea"), std::string::npos) << notes[1];
+
+  notes.clear();
+  const Scene kept = loadSceneInput(dir / "coast.asc", {"objects.0.z_scale=1", "water.enabled=false"}, &notes);
+  EXPECT_EQ(kept.objects[0].z_scale, 1.0);
+  EXPECT_FALSE(kept.water.enabled);
+  EXPECT_TRUE(notes.empty()) << notes.front();
+
+  writeGrid(dir / "hill.asc", 50, 50, 10.0, [](int c) { return 100.0 + 300.0 * c / 49.0; });
+  const Scene hill = loadSceneInput(dir / "hill.asc", {}, &notes);
+  EXPECT_EQ(hill.objects[0].z_scale, 1.0) << "relief 300 m over 500 m";
+  EXPECT_FALSE(hill.water.enabled) << "no sea";
+  EXPECT_TRUE(notes.empty());
+  // A flat plain is raised no more than 20 times; a file that does not load is left for the
+  // asset cache to report, with the plain look.
+  writeGrid(dir / "plain.asc", 100, 100, 1000.0, [](int c) { return 10.0 + 0.01 * c; });
+  EXPECT_EQ(loadSceneInput(dir / "plain.asc").objects[0].z_scale, 20.0);
+  EXPECT_EQ(loadSceneInput(dir / "missing.asc").objects[0].z_scale, 1.0);
+}
+
 TEST(Scene, ALoneMeshOrDemGetsTheSampleStyleAndAFramedView) {
   const Scene dem = loadSceneInput("peaks/hill.png");
   const Scene plain = parseScene(kMinimal, "s.json", ".");

@@ -546,8 +546,12 @@ Scene loadScene(const std::filesystem::path& path, const std::vector<std::string
 //! A scene file, or a mesh (.obj .ply .off) or heightfield (.dem .asc .png .tif .tiff)
 //! made into a one-object scene in the sample scene's style (strokes, rice paper; a DEM
 //! with the deep-distance camera and mist, a mesh filling the frame); overrides apply to
-//! both.
-Scene loadSceneInput(const std::filesystem::path& path, const std::vector<std::string>& overrides = {});
+//! both. A lone DEM is read once here for its proportions: relief under a tenth of its
+//! larger side is raised to that (z_scale, at most 20), and where at least 1 % of it lies at
+//! or below 0 m that is sea (water at 0 m). What was decided and not overridden is added to
+//! `notes`, a line each, for the tools to print.
+Scene loadSceneInput(const std::filesystem::path& path, const std::vector<std::string>& overrides = {},
+                     std::vector<std::string>* notes = nullptr);
 
 //! Applies one KEY=VALUE override to raw scene JSON; array indices must exist.
 void applyOverride(nlohmann::json& j, const std::string& assignment);
