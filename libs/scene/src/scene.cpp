@@ -270,7 +270,7 @@ LoneDemLook loneDemLook(const std::filesystem::path& path) {
   }
   const auto [lo, hi] = h.elevationRange();
   const double side = std::max(h.columns * h.cell_x, h.rows * h.cell_y), relief = hi - lo;
-  if (!(relief > 0.0) || !(side > 0.0)) return look;
+  if (!(relief > 0.0) || !std::isfinite(relief) || !(side > 0.0) || !std::isfinite(side)) return look;
   const double ratio = relief / side;
   if (ratio < kLeastReliefRatio) {
     look.z_scale = std::min(kLeastReliefRatio / ratio, kMostLoneZScale);
