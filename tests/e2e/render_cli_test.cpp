@@ -276,14 +276,15 @@ TEST(RenderCli, EverySampleSceneAndALoneDemRenderInTheirFormat) {
   }
   EXPECT_GE(scenes, 4) << "the default and the three distances";
   // A DEM alone gets the sample's style: strokes, rice paper, mist, a dissolving border, wet
-  // strokes (no trees).
+  // strokes, and, being 14 km across, trees and moss dots (the elements pass).
   const auto r = run(bin("shanshui-render") + " " + quote(test::sourceDir() / "samples/terrain/mount_st_helens.dem") +
                      " -o " + quote(dir / "lone.png") + " --size 160x120 --stats " + quote(dir / "lone.json") +
                      " --set objects.0.max_vertices=20000");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const json s = readJson(dir / "lone.json");
-  EXPECT_EQ(s["passes_built"], json({"gbuffer", "canvas", "ink"}));
-  EXPECT_EQ(s["variants"]["ink"][0], "LINES STROKES SHADING CANVAS MARKS WASH SINGLE_OBJECT BORDER MIST");
+  EXPECT_EQ(s["passes_built"], json({"gbuffer", "canvas", "elements", "ink"}));
+  EXPECT_EQ(s["variants"]["ink"][0], "LINES STROKES SHADING CANVAS ELEMENTS MARKS WASH SINGLE_OBJECT BORDER MIST");
+  EXPECT_NE(r.output.find("trees and moss dots grown"), std::string::npos) << r.output;
   EXPECT_LT(darkness(image::loadImage(dir / "lone.png")).first, 0.35f);
 }
 

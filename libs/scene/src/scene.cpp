@@ -239,6 +239,10 @@ constexpr double kMostLoneZScale = 20.0;
 // its surface lies (of the relief), so that a sea stored as 0 m (SRTM, ASTER) is under it.
 constexpr double kLeastSeaShare = 0.01;
 constexpr double kSeaLevelAbove = 0.002;
+// Land at most this wide (metres, its larger side) grows trees and moss dots at their real
+// size: on St. Helens (14 km) they are groves of small marks along its ridges and gullies;
+// on a coast 300 km wide they would be specks, and millions of them.
+constexpr double kMostWoodedSide = 20000.0;
 
 // printf into a string (the notes' numbers are rounded as a reader wants them).
 template <typename... Args>
@@ -252,7 +256,8 @@ std::string formatted(const char* format, Args... args) {
 struct LoneDemLook {
   double z_scale = 1.0;
   std::optional<double> water_level;  //!< fraction of the relief from the lowest sample
-  std::string relief_note, sea_note;
+  bool wooded = false;                //!< trees and moss dots
+  std::string relief_note, sea_note, wooded_note;
 };
 
 // Read as the asset cache will read it (the same options); a file that does not load is left
@@ -272,6 +277,13 @@ LoneDemLook loneDemLook(const std::filesystem::path& path) {
   const double side = std::max(h.columns * h.cell_x, h.rows * h.cell_y), relief = hi - lo;
   if (!(relief > 0.0) || !std::isfinite(relief) || !(side > 0.0) || !std::isfinite(side)) return look;
   const double ratio = relief / side;
+  if (side <= kMostWoodedSide) {
+    look.wooded = true;
+    look.wooded_note = formatted(
+        "%.3g km across: trees and moss dots grown (objects.0.trees.enabled, "
+        "objects.0.dots.enabled)",
+        side / 1000.0);
+  }
   if (ratio < kLeastReliefRatio) {
     look.z_scale = std::min(kLeastReliefRatio / ratio, kMostLoneZScale);
     look.relief_note = formatted("relief %.0f m over %.3g km (1:%.0f) raised %.3g times (objects.0.z_scale)", relief,
@@ -304,9 +316,9 @@ Scene loadSceneInput(const std::filesystem::path& path, const std::vector<std::s
   }
   // The sample scene's style: strokes, light tones that leave lit slopes white, strong aerial
   // perspective, rice paper; a DEM is a piece of land seen from above into its ranges with
-  // mist in its valleys, a mesh an object filling the frame. No trees: at their real size they
-  // suit DEMs of a few kilometres, and on a coast 300 km wide the default density would ask
-  // for millions (objects.0.trees.enabled=true adds them).
+  // mist in its valleys, a mesh an object filling the frame. Trees and dots only on a DEM a
+  // few kilometres across (loneDemLook): on a coast 300 km wide the default density would ask
+  // for millions.
   json object = {{mesh ? "mesh" : "dem", path.string()},
                  {"name", path.stem().string()},
                  {"lines", {{"width", 4.67}}},  // 3.5 pixels at the default 768 high
@@ -329,12 +341,17 @@ Scene loadSceneInput(const std::filesystem::path& path, const std::vector<std::s
   const LoneDemLook look = dem ? loneDemLook(path) : LoneDemLook{};
   if (look.z_scale != 1.0) j["objects"][0]["z_scale"] = look.z_scale;
   if (look.water_level) j["water"] = {{"enabled", true}, {"level", *look.water_level}};
+  if (look.wooded) {
+    j["objects"][0]["trees"] = {{"enabled", true}};
+    j["objects"][0]["dots"] = {{"enabled", true}};
+  }
   for (const std::string& o : overrides) applyOverride(j, o);
   Scene s = parseScene(j, path.filename().string(), ".");
   // Said unless an override changed it.
   if (notes) {
     if (!look.relief_note.empty() && s.objects[0].z_scale == look.z_scale) notes->push_back(look.relief_note);
     if (look.water_level && s.water.enabled && s.water.level == *look.water_level) notes->push_back(look.sea_note);
+    if (look.wooded && s.objects[0].trees.enabled && s.objects[0].dots.enabled) notes->push_back(look.wooded_note);
   }
   return s;
 }

@@ -364,8 +364,8 @@ void writeGrid(const std::filesystem::path& path, int columns, int rows, double 
 // A lone DEM as a painter takes it: a coast 100 km wide rising from -500 m to 1500 m (relief
 // 1:50, a quarter of it under the sea) is raised five times, to 1:10, and its sea becomes
 // water at 0 m: 500 of the 2000 m from its lowest point, and 0.2 % above so that a sea
-// stored as 0 m lies under it. A steep hill above the sea gets neither; overrides win, and
-// what they changed is not said.
+// stored as 0 m lies under it. A steep hill above the sea gets neither, but trees and dots,
+// being small; overrides win, and what they changed is not said.
 TEST(Scene, ALoneDemFlatterThanOneInTenIsRaisedAndItsSeaBecomesWater) {
   test::TempDir dir;
   writeGrid(dir / "coast.asc", 100, 80, 1000.0, [](int c) { return -500.0 + 2000.0 * c / 99.0; });
@@ -388,7 +388,15 @@ TEST(Scene, ALoneDemFlatterThanOneInTenIsRaisedAndItsSeaBecomesWater) {
   const Scene hill = loadSceneInput(dir / "hill.asc", {}, &notes);
   EXPECT_EQ(hill.objects[0].z_scale, 1.0) << "relief 300 m over 500 m";
   EXPECT_FALSE(hill.water.enabled) << "no sea";
-  EXPECT_TRUE(notes.empty());
+  // Half a kilometre across, it grows trees and dots at their real size; the coast, 100 km
+  // across, none.
+  EXPECT_TRUE(hill.objects[0].trees.enabled && hill.objects[0].dots.enabled);
+  EXPECT_FALSE(coast.objects[0].trees.enabled || coast.objects[0].dots.enabled);
+  ASSERT_EQ(notes.size(), 1u);
+  EXPECT_NE(notes[0].find("trees and moss dots grown"), std::string::npos) << notes[0];
+  notes.clear();
+  loadSceneInput(dir / "hill.asc", {"objects.0.trees.enabled=false"}, &notes);
+  EXPECT_TRUE(notes.empty()) << notes.front();
   // A flat plain is raised no more than 20 times; a file that does not load is left for the
   // asset cache to report, with the plain look.
   writeGrid(dir / "plain.asc", 100, 100, 1000.0, [](int c) { return 10.0 + 0.01 * c; });

@@ -548,7 +548,8 @@ Scene loadScene(const std::filesystem::path& path, const std::vector<std::string
 //! with the deep-distance camera and mist, a mesh filling the frame); overrides apply to
 //! both. A lone DEM is read once here for its proportions: relief under a tenth of its
 //! larger side is raised to that (z_scale, at most 20), and where at least 1 % of it lies at
-//! or below 0 m that is sea (water at 0 m). What was decided and not overridden is added to
+//! or below 0 m that is sea (water at 0 m); land at most 20 km across grows trees and moss
+//! dots. What was decided and not overridden is added to
 //! `notes`, a line each, for the tools to print.
 Scene loadSceneInput(const std::filesystem::path& path, const std::vector<std::string>& overrides = {},
                      std::vector<std::string>* notes = nullptr);
