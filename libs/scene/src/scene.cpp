@@ -1,10 +1,12 @@
 #include "shanshui/scene/scene.h"
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <limits>
 #include <optional>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -13,6 +15,7 @@
 #include "shanshui/core/atomic_output.h"
 #include "shanshui/core/error.h"
 #include "shanshui/core/input.h"
+#include "shanshui/mesh/mesh_io.h"
 #include "shanshui/terrain/heightfield.h"
 
 namespace shanshui::scene {
@@ -252,18 +255,40 @@ std::string formatted(const char* format, Args... args) {
   return text;
 }
 
-// What a lone DEM gets from its own heights: vertical exaggeration and a sea.
-struct LoneDemLook {
+// What lone land (a DEM, or a mesh that is a piece of land) gets from its own proportions:
+// vertical exaggeration, trees and dots, and (a DEM's heights being elevations) a sea.
+struct LandLook {
+  bool land = false;  //!< painted as land: the deep preset, mist, a dissolving border, wet strokes
   double z_scale = 1.0;
   std::optional<double> water_level;  //!< fraction of the relief from the lowest sample
   bool wooded = false;                //!< trees and moss dots
-  std::string relief_note, sea_note, wooded_note;
+  std::string land_note, relief_note, sea_note, wooded_note;
 };
+
+// Raised when flatter than kLeastReliefRatio; trees and dots when at most kMostWoodedSide
+// across. `key` is what raises it (a DEM's z_scale, a mesh's transform).
+void proportions(LandLook& look, double side, double relief, const char* key) {
+  if (!(relief > 0.0) || !std::isfinite(relief) || !(side > 0.0) || !std::isfinite(side)) return;
+  const double ratio = relief / side;
+  if (side <= kMostWoodedSide) {
+    look.wooded = true;
+    look.wooded_note = formatted(
+        "%.3g km across: trees and moss dots grown (objects.0.trees.enabled, "
+        "objects.0.dots.enabled)",
+        side / 1000.0);
+  }
+  if (ratio < kLeastReliefRatio) {
+    look.z_scale = std::min(kLeastReliefRatio / ratio, kMostLoneZScale);
+    look.relief_note = formatted("relief %.0f m over %.3g km (1:%.0f) raised %.3g times (%s)", relief, side / 1000.0,
+                                 1.0 / ratio, look.z_scale, key);
+  }
+}
 
 // Read as the asset cache will read it (the same options); a file that does not load is left
 // to the cache to report, with the plain look.
-LoneDemLook loneDemLook(const std::filesystem::path& path) {
-  LoneDemLook look;
+LandLook loneDemLook(const std::filesystem::path& path) {
+  LandLook look;
+  look.land = true;
   terrain::Heightfield h;
   try {
     terrain::HeightfieldOptions options;
@@ -276,19 +301,7 @@ LoneDemLook loneDemLook(const std::filesystem::path& path) {
   const auto [lo, hi] = h.elevationRange();
   const double side = std::max(h.columns * h.cell_x, h.rows * h.cell_y), relief = hi - lo;
   if (!(relief > 0.0) || !std::isfinite(relief) || !(side > 0.0) || !std::isfinite(side)) return look;
-  const double ratio = relief / side;
-  if (side <= kMostWoodedSide) {
-    look.wooded = true;
-    look.wooded_note = formatted(
-        "%.3g km across: trees and moss dots grown (objects.0.trees.enabled, "
-        "objects.0.dots.enabled)",
-        side / 1000.0);
-  }
-  if (ratio < kLeastReliefRatio) {
-    look.z_scale = std::min(kLeastReliefRatio / ratio, kMostLoneZScale);
-    look.relief_note = formatted("relief %.0f m over %.3g km (1:%.0f) raised %.3g times (objects.0.z_scale)", relief,
-                                 side / 1000.0, 1.0 / ratio, look.z_scale);
-  }
+  proportions(look, side, relief, "objects.0.z_scale");
   std::size_t sea = 0;
   for (double e : h.elevation) sea += e <= 0.0 ? 1 : 0;  // NaN (no data) is not sea
   const double share = static_cast<double>(sea) / static_cast<double>(std::max<std::size_t>(h.validCount(), 1));
@@ -300,46 +313,114 @@ LoneDemLook loneDemLook(const std::filesystem::path& path) {
   return look;
 }
 
+// A lone mesh that is a piece of land (a terrain from a GIS or a photogrammetry tool,
+// shanshui-terrain's own output) is painted as a DEM is: it is flat along one axis (the axis
+// the asset cache takes as up, scene_assets.cpp's upAxis: under half of both others) and
+// faces up over nearly all its area, as a heightfield does. A building, a boulder or a boat
+// is closed, so about half its area faces down or sideways. Units are taken as metres.
+constexpr double kLeastUpShare = 0.85;
+
+LandLook loneMeshLook(const std::filesystem::path& path) {
+  LandLook look;
+  mesh::PolygonSoup soup;
+  try {
+    soup = mesh::readPolygonSoup(path);
+  } catch (const std::exception&) {
+    return look;  // the asset cache reports it
+  }
+  glm::dvec3 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
+  for (const glm::dvec3& p : soup.positions) {
+    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) continue;
+    lo = glm::min(lo, p);
+    hi = glm::max(hi, p);
+  }
+  const glm::dvec3 e = hi - lo;
+  int up = -1;
+  for (int axis = 0; axis < 3 && up < 0; ++axis)
+    if (e[axis] < 0.5 * std::min(e[(axis + 1) % 3], e[(axis + 2) % 3])) up = axis;
+  if (up < 0) return look;
+  double total = 0.0, facing_up = 0.0;
+  for (const std::vector<std::uint32_t>& f : soup.faces) {
+    for (std::size_t k = 2; k < f.size(); ++k) {  // a fan: a polygon's area and mean normal
+      if (f[0] >= soup.positions.size() || f[k - 1] >= soup.positions.size() || f[k] >= soup.positions.size()) continue;
+      const glm::dvec3 a = soup.positions[f[0]];
+      const glm::dvec3 n = glm::cross(soup.positions[f[k - 1]] - a, soup.positions[f[k]] - a);
+      const double area = glm::length(n);
+      if (!std::isfinite(area) || area <= 0.0) continue;
+      total += area;
+      if (n[up] > 0.3 * area) facing_up += area;
+    }
+  }
+  if (!(total > 0.0) || facing_up < kLeastUpShare * total) return look;
+  look.land = true;
+  look.land_note = formatted(
+      "a piece of land (%.0f %% of its surface faces up): painted as a DEM is "
+      "(camera.preset deep, mist, objects.0.border.mode dissolve, wet strokes)",
+      100.0 * facing_up / total);
+  proportions(look, std::max(e[(up + 1) % 3], e[(up + 2) % 3]), e[up], "objects.0.transform.scale");
+  return look;
+}
+
 }  // namespace
+
+// What a lone input is, by its extension: meshes through shanshui's own readers or Assimp,
+// heightfields through shanshui's own readers or GDAL (mesh_io.h, heightfield.h). Each list
+// holds the formats people bring; a scene file names any other the libraries read.
+constexpr std::array kLoneMeshExtensions{".obj", ".ply", ".off", ".gltf", ".glb", ".fbx",  ".dae",
+                                         ".3ds", ".stl", ".3mf", ".x3d",  ".lwo", ".blend"};
+constexpr std::array kLoneDemExtensions{".dem", ".asc", ".png", ".tif", ".tiff", ".hgt", ".img", ".vrt",
+                                        ".bil", ".bt",  ".dt0", ".dt1", ".dt2",  ".jp2", ".grd", ".flt"};
 
 Scene loadSceneInput(const std::filesystem::path& path, const std::vector<std::string>& overrides,
                      std::vector<std::string>* notes) {
   std::string ext = path.extension().string();
   for (char& ch : ext) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
   if (ext == ".json") return loadScene(path, overrides);
-  const bool mesh = ext == ".obj" || ext == ".ply" || ext == ".off";
-  const bool dem = ext == ".dem" || ext == ".asc" || ext == ".png" || ext == ".tif" || ext == ".tiff";
+  auto listed = [&](const auto& list) { return std::find(list.begin(), list.end(), ext) != list.end(); };
+  const bool mesh = listed(kLoneMeshExtensions), dem = listed(kLoneDemExtensions);
   if (!mesh && !dem) {
-    throw makeError(path.string(),
-                    ": expected a scene (.json), a mesh (.obj .ply .off) or a heightfield "
-                    "(.dem .asc .png .tif)");
+    auto names = [](const auto& list) {
+      std::string text;
+      for (const char* e : list) text += std::string(text.empty() ? "" : " ") + e;
+      return text;
+    };
+    throw makeError(path.string(), ": expected a scene (.json), a mesh (", names(kLoneMeshExtensions),
+                    ") or a heightfield (", names(kLoneDemExtensions), ")");
   }
   // The sample scene's style: strokes, light tones that leave lit slopes white, strong aerial
-  // perspective, rice paper; a DEM is a piece of land seen from above into its ranges with
-  // mist in its valleys, a mesh an object filling the frame. Trees and dots only on a DEM a
-  // few kilometres across (loneDemLook): on a coast 300 km wide the default density would ask
-  // for millions.
+  // perspective, rice paper; land (a DEM, or a mesh that is a piece of land) is seen from
+  // above into its ranges with mist in its valleys, any other mesh is an object filling the
+  // frame. Trees and dots only on land a few kilometres across (proportions): on a coast
+  // 300 km wide the default density would ask for millions.
   json object = {{mesh ? "mesh" : "dem", path.string()},
                  {"name", path.stem().string()},
                  {"lines", {{"width", 4.67}}},  // 3.5 pixels at the default 768 high
                  {"shading", {{"tones", {0.5, 0.66, 0.8, 0.92, 1.0}}}}};
   json j = {{"objects", json::array({object})}, {"canvas", {{"type", "rice_paper"}}}, {"output", {{"fade", 0.6}}}};
-  if (mesh) {
-    j["camera"] = {{"framing", "fill"}};
-  } else {
+  // Land flatter than a painter's is raised, a coast or a topo-bathymetric grid gets its sea
+  // as water, land a few kilometres across its trees (kLeastReliefRatio, kLeastSeaShare,
+  // kMostWoodedSide).
+  const LandLook look = dem ? loneDemLook(path) : loneMeshLook(path);
+  if (look.land) {
     j["camera"] = {{"preset", "deep"}};
     j["mist"] = {{"density", 0.75}, {"height", 0.12}, {"softness", 0.35}};
     // Land gets broad wet strokes on its shadowed flanks, as a painter builds a slope's mass:
     // in three cells of five (so no regular rows on a smooth hill), halfway between the fall
     // line, which they follow round a hill's form, and straight down the sheet, which keeps
-    // them whole on a DEM's rough ground. A lone mesh may be a building or a boat: none.
+    // them whole on a DEM's rough ground. A lone object may be a building or a boat: none.
     j["objects"][0]["marks"] = {
         {"wash", 0.6}, {"wash_size", 100}, {"wash_width", 1.8}, {"wash_ink", 0.7}, {"wash_follow", 0.5}};
+    if (mesh) j["objects"][0]["border"] = {{"mode", "dissolve"}};  // a DEM's by default
+  } else {
+    j["camera"] = {{"framing", "fill"}};
   }
-  // A DEM flatter than a painter's land is raised, and a coast or a topo-bathymetric grid
-  // gets its sea as water (kLeastReliefRatio, kLeastSeaShare).
-  const LoneDemLook look = dem ? loneDemLook(path) : LoneDemLook{};
-  if (look.z_scale != 1.0) j["objects"][0]["z_scale"] = look.z_scale;
+  if (look.z_scale != 1.0) {
+    if (dem) {
+      j["objects"][0]["z_scale"] = look.z_scale;
+    } else {
+      j["objects"][0]["transform"] = {{"scale", {1.0, 1.0, look.z_scale}}};  // applied with z up
+    }
+  }
   if (look.water_level) j["water"] = {{"enabled", true}, {"level", *look.water_level}};
   if (look.wooded) {
     j["objects"][0]["trees"] = {{"enabled", true}};
@@ -349,9 +430,13 @@ Scene loadSceneInput(const std::filesystem::path& path, const std::vector<std::s
   Scene s = parseScene(j, path.filename().string(), ".");
   // Said unless an override changed it.
   if (notes) {
-    if (!look.relief_note.empty() && s.objects[0].z_scale == look.z_scale) notes->push_back(look.relief_note);
+    const Object& o = s.objects[0];
+    if (!look.land_note.empty() && s.camera.preset == CameraPreset::Deep && o.dissolvesBorder())
+      notes->push_back(look.land_note);
+    const double raised = dem ? o.z_scale : o.transform.scale.z;
+    if (!look.relief_note.empty() && raised == look.z_scale) notes->push_back(look.relief_note);
     if (look.water_level && s.water.enabled && s.water.level == *look.water_level) notes->push_back(look.sea_note);
-    if (look.wooded && s.objects[0].trees.enabled && s.objects[0].dots.enabled) notes->push_back(look.wooded_note);
+    if (look.wooded && o.trees.enabled && o.dots.enabled) notes->push_back(look.wooded_note);
   }
   return s;
 }

@@ -1,6 +1,7 @@
 // Scene files: defaults, round trips, overrides, the schema against docs/scene.md, errors.
 #include "shanshui/scene/scene.h"
 
+#include <cmath>
 #include <fstream>
 #include <set>
 #include <sstream>
@@ -402,6 +403,78 @@ TEST(Scene, ALoneDemFlatterThanOneInTenIsRaisedAndItsSeaBecomesWater) {
   writeGrid(dir / "plain.asc", 100, 100, 1000.0, [](int c) { return 10.0 + 0.01 * c; });
   EXPECT_EQ(loadSceneInput(dir / "plain.asc").objects[0].z_scale, 20.0);
   EXPECT_EQ(loadSceneInput(dir / "missing.asc").objects[0].z_scale, 1.0);
+}
+
+// An OBJ of `n` x `n` vertices `cell` apart, the height `height(i, j)` along `up` (0: x, 1:
+// y, 2: z), the other two axes across; its faces wound so that their normals point up.
+void writeLandObj(const std::filesystem::path& path, int n, double cell, int up, double (*height)(int, int)) {
+  std::ofstream out(path);
+  for (int j = 0; j < n; ++j) {
+    for (int i = 0; i < n; ++i) {
+      double v[3];
+      v[up] = height(i, j);
+      v[(up + 1) % 3] = i * cell;
+      v[(up + 2) % 3] = j * cell;
+      out << "v " << v[0] << " " << v[1] << " " << v[2] << "\n";
+    }
+  }
+  for (int j = 0; j + 1 < n; ++j) {
+    for (int i = 0; i + 1 < n; ++i) {
+      const int a = j * n + i + 1, b = a + 1, c = a + n, d = c + 1;  // (i, j), (i+1, j), (i, j+1), (i+1, j+1)
+      out << "f " << a << " " << b << " " << d << "\nf " << a << " " << d << " " << c << "\n";
+    }
+  }
+}
+
+// A lone mesh that is a piece of land (open, flat along its up axis, facing up) is painted
+// as a DEM is, raised when flatter than 1:10 (its transform's scale along z, the axis up once
+// loaded) and wooded when small; a closed flat box (a boulder, a plinth) stays an object. The
+// formats people bring are taken alone (glTF, an SRTM tile), anything else is named.
+TEST(Scene, ALoneMeshThatIsAPieceOfLandIsPaintedAsLand) {
+  test::TempDir dir;
+  // 8 km across, z up, relief 400 m: 1:20, raised 2 times.
+  writeLandObj(dir / "land.obj", 41, 200.0, 2, [](int i, int j) { return 400.0 * (i / 40.0) * (j / 40.0); });
+  std::vector<std::string> notes;
+  const Scene land = loadSceneInput(dir / "land.obj", {}, &notes);
+  EXPECT_EQ(land.camera.preset, CameraPreset::Deep);
+  EXPECT_TRUE(land.objects[0].dissolvesBorder());
+  EXPECT_TRUE(land.objects[0].marks.washes());
+  EXPECT_TRUE(land.mist.enabled());
+  EXPECT_TRUE(land.objects[0].trees.enabled);
+  EXPECT_FALSE(land.water.enabled) << "a mesh's heights need not be elevations: no sea";
+  EXPECT_NEAR(land.objects[0].transform.scale.z, 0.1 * 8000.0 / 400.0, 1e-9) << "1:20 raised to 1:10";
+  EXPECT_EQ(land.objects[0].transform.scale.x, 1.0);
+  ASSERT_EQ(notes.size(), 3u);
+  EXPECT_NE(notes[0].find("a piece of land (100 % of its surface faces up)"), std::string::npos) << notes[0];
+  EXPECT_NE(notes[1].find("objects.0.transform.scale"), std::string::npos) << notes[1];
+
+  // The same land Y up, as glTF writes it: land too.
+  writeLandObj(dir / "land_y.obj", 21, 10.0, 1, [](int i, int) { return 30.0 + 2.0 * i; });
+  EXPECT_EQ(loadSceneInput(dir / "land_y.obj").camera.preset, CameraPreset::Deep);
+
+  // A closed box 10 x 10 x 2: flat, but half of it faces down.
+  {
+    std::ofstream box(dir / "box.obj");
+    box << "v 0 0 0\nv 10 0 0\nv 10 10 0\nv 0 10 0\nv 0 0 2\nv 10 0 2\nv 10 10 2\nv 0 10 2\n"
+           "f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\n";
+  }
+  notes.clear();
+  const Scene box = loadSceneInput(dir / "box.obj", {}, &notes);
+  EXPECT_EQ(box.camera.preset, CameraPreset::None);
+  EXPECT_EQ(box.camera.framing, Framing::Fill);
+  EXPECT_FALSE(box.objects[0].dissolvesBorder());
+  EXPECT_FALSE(box.objects[0].trees.enabled);
+  EXPECT_TRUE(notes.empty());
+
+  EXPECT_EQ(loadSceneInput("ship.glb").objects[0].mesh, "ship.glb");
+  EXPECT_EQ(loadSceneInput("N46E007.hgt").objects[0].dem, "N46E007.hgt");
+  try {
+    loadSceneInput("notes.txt");
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find(".gltf .glb"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find(".hgt"), std::string::npos) << e.what();
+  }
 }
 
 TEST(Scene, ALoneMeshOrDemGetsTheSampleStyleAndAFramedView) {
