@@ -84,7 +84,8 @@ scene::Scene loadSized(const std::string& input, std::vector<std::string> sets, 
   }
   std::vector<std::string> notes;
   scene::Scene s = scene::loadSceneInput(input, sets, &notes);
-  // What a lone DEM was given from its own heights (raised, a sea), so it can be undone.
+  // What a lone DEM or piece of land was given from its proportions (painted as land, raised,
+  // a sea, trees), so it can be undone.
   for (const std::string& n : notes)
     std::fprintf(stderr, "shanshui-render: note: %s: %s; --set changes it\n", input.c_str(), n.c_str());
   return s;

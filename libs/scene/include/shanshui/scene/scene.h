@@ -543,14 +543,15 @@ Scene parseScene(const nlohmann::json& j, const std::string& origin, const std::
 //! value is JSON, or a plain string), then parses.
 Scene loadScene(const std::filesystem::path& path, const std::vector<std::string>& overrides = {});
 
-//! A scene file, or a mesh (.obj .ply .off) or heightfield (.dem .asc .png .tif .tiff)
-//! made into a one-object scene in the sample scene's style (strokes, rice paper; a DEM
-//! with the deep-distance camera and mist, a mesh filling the frame); overrides apply to
-//! both. A lone DEM is read once here for its proportions: relief under a tenth of its
-//! larger side is raised to that (z_scale, at most 20), and where at least 1 % of it lies at
-//! or below 0 m that is sea (water at 0 m); land at most 20 km across grows trees and moss
-//! dots. What was decided and not overridden is added to
-//! `notes`, a line each, for the tools to print.
+//! A scene file, or a mesh (.obj .ply .off .gltf .glb .fbx .dae .stl ...) or heightfield
+//! (.dem .asc .png .tif .hgt .img .vrt ...) made into a one-object scene in the sample
+//! scene's style (strokes, rice paper; land, a DEM or a mesh that is a piece of land, with
+//! the deep-distance camera, mist and a dissolving border; any other mesh filling the
+//! frame); overrides apply to both. A lone input is read once here for its proportions:
+//! land whose relief is under a tenth of its larger side is raised to that (at most 20
+//! times), land at most 20 km across grows trees and moss dots, and where at least 1 % of a
+//! DEM lies at or below 0 m that is sea (water at 0 m). What was decided and not overridden
+//! is added to `notes`, a line each, for the tools to print.
 Scene loadSceneInput(const std::filesystem::path& path, const std::vector<std::string>& overrides = {},
                      std::vector<std::string>* notes = nullptr);
 
