@@ -189,6 +189,10 @@ int main(int argc, char** argv) {
     // Frame rate: smoothed for the panel; for a scripted run, over every frame after the
     // first (which compiles shaders and uploads meshes), printed at the end.
     double fps = 0.0, last_swap = 0.0, first_swap = 0.0;
+    // Tree and dot marks the frame had no room for (render::InkRenderer::marksDropped): read
+    // back every 30th rendered frame, since reading waits for the GPU.
+    std::size_t dropped = 0;
+    int rendered = 0;
     for (int frame = 1; !glfwWindowShouldClose(window); ++frame) {
       int width = 0, height = 0;
       glfwGetFramebufferSize(window, &width, &height);
@@ -217,6 +221,7 @@ int main(int argc, char** argv) {
         // Spinning objects run on the clock (scripted runs: 1/24 s per frame).
         const double time = frames > 0 ? frame / 24.0 : glfwGetTime();
         const render::Framebuffer& fb = renderer->render(state.camera, width, height, &stats, true, time);
+        if (!stats.cached && rendered++ % 30 == 0) dropped = renderer->marksDropped();
         while (std::optional<std::vector<render::PassTime>> t = renderer->lateTimes(false)) last_passes = std::move(*t);
         glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
         glBlitNamedFramebuffer(fb.id(), 0, 0, 0, width, height, 0, 0, width, height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
@@ -258,6 +263,14 @@ int main(int argc, char** argv) {
           if (ImGui::Button("Reload shaders")) state.reload = true;
           if (!status.empty()) ImGui::TextWrapped("%s", status.c_str());
           if (!scene_error.empty()) ImGui::TextColored(ImVec4(1, 0.3f, 0.2f, 1), "%s", scene_error.c_str());
+          if (dropped > 0) {
+            ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1, 0.3f, 0.2f, 1));
+            ImGui::TextWrapped(
+                "%zu tree and dot marks had no room in the frame and are left out: lower trees.density or "
+                "dots.density",
+                dropped);
+            ImGui::PopStyleColor();
+          }
           ImGui::Separator();
           if (view::editScene(edited)) {
             try {

@@ -105,6 +105,28 @@ TEST(Cli, ViewerScreenshotUnderXvfbMatchesHeadlessRender) {
   EXPECT_GT(nonPaper, a.pixels.size() / 3 / 20) << "the screenshot shows no mountain";
 }
 
+// The viewer's panel says in red when the frame had no room for some tree and dot marks
+// (the room lowered with SHANSHUI_ELEMENT_MARKS), and shows no red otherwise.
+TEST(Cli, ViewerPanelWarnsOfMarksWithoutRoom) {
+  if (run("command -v xvfb-run").exit_code != 0) GTEST_SKIP() << "xvfb-run is not installed";
+  test::TempDir dir;
+  auto redPixels = [&](const std::string& env, const char* name) {
+    const auto r = run(env + "xvfb-run -a -s '-screen 0 640x480x24' " + bin("shanshui-view") + " " +
+                       quote(test::sourceDir() / "samples/scenes/grove.json") +
+                       " --size 480x360 --set objects.0.max_vertices=20000 --frames 2 --screenshot-ui --screenshot " +
+                       quote(dir / name));
+    EXPECT_EQ(r.exit_code, 0) << r.output;
+    const image::Image img = image::loadImage(dir / name);
+    int red = 0;
+    for (int y = 0; y < img.height; ++y)
+      for (int x = 0; x < img.width; ++x)
+        red += img.at(x, y, 0) > 0.8f && img.at(x, y, 1) < 0.45f && img.at(x, y, 2) < 0.4f;
+    return red;
+  };
+  EXPECT_GT(redPixels("SHANSHUI_ELEMENT_MARKS=10 ", "few.png"), 200) << "the warning's text";
+  EXPECT_EQ(redPixels("", "all.png"), 0);
+}
+
 TEST(Cli, BadInputGivesOneLineNamingTheFileAndWritesNothing) {
   test::TempDir dir;
   std::ofstream(dir / "nodata.asc") << "ncols 2\nnrows 2\nxllcorner 0\nyllcorner 0\ncellsize 10\n"
