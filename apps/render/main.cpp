@@ -235,8 +235,9 @@ void runBenchmark(const std::string& input, std::vector<std::string> sets, const
 
 int main(int argc, char** argv) {
   CLI::App app{
-      "Renders a scene (or a single mesh or DEM with default ink parameters) headless, with EGL: "
-      "no display needed.",
+      "Renders a scene (or a single mesh or DEM in the sample's style: land is raised when flat, its sea "
+      "becomes water and, when small, it grows trees; each choice is printed with the key that undoes it) "
+      "headless, with EGL: no display needed.",
       "shanshui-render"};
   app.footer(
       "Examples:\n"
@@ -245,6 +246,7 @@ int main(int argc, char** argv) {
       "  shanshui-render samples/scenes/default.json -o out/a.png --set objects.0.lines.curve_factor=2 "
       "--set canvas.type=none\n"
       "  shanshui-render out/mountain.obj -o out/mountain.png --size 1280x800\n"
+      "  shanshui-render N46E007.hgt -o alps.png --set water.enabled=false\n"
       "  shanshui-render --describe            # every scene key: default, range, meaning (Markdown)\n"
       "Scene keys: docs/scene.md.");
   std::string input, output, size, stats_path;
@@ -253,7 +255,9 @@ int main(int argc, char** argv) {
   double orbit = 360.0, fps = 24.0;
   std::string describe_into;
   bool verbose = false, smallest = false, describe = false;
-  app.add_option("scene", input, "scene (.json), or a mesh (.obj .ply .off) or DEM (.dem .asc) to render alone");
+  app.add_option("scene", input,
+                 "scene (.json), or a mesh (.obj .gltf .glb .fbx .stl ...) or DEM (.dem .asc .tif .hgt .img ...) "
+                 "to render alone");
   app.add_option("-o,--output", output, "image to write (.png .jpg .tif .exr); numbered with --frames");
   app.add_flag("--describe", describe, "print every scene key with its default, range and meaning (Markdown) and exit");
   app.add_option("--describe-into", describe_into,
