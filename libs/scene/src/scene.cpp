@@ -320,7 +320,7 @@ LandLook loneDemLook(const std::filesystem::path& path) {
 // is closed, so about half its area faces down or sideways. Units are taken as metres.
 constexpr double kLeastUpShare = 0.85;
 
-LandLook loneMeshLook(const std::filesystem::path& path) {
+LandLook loneMeshLook(const std::filesystem::path& path, const std::string& asked_up) {
   LandLook look;
   mesh::PolygonSoup soup;
   try {
@@ -335,7 +335,8 @@ LandLook loneMeshLook(const std::filesystem::path& path) {
     hi = glm::max(hi, p);
   }
   const glm::dvec3 e = hi - lo;
-  int up = -1;
+  // The up axis given (objects.0.up), or the one `auto` takes; without either, not land.
+  int up = asked_up == "x" ? 0 : asked_up == "y" ? 1 : asked_up == "z" ? 2 : -1;
   for (int axis = 0; axis < 3 && up < 0; ++axis)
     if (e[axis] < 0.5 * std::min(e[(axis + 1) % 3], e[(axis + 2) % 3])) up = axis;
   if (up < 0) return look;
@@ -400,7 +401,14 @@ Scene loadSceneInput(const std::filesystem::path& path, const std::vector<std::s
   // Land flatter than a painter's is raised, a coast or a topo-bathymetric grid gets its sea
   // as water, land a few kilometres across its trees (kLeastReliefRatio, kLeastSeaShare,
   // kMostWoodedSide).
-  const LandLook look = dem ? loneDemLook(path) : loneMeshLook(path);
+  std::string asked_up = "auto";  // a mesh's up axis as --set gives it, before the look is chosen
+  if (mesh) {
+    json probe = j;
+    for (const std::string& o : overrides) applyOverride(probe, o);
+    const json& up = probe["objects"][0]["up"];
+    if (up.is_string()) asked_up = up.get<std::string>();
+  }
+  const LandLook look = dem ? loneDemLook(path) : loneMeshLook(path, asked_up);
   if (look.land) {
     j["camera"] = {{"preset", "deep"}};
     j["mist"] = {{"density", 0.75}, {"height", 0.12}, {"softness", 0.35}};

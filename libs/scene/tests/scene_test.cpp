@@ -465,6 +465,11 @@ TEST(Scene, ALoneMeshThatIsAPieceOfLandIsPaintedAsLand) {
   EXPECT_FALSE(box.objects[0].dissolvesBorder());
   EXPECT_FALSE(box.objects[0].trees.enabled);
   EXPECT_TRUE(notes.empty());
+  // Land as thick as it is wide is not flat, so `auto` takes no axis for it; told its up
+  // axis, it is land.
+  writeLandObj(dir / "peak.obj", 11, 10.0, 2, [](int i, int j) { return 8.0 * std::min(i, j); });
+  EXPECT_EQ(loadSceneInput(dir / "peak.obj").camera.preset, CameraPreset::None);
+  EXPECT_EQ(loadSceneInput(dir / "peak.obj", {"objects.0.up=z"}).camera.preset, CameraPreset::Deep);
 
   EXPECT_EQ(loadSceneInput("ship.glb").objects[0].mesh, "ship.glb");
   EXPECT_EQ(loadSceneInput("N46E007.hgt").objects[0].dem, "N46E007.hgt");
