@@ -16,6 +16,7 @@
 #include "shanshui/core/error.h"
 #include "shanshui/core/input.h"
 #include "shanshui/mesh/mesh_io.h"
+#include "shanshui/scene/scene_assets.h"
 #include "shanshui/terrain/heightfield.h"
 
 namespace shanshui::scene {
@@ -266,9 +267,10 @@ struct LandLook {
 };
 
 // Raised when flatter than kLeastReliefRatio; trees and dots when at most kMostWoodedSide
-// across. `key` is what raises it (a DEM's z_scale, a mesh's transform).
-void proportions(LandLook& look, double side, double relief, const char* key) {
-  if (!(relief > 0.0) || !std::isfinite(relief) || !(side > 0.0) || !std::isfinite(side)) return;
+// across. `key` is what raises it (a DEM's z_scale, a mesh's transform). False, and nothing
+// decided, when the relief or the side is not a positive finite length.
+bool proportions(LandLook& look, double side, double relief, const char* key) {
+  if (!(relief > 0.0) || !std::isfinite(relief) || !(side > 0.0) || !std::isfinite(side)) return false;
   const double ratio = relief / side;
   if (side <= kMostWoodedSide) {
     look.wooded = true;
@@ -282,6 +284,7 @@ void proportions(LandLook& look, double side, double relief, const char* key) {
     look.relief_note = formatted("relief %.0f m over %.3g km (1:%.0f) raised %.3g times (%s)", relief, side / 1000.0,
                                  1.0 / ratio, look.z_scale, key);
   }
+  return true;
 }
 
 // Read as the asset cache will read it (the same options); a file that does not load is left
@@ -300,8 +303,7 @@ LandLook loneDemLook(const std::filesystem::path& path) {
   }
   const auto [lo, hi] = h.elevationRange();
   const double side = std::max(h.columns * h.cell_x, h.rows * h.cell_y), relief = hi - lo;
-  if (!(relief > 0.0) || !std::isfinite(relief) || !(side > 0.0) || !std::isfinite(side)) return look;
-  proportions(look, side, relief, "objects.0.z_scale");
+  if (!proportions(look, side, relief, "objects.0.z_scale")) return look;  // the sea divides by the relief
   std::size_t sea = 0;
   for (double e : h.elevation) sea += e <= 0.0 ? 1 : 0;  // NaN (no data) is not sea
   const double share = static_cast<double>(sea) / static_cast<double>(std::max<std::size_t>(h.validCount(), 1));
@@ -336,9 +338,7 @@ LandLook loneMeshLook(const std::filesystem::path& path, const std::string& aske
   }
   const glm::dvec3 e = hi - lo;
   // The up axis given (objects.0.up), or the one `auto` takes; without either, not land.
-  int up = asked_up == "x" ? 0 : asked_up == "y" ? 1 : asked_up == "z" ? 2 : -1;
-  for (int axis = 0; axis < 3 && up < 0; ++axis)
-    if (e[axis] < 0.5 * std::min(e[(axis + 1) % 3], e[(axis + 2) % 3])) up = axis;
+  int up = asked_up == "x" ? 0 : asked_up == "y" ? 1 : asked_up == "z" ? 2 : flatAxis(e);
   if (up < 0) return look;
   double total = 0.0, facing_up = 0.0;
   for (const std::vector<std::uint32_t>& f : soup.faces) {

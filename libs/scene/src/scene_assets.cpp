@@ -34,6 +34,12 @@ image::Image wrinkleLuma(const image::Image& img) {
   return out;
 }
 
+int flatAxis(const glm::dvec3& extent) {
+  for (int axis = 0; axis < 3; ++axis)
+    if (extent[axis] < 0.5 * std::min(extent[(axis + 1) % 3], extent[(axis + 2) % 3])) return axis;
+  return -1;
+}
+
 namespace {
 
 UpAxis upAxis(const Object& o, const mesh::Mesh& m) {
@@ -41,13 +47,8 @@ UpAxis upAxis(const Object& o, const mesh::Mesh& m) {
   if (!o.dem.empty()) return UpAxis::Z;
   // A flat piece of land (or anything much thinner along one axis) lies on its thin axis,
   // whichever tool wrote it; any other mesh follows the OBJ/PLY convention of Y up.
-  const glm::dvec3 e = mesh::bounds(m).size();
-  for (int axis = 0; axis < 3; ++axis) {
-    if (e[axis] < 0.5 * std::min(e[(axis + 1) % 3], e[(axis + 2) % 3])) {
-      return axis == 0 ? UpAxis::X : axis == 1 ? UpAxis::Y : UpAxis::Z;
-    }
-  }
-  return UpAxis::Y;
+  const int axis = flatAxis(mesh::bounds(m).size());
+  return axis == 0 ? UpAxis::X : axis == 2 ? UpAxis::Z : UpAxis::Y;
 }
 
 void makeZUp(mesh::Mesh& m, UpAxis up) {

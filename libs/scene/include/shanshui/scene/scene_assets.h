@@ -59,6 +59,10 @@ class AssetCache {
 //! creases (objects.N.crease_angle); curvature is measured before, on the welded mesh.
 ObjectAsset prepareAsset(mesh::Mesh m, const Object& o, const std::string& where = "object", bool file_normals = false);
 
+//! The axis (0 x, 1 y, 2 z) a flat piece of `extent` lies on: the one under half of both
+//! others, as a piece of land is; -1 when there is none. `up: auto`'s rule for meshes.
+int flatAxis(const glm::dvec3& extent);
+
 //! Planar UVs: x and y over the larger horizontal extent of the mesh, in [0, 1].
 void planarUvs(mesh::Mesh& m);
 
