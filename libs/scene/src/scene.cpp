@@ -239,8 +239,9 @@ namespace {
 // drawn true to scale are a plain with a rough skin.
 constexpr double kLeastReliefRatio = 0.1;
 constexpr double kMostLoneZScale = 20.0;
-// Share of the samples at or below 0 m that makes the lone DEM's sea, and how far above 0 m
-// its surface lies (of the relief), so that a sea stored as 0 m (SRTM, ASTER) is under it.
+// Share of the samples at or below 0 m and open to the grid's edge (seaSamples) that makes
+// the lone DEM's sea, and how far above 0 m its surface lies (of the relief), so that a sea stored as 0 m (SRTM, ASTER)
+// is under it.
 constexpr double kLeastSeaShare = 0.01;
 constexpr double kSeaLevelAbove = 0.002;
 // Land at most this wide (metres, its larger side) grows trees and moss dots at their real
@@ -263,7 +264,7 @@ struct LandLook {
   double z_scale = 1.0;
   std::optional<double> water_level;  //!< fraction of the relief from the lowest sample
   bool wooded = false;                //!< trees and moss dots
-  std::string land_note, relief_note, sea_note, wooded_note;
+  std::string land_note, relief_note, sea_note, dry_note, wooded_note;
 };
 
 // Raised when flatter than kLeastReliefRatio; trees and dots when at most kMostWoodedSide
@@ -287,6 +288,42 @@ bool proportions(LandLook& look, double side, double relief, const char* key) {
   return true;
 }
 
+// The samples at or below 0 m that are sea, open to the grid's edge through samples at or
+// below 0 m (or without data: a coast whose sea is stored as no data still reaches it), and
+// those in basins closed from every edge (Death Valley, the Jordan valley): land below sea
+// level, which a water level at 0 m would flood. A flood fill over 4-neighbours.
+std::pair<std::size_t, std::size_t> seaSamples(const terrain::Heightfield& h) {
+  const int w = h.columns, n = h.rows;
+  auto low = [&](int c, int r) { return !(h.at(c, r) > 0.0); };  // NaN too
+  std::vector<char> open(static_cast<std::size_t>(w) * static_cast<std::size_t>(n), 0);
+  std::vector<std::pair<int, int>> todo;
+  auto reach = [&](int c, int r) {
+    if (c < 0 || r < 0 || c >= w || r >= n || !low(c, r)) return;
+    char& o = open[static_cast<std::size_t>(r) * w + c];
+    if (!o) {
+      o = 1;
+      todo.emplace_back(c, r);
+    }
+  };
+  for (int c = 0; c < w; ++c) reach(c, 0), reach(c, n - 1);
+  for (int r = 0; r < n; ++r) reach(0, r), reach(w - 1, r);
+  while (!todo.empty()) {
+    const auto [c, r] = todo.back();
+    todo.pop_back();
+    reach(c - 1, r), reach(c + 1, r), reach(c, r - 1), reach(c, r + 1);
+  }
+  std::size_t sea = 0, inland = 0;
+  for (std::size_t i = 0; i < h.elevation.size(); ++i) {
+    if (!(h.elevation[i] <= 0.0)) continue;  // land, or no data
+    if (open[i]) {
+      ++sea;
+    } else {
+      ++inland;
+    }
+  }
+  return {sea, inland};
+}
+
 // Read as the asset cache will read it (the same options); a file that does not load is left
 // to the cache to report, with the plain look.
 LandLook loneDemLook(const std::filesystem::path& path) {
@@ -304,13 +341,18 @@ LandLook loneDemLook(const std::filesystem::path& path) {
   const auto [lo, hi] = h.elevationRange();
   const double side = std::max(h.columns * h.cell_x, h.rows * h.cell_y), relief = hi - lo;
   if (!proportions(look, side, relief, "objects.0.z_scale")) return look;  // the sea divides by the relief
-  std::size_t sea = 0;
-  for (double e : h.elevation) sea += e <= 0.0 ? 1 : 0;  // NaN (no data) is not sea
-  const double share = static_cast<double>(sea) / static_cast<double>(std::max<std::size_t>(h.validCount(), 1));
+  const auto [sea, inland] = seaSamples(h);
+  const double valid = static_cast<double>(std::max<std::size_t>(h.validCount(), 1));
+  const double share = static_cast<double>(sea) / valid, dry = static_cast<double>(inland) / valid;
   if (hi > 0.0 && share >= kLeastSeaShare) {
     look.water_level = std::clamp(-lo / relief + kSeaLevelAbove, 0.0, 1.0);
     look.sea_note =
         formatted("%.0f %% of it at or below 0 m is sea (water.level %.3f)", 100.0 * share, *look.water_level);
+  } else if (hi > 0.0 && dry >= kLeastSeaShare) {
+    look.dry_note = formatted(
+        "%.0f %% of it lies at or below 0 m in basins closed from its edges, land below sea level, not "
+        "sea: left dry (water.enabled=true floods it)",
+        100.0 * dry);
   }
   return look;
 }
@@ -444,6 +486,7 @@ Scene loadSceneInput(const std::filesystem::path& path, const std::vector<std::s
     const double raised = dem ? o.z_scale : o.transform.scale.z;
     if (!look.relief_note.empty() && raised == look.z_scale) notes->push_back(look.relief_note);
     if (look.water_level && s.water.enabled && s.water.level == *look.water_level) notes->push_back(look.sea_note);
+    if (!look.dry_note.empty() && !s.water.enabled) notes->push_back(look.dry_note);
     if (look.wooded && o.trees.enabled && o.dots.enabled) notes->push_back(look.wooded_note);
   }
   return s;

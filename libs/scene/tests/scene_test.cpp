@@ -1,8 +1,10 @@
 // Scene files: defaults, round trips, overrides, the schema against docs/scene.md, errors.
 #include "shanshui/scene/scene.h"
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <functional>
 #include <set>
 #include <sstream>
 
@@ -352,14 +354,20 @@ TEST(Scene, AMeshOrDemBecomesAOneObjectScene) {
 }
 
 // An ESRI ASCII grid of `columns` x `rows` cells `cell` metres across (projected: corner at
-// 0, 0), its height a function of the column.
-void writeGrid(const std::filesystem::path& path, int columns, int rows, double cell, double (*height)(int)) {
+// 0, 0), its height a function of the column and the row.
+void writeGrid(const std::filesystem::path& path, int columns, int rows, double cell,
+               const std::function<double(int, int)>& height) {
   std::ofstream out(path);
   out << "ncols " << columns << "\nnrows " << rows << "\nxllcorner 0\nyllcorner 0\ncellsize " << cell
       << "\nNODATA_value -9999\n";
   for (int r = 0; r < rows; ++r) {
-    for (int c = 0; c < columns; ++c) out << height(c) << (c + 1 < columns ? " " : "\n");
+    for (int c = 0; c < columns; ++c) out << height(c, r) << (c + 1 < columns ? " " : "\n");
   }
+}
+
+// The same, its height a function of the column only.
+void writeGrid(const std::filesystem::path& path, int columns, int rows, double cell, double (*height)(int)) {
+  writeGrid(path, columns, rows, cell, [height](int c, int) { return height(c); });
 }
 
 // A lone DEM as a painter takes it: a coast 100 km wide rising from -500 m to 1500 m (relief
@@ -403,6 +411,46 @@ TEST(Scene, ALoneDemFlatterThanOneInTenIsRaisedAndItsSeaBecomesWater) {
   writeGrid(dir / "plain.asc", 100, 100, 1000.0, [](int c) { return 10.0 + 0.01 * c; });
   EXPECT_EQ(loadSceneInput(dir / "plain.asc").objects[0].z_scale, 20.0);
   EXPECT_EQ(loadSceneInput(dir / "missing.asc").objects[0].z_scale, 1.0);
+}
+
+// Land below sea level is sea only where it is open to the grid's edge. A basin 86 m deep
+// ringed by mountains (Death Valley's Badwater) stays dry and says so; the same basin with a
+// channel at 0 m to the edge, or with its sea stored as no data along the edge, is sea. The
+// counts are the cells the closed form of each grid gives: a disc of radius 15 cells, 709 of
+// the 3600, and the channel's 15.
+TEST(Scene, LandBelowSeaLevelIsSeaOnlyWhereItIsOpenToTheEdge) {
+  test::TempDir dir;
+  auto basin = [](int c, int r, bool channel, bool nodata_edge) {
+    const double d = std::hypot(c - 30.0, r - 30.0);
+    if (nodata_edge && (c == 0 || r == 0 || c == 59 || r == 59)) return -9999.0;
+    if (channel && r == 30 && c < 30) return d <= 15.0 ? -86.0 : 0.0;
+    return d <= 15.0 ? -86.0 : 40.0 * (d - 15.0);
+  };
+  writeGrid(dir / "closed.asc", 60, 60, 100.0, [&](int c, int r) { return basin(c, r, false, false); });
+  std::vector<std::string> notes;
+  const Scene closed = loadSceneInput(dir / "closed.asc", {}, &notes);
+  EXPECT_FALSE(closed.water.enabled);
+  const auto dry = std::find_if(notes.begin(), notes.end(), [](const std::string& n) {
+    return n.find("basins closed from its edges") != std::string::npos;
+  });
+  ASSERT_NE(dry, notes.end()) << ::testing::PrintToString(notes);
+  EXPECT_NE(dry->find("20 %"), std::string::npos) << *dry;  // 709 of 3600 cells
+  EXPECT_NE(dry->find("water.enabled=true"), std::string::npos) << *dry;
+  notes.clear();
+  EXPECT_TRUE(loadSceneInput(dir / "closed.asc", {"water.enabled=true"}, &notes).water.enabled);
+  for (const std::string& n : notes) EXPECT_EQ(n.find("basins closed"), std::string::npos) << n;
+
+  writeGrid(dir / "channel.asc", 60, 60, 100.0, [&](int c, int r) { return basin(c, r, true, false); });
+  notes.clear();
+  const Scene open = loadSceneInput(dir / "channel.asc", {}, &notes);
+  EXPECT_TRUE(open.water.enabled);
+  const auto sea = std::find_if(notes.begin(), notes.end(),
+                                [](const std::string& n) { return n.find("is sea") != std::string::npos; });
+  ASSERT_NE(sea, notes.end()) << ::testing::PrintToString(notes);
+  EXPECT_NE(sea->find("20 %"), std::string::npos) << *sea;  // 709 + 15 of 3600 cells
+
+  writeGrid(dir / "nodata.asc", 60, 60, 100.0, [&](int c, int r) { return basin(c, r, true, true); });
+  EXPECT_TRUE(loadSceneInput(dir / "nodata.asc").water.enabled) << "the channel reaches the edge's no data";
 }
 
 // An OBJ of `n` x `n` vertices `cell` apart, the height `height(i, j)` along `up` (0: x, 1:
