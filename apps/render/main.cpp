@@ -70,8 +70,10 @@ std::filesystem::path framePath(const std::string& pattern, int index, int count
   return p.parent_path() / (p.stem().string() + suffix + p.extension().string());
 }
 
-// The scene (or lone mesh or DEM) with the --set overrides and, when given, --size WxH.
-scene::Scene loadSized(const std::string& input, std::vector<std::string> sets, const std::string& size) {
+// The scene (or lone mesh or DEM) with the --set overrides and, when given, --size WxH; a lone
+// input's file, read for its proportions, is handed to `cache`.
+scene::Scene loadSized(const std::string& input, std::vector<std::string> sets, const std::string& size,
+                       scene::AssetCache& cache) {
   if (size.size()) {
     const Size2 s = parseSize(size, "--size");
     // The scene's output.width and output.height range, said of the option that gave it.
@@ -83,7 +85,7 @@ scene::Scene loadSized(const std::string& input, std::vector<std::string> sets, 
     sets.push_back("output.height=" + std::to_string(s.height));
   }
   std::vector<std::string> notes;
-  scene::Scene s = scene::loadSceneInput(input, sets, &notes);
+  scene::Scene s = scene::loadSceneInput(input, sets, &notes, &cache);
   // What a lone DEM or piece of land was given from its proportions (painted as land, raised,
   // a sea, trees), so it can be undone.
   for (const std::string& n : notes)
@@ -101,10 +103,10 @@ constexpr std::size_t kFramesInFlight = 2;
 
 void runBenchmark(const std::string& input, std::vector<std::string> sets, const std::string& size, int count,
                   const std::string& stats_path) {
-  const scene::Scene sc = loadSized(input, std::move(sets), size);
+  scene::AssetCache cache;
+  const scene::Scene sc = loadSized(input, std::move(sets), size, cache);
   OutputSet outputs({input});
   if (!stats_path.empty()) outputs.declare(stats_path, "--stats", {".json"});
-  scene::AssetCache cache;
   const auto objects = cache.getAll(sc);
   const auto context = render::GlContext::create({.kind = render::ContextKind::Headless});
   render::InkRenderer renderer(sc, objects);
@@ -300,13 +302,13 @@ int main(int argc, char** argv) {
     if (frames < 1 || frames > 100000) throw makeError("--frames: ", frames, " is out of range; expected [1, 100000]");
     if (!std::isfinite(orbit)) throw makeError("--orbit: must be finite");
     if (!(fps > 0 && fps <= 1e4)) throw makeError("--fps: ", fps, " is out of range; expected (0, 10000]");
-    const scene::Scene sc = loadSized(input, sets, size);
+    scene::AssetCache cache;
+    const scene::Scene sc = loadSized(input, sets, size, cache);
     OutputSet outputs({input});
     for (int i = 0; i < frames; ++i)
       outputs.declare(framePath(output, i, frames), "-o", image::writableImageExtensions());
     if (!stats_path.empty()) outputs.declare(stats_path, "--stats", {".json"});
 
-    scene::AssetCache cache;
     const auto objects = cache.getAll(sc);
     const auto context = render::GlContext::create({.kind = render::ContextKind::Headless});
     if (verbose) std::fprintf(stderr, "%s\n", context->description().c_str());

@@ -103,7 +103,8 @@ int main(int argc, char** argv) {
       render::setShaderDirectory(shader_dir);
     }
     std::vector<std::string> notes;
-    scene::Scene sc = scene::loadSceneInput(input, sets, &notes);
+    scene::AssetCache cache;  // takes the lone input's file, read for its proportions
+    scene::Scene sc = scene::loadSceneInput(input, sets, &notes, &cache);
     for (const std::string& n : notes)
       std::fprintf(stderr, "shanshui-view: note: %s: %s; --set changes it\n", input.c_str(), n.c_str());
     if (save_path.empty()) {
@@ -111,7 +112,6 @@ int main(int argc, char** argv) {
                       ? input
                       : std::filesystem::path(input).replace_extension(".scene.json").string();
     }
-    scene::AssetCache cache;
     auto objects = cache.getAll(sc);
     const auto context = render::GlContext::create({.kind = render::ContextKind::Window,
                                                     .width = s.width,

@@ -324,20 +324,9 @@ std::pair<std::size_t, std::size_t> seaSamples(const terrain::Heightfield& h) {
   return {sea, inland};
 }
 
-// Read as the asset cache will read it (the same options); a file that does not load is left
-// to the cache to report, with the plain look.
-LandLook loneDemLook(const std::filesystem::path& path) {
+LandLook demLook(const terrain::Heightfield& h) {
   LandLook look;
   look.land = true;
-  terrain::Heightfield h;
-  try {
-    terrain::HeightfieldOptions options;
-    options.image_relief_ratio = kImageReliefRatio;
-    options.max_samples = Object{}.max_vertices;
-    h = terrain::loadHeightfield(path, options);
-  } catch (const std::exception&) {
-    return look;
-  }
   const auto [lo, hi] = h.elevationRange();
   const double side = std::max(h.columns * h.cell_x, h.rows * h.cell_y), relief = hi - lo;
   if (!proportions(look, side, relief, "objects.0.z_scale")) return look;  // the sea divides by the relief
@@ -357,6 +346,25 @@ LandLook loneDemLook(const std::filesystem::path& path) {
   return look;
 }
 
+// Read as the asset cache will read it (the same options), and handed to `cache` so it is not
+// read again; a file that does not load is left to the cache to report, with the plain look.
+LandLook loneDemLook(const std::filesystem::path& path, AssetCache* cache) {
+  terrain::HeightfieldOptions options;
+  options.image_relief_ratio = kImageReliefRatio;
+  options.max_samples = Object{}.max_vertices;
+  terrain::Heightfield h;
+  try {
+    h = terrain::loadHeightfield(path, options);
+  } catch (const std::exception&) {
+    LandLook look;
+    look.land = true;
+    return look;
+  }
+  LandLook look = demLook(h);
+  if (cache) cache->keepRead(path, options, std::move(h));
+  return look;
+}
+
 // A lone mesh that is a piece of land (a terrain from a GIS or a photogrammetry tool,
 // shanshui-terrain's own output) is painted as a DEM is: it is flat along one axis (the axis
 // the asset cache takes as up, scene_assets.cpp's upAxis: under half of both others) and
@@ -364,14 +372,8 @@ LandLook loneDemLook(const std::filesystem::path& path) {
 // is closed, so about half its area faces down or sideways. Units are taken as metres.
 constexpr double kLeastUpShare = 0.85;
 
-LandLook loneMeshLook(const std::filesystem::path& path, const std::string& asked_up) {
+LandLook meshLook(const mesh::PolygonSoup& soup, const std::string& asked_up) {
   LandLook look;
-  mesh::PolygonSoup soup;
-  try {
-    soup = mesh::readPolygonSoup(path);
-  } catch (const std::exception&) {
-    return look;  // the asset cache reports it
-  }
   glm::dvec3 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
   for (const glm::dvec3& p : soup.positions) {
     if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) continue;
@@ -404,6 +406,19 @@ LandLook loneMeshLook(const std::filesystem::path& path, const std::string& aske
   return look;
 }
 
+// As loneDemLook: read once, and handed to `cache`.
+LandLook loneMeshLook(const std::filesystem::path& path, const std::string& asked_up, AssetCache* cache) {
+  mesh::PolygonSoup soup;
+  try {
+    soup = mesh::readPolygonSoup(path);
+  } catch (const std::exception&) {
+    return {};  // the asset cache reports it
+  }
+  LandLook look = meshLook(soup, asked_up);
+  if (cache) cache->keepRead(path, std::move(soup));
+  return look;
+}
+
 }  // namespace
 
 // What a lone input is, by its extension: meshes through shanshui's own readers or Assimp,
@@ -415,7 +430,7 @@ constexpr std::array kLoneDemExtensions{".dem", ".asc", ".png", ".tif", ".tiff",
                                         ".bil", ".bt",  ".dt0", ".dt1", ".dt2",  ".jp2", ".grd", ".flt"};
 
 Scene loadSceneInput(const std::filesystem::path& path, const std::vector<std::string>& overrides,
-                     std::vector<std::string>* notes) {
+                     std::vector<std::string>* notes, AssetCache* cache) {
   std::string ext = path.extension().string();
   for (char& ch : ext) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
   if (ext == ".json") return loadScene(path, overrides);
@@ -450,7 +465,7 @@ Scene loadSceneInput(const std::filesystem::path& path, const std::vector<std::s
     const json& up = probe["objects"][0]["up"];
     if (up.is_string()) asked_up = up.get<std::string>();
   }
-  const LandLook look = dem ? loneDemLook(path) : loneMeshLook(path, asked_up);
+  const LandLook look = dem ? loneDemLook(path, cache) : loneMeshLook(path, asked_up, cache);
   if (look.land) {
     j["camera"] = {{"preset", "deep"}};
     j["mist"] = {{"density", 0.75}, {"height", 0.12}, {"softness", 0.35}};

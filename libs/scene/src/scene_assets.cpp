@@ -109,7 +109,46 @@ std::string where(std::size_t index, const char* key) {
   return "objects." + std::to_string(index) + "." + key;
 }
 
+// A file as the read-ahead maps know it: the same file however the path to it was written.
+std::string fileKey(const std::filesystem::path& source) {
+  return std::filesystem::absolute(source).lexically_normal().string();
+}
+
+std::string heightfieldKey(const std::filesystem::path& source, const terrain::HeightfieldOptions& o) {
+  std::ostringstream k;
+  k.precision(17);
+  k << fileKey(source) << "|" << o.cell_size << " " << o.image_relief_ratio << " " << o.max_geographic_scale_error
+    << " " << o.max_samples << " " << o.fill_nodata << " " << o.crop[0] << " " << o.crop[1] << " " << o.crop[2] << " "
+    << o.crop[3];
+  return k.str();
+}
+
+// What was read ahead under `key`, taken out of `kept`; otherwise read(): each file read once.
+template <typename T, typename Read>
+T takeOrRead(std::map<std::string, T>& kept, const std::string& key, Read read) {
+  const auto it = kept.find(key);
+  if (it == kept.end()) return read();
+  T value = std::move(it->second);
+  kept.erase(it);
+  return value;
+}
+
 }  // namespace
+
+void AssetCache::keepRead(const std::filesystem::path& source, const terrain::HeightfieldOptions& options,
+                          terrain::Heightfield h) {
+  read_heightfields_[heightfieldKey(source, options)] = std::make_shared<const terrain::Heightfield>(std::move(h));
+}
+
+void AssetCache::keepRead(const std::filesystem::path& source, mesh::PolygonSoup soup) {
+  read_soups_[fileKey(source)] = std::move(soup);
+}
+
+void AssetCache::dropReads(const std::filesystem::path& source) {
+  const std::string file = fileKey(source);
+  read_soups_.erase(file);
+  std::erase_if(read_heightfields_, [&](const auto& kept) { return kept.first.starts_with(file + "|"); });
+}
 
 LoadedObject AssetCache::get(const Scene& scene, std::size_t index) {
   const Object& o = scene.objects.at(index);
@@ -154,14 +193,17 @@ LoadedObject AssetCache::get(const Scene& scene, std::size_t index) {
         hopt.max_samples = o.max_vertices;
         hopt.fill_nodata = o.fill_nodata;
         hopt.crop = o.crop;
-        asset->mesh =
-            terrain::heightfieldToMesh(terrain::loadHeightfield(source, hopt), topt, nullptr, source.string());
+        const std::shared_ptr<const terrain::Heightfield> h = takeOrRead(
+            read_heightfields_, heightfieldKey(source, hopt),
+            [&] { return std::make_shared<const terrain::Heightfield>(terrain::loadHeightfield(source, hopt)); });
+        asset->mesh = terrain::heightfieldToMesh(*h, topt, nullptr, source.string());
       } else {
         // Every component is drawn (a teapot's lid and spout); only parameterisation
         // needs a single disc.
         mesh::RepairOptions ropt;
         ropt.components = mesh::ComponentPolicy::KeepAll;
-        const mesh::PolygonSoup soup = mesh::readPolygonSoup(source);
+        const mesh::PolygonSoup soup =
+            takeOrRead(read_soups_, fileKey(source), [&] { return mesh::readPolygonSoup(source); });
         asset->mesh = mesh::repairMesh(soup, ropt, nullptr, source.string());
         // The file's normals survive repair only where it kept the file's vertices.
         file_normals = !soup.normals.empty() && asset->mesh.normals == soup.normals;
@@ -170,6 +212,7 @@ LoadedObject AssetCache::get(const Scene& scene, std::size_t index) {
       meshes_.erase(key);
       throw makeError(where(index, o.dem.empty() ? "mesh" : "dem"), ": ", e.what());
     }
+    dropReads(source);
     try {
       *asset = prepareAsset(std::move(asset->mesh), o, "objects." + std::to_string(index), file_normals);
     } catch (const Error&) {

@@ -474,6 +474,38 @@ void writeLandObj(const std::filesystem::path& path, int n, double cell, int up,
   }
 }
 
+// A lone input is read once: the asset cache meshes what loadSceneInput read for its
+// proportions, so by then the file may be gone (a DEM and an OBJ), and the mesh is the one a
+// fresh read gives. Read with other options (a --set that changes its sampling), the file is
+// read again, and its absence is an error naming it.
+TEST(Scene, ALoneInputIsReadOnceForItsLookAndItsMesh) {
+  test::TempDir dir;
+  auto sameAsAFreshRead = [&](const std::filesystem::path& file) {
+    AssetCache fresh;
+    const std::vector<glm::dvec3> expected = fresh.get(loadSceneInput(file), 0).geometry->mesh.positions;
+    AssetCache cache;
+    const Scene s = loadSceneInput(file, {}, nullptr, &cache);
+    std::filesystem::remove(file);
+    EXPECT_EQ(cache.get(s, 0).geometry->mesh.positions, expected) << file;
+  };
+  auto hill = [&] { writeGrid(dir / "hill.asc", 50, 40, 10.0, [](int c) { return 100.0 + 300.0 * c / 49.0; }); };
+  hill();
+  sameAsAFreshRead(dir / "hill.asc");
+  writeLandObj(dir / "land.obj", 21, 100.0, 2, [](int i, int j) { return 30.0 * i * j / 400.0; });
+  sameAsAFreshRead(dir / "land.obj");
+
+  hill();
+  AssetCache cache;
+  const Scene coarser = loadSceneInput(dir / "hill.asc", {"objects.0.max_vertices=500"}, nullptr, &cache);
+  std::filesystem::remove(dir / "hill.asc");
+  try {
+    cache.get(coarser, 0);
+    ADD_FAILURE() << "the file, read ahead with other options, was not read again";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("hill.asc"), std::string::npos) << e.what();
+  }
+}
+
 // A lone mesh that is a piece of land (open, flat along its up axis, facing up) is painted
 // as a DEM is, raised when flatter than 1:10 (its transform's scale along z, the axis up once
 // loaded) and wooded when small; a closed flat box (a boulder, a plinth) stays an object. The

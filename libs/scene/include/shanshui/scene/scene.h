@@ -19,6 +19,8 @@
 
 namespace shanshui::scene {
 
+class AssetCache;  // scene_assets.h
+
 //! Model to world: scale, then rotations about x, y, z (degrees), then translation.
 struct Transform {
   glm::dvec3 translate{0.0};
@@ -547,13 +549,14 @@ Scene loadScene(const std::filesystem::path& path, const std::vector<std::string
 //! (.dem .asc .png .tif .hgt .img .vrt ...) made into a one-object scene in the sample
 //! scene's style (strokes, rice paper; land, a DEM or a mesh that is a piece of land, with
 //! the deep-distance camera, mist and a dissolving border; any other mesh filling the
-//! frame); overrides apply to both. A lone input is read once here for its proportions:
-//! land whose relief is under a tenth of its larger side is raised to that (at most 20
-//! times), land at most 20 km across grows trees and moss dots, and where at least 1 % of a
-//! DEM lies at or below 0 m that is sea (water at 0 m). What was decided and not overridden
-//! is added to `notes`, a line each, for the tools to print.
+//! frame); overrides apply to both. A lone input is read here for its proportions: land
+//! whose relief is under a tenth of its larger side is raised to that (at most 20 times),
+//! land at most 20 km across grows trees and moss dots, and where at least 1 % of a DEM lies
+//! at or below 0 m open to its edge that is sea (water at 0 m). What was decided and not
+//! overridden is added to `notes`, a line each, for the tools to print. What was read is
+//! handed to `cache`, when given, so that the file is read once.
 Scene loadSceneInput(const std::filesystem::path& path, const std::vector<std::string>& overrides = {},
-                     std::vector<std::string>* notes = nullptr);
+                     std::vector<std::string>* notes = nullptr, AssetCache* cache = nullptr);
 
 //! Applies one KEY=VALUE override to raw scene JSON; array indices must exist.
 void applyOverride(nlohmann::json& j, const std::string& assignment);

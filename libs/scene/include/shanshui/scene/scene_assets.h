@@ -2,6 +2,7 @@
 // CPU: meshes with the attributes the scene's passes use, curvature, wrinkle images.
 #pragma once
 
+#include <filesystem>
 #include <map>
 #include <memory>
 #include <string>
@@ -10,6 +11,11 @@
 #include "shanshui/image/image.h"
 #include "shanshui/mesh/mesh.h"
 #include "shanshui/scene/scene.h"
+
+namespace shanshui::terrain {
+struct Heightfield;  // heightfield.h (the terrain library is the scene library's own)
+struct HeightfieldOptions;
+}  // namespace shanshui::terrain
 
 namespace shanshui::scene {
 
@@ -46,7 +52,20 @@ class AssetCache {
   LoadedObject get(const Scene& scene, std::size_t index);
   std::vector<LoadedObject> getAll(const Scene& scene);
 
+  //! A file already read (loadSceneInput reads a lone input for its proportions): the next
+  //! get() that reads `source` with the same options takes it instead of reading the file
+  //! again, and the cache lets it go once its mesh is made.
+  void keepRead(const std::filesystem::path& source, const terrain::HeightfieldOptions& options,
+                terrain::Heightfield h);
+  void keepRead(const std::filesystem::path& source, mesh::PolygonSoup soup);
+
  private:
+  //! Lets go of what was read ahead of `source` under other options (a --set that changed
+  //! how the file is read): its mesh is made.
+  void dropReads(const std::filesystem::path& source);
+
+  std::map<std::string, std::shared_ptr<const terrain::Heightfield>> read_heightfields_;
+  std::map<std::string, mesh::PolygonSoup> read_soups_;
   std::map<std::string, std::shared_ptr<const ObjectAsset>> meshes_;
   std::map<std::string, std::shared_ptr<const image::Image>> images_;
   std::map<std::string, std::shared_ptr<const ElementSet>> elements_;
