@@ -43,6 +43,13 @@ class Records {
     const std::string s = field(offset, width, what);
     const double v = parse(s, offset, what);
     if (v != std::floor(v)) throw bad(offset, what, s);
+    // A count, a code or an elevation in the file's units; beyond this it is no whole number
+    // a long holds exactly (and the conversion would be undefined).
+    constexpr double kLargest = 9.0e15;
+    if (std::abs(v) > kLargest) {
+      throw makeError(path_.string(), ": byte ", offset, ": ", what, " is '", s, "'; expected a whole number within ±",
+                      kLargest);
+    }
     return static_cast<long>(v);
   }
 
