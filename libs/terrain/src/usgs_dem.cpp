@@ -172,9 +172,17 @@ Heightfield loadUsgsDem(const fs::path& path, const HeightfieldOptions& options)
                       ") east of the previous one");
     }
   }
+  // The rows the profiles span, at most a profile's longest (1000000) and a grid's most
+  // samples: a profile whose northing is far from the others' would ask for billions.
+  const double span = (yMax - yMin) / dy + 1.0;
+  if (!(span <= 1000000.0) || span * static_cast<double>(profiles) > static_cast<double>(kMaxGridSamples)) {
+    throw makeError(path.string(), ": the profiles' northings span ", yMax - yMin, " at a y resolution of ", dy, ": ",
+                    span, " rows x ", profiles, " profiles; expected at most 1000000 rows and ", kMaxGridSamples,
+                    " samples");
+  }
   Heightfield h;
   h.columns = static_cast<int>(profiles);
-  h.rows = static_cast<int>(std::lround((yMax - yMin) / dy)) + 1;
+  h.rows = static_cast<int>(std::lround(span - 1.0)) + 1;
   h.elevation.assign(static_cast<std::size_t>(h.columns) * h.rows, kNoData);
   for (int c = 0; c < h.columns; ++c) {
     const Profile& prof = cols[static_cast<std::size_t>(c)];
