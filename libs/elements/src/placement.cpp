@@ -234,8 +234,13 @@ std::vector<Instance> placeElements(const mesh::Mesh& m, const TreeOptions& tree
     tooMany("dots.density",
             (dots.density * dots.cluster + (want_trees ? 2.0 * dots.at_trees * trees.density : 0.0)) * hectares);
 
+  // Each grove, each tree of a grove and each cluster of dots draws from a stream of its own
+  // (its index in the one before): whether the ground takes one tree does not move the draws
+  // of the next, so a small change to the ground (a z_scale, a DEM's last digit) changes the
+  // trees where the ground changed, instead of reshuffling the whole forest.
   if (want_trees) {
-    Random r(streamValue(trees.seed ? trees.seed : scene_seed, 0x7e55ull));
+    const std::uint64_t stream = streamValue(trees.seed ? trees.seed : scene_seed, 0x7e55ull);
+    Random r(stream);
     // A grove spreads at most over the object; centres fall at most half its size beyond it
     // (a grove wider than that is a scatter, and the centres to sample stay within 4x its
     // area, however wide a grove the keys ask for).
@@ -249,9 +254,11 @@ std::vector<Instance> placeElements(const mesh::Mesh& m, const TreeOptions& tree
       const Site centre = terrain.site(cx, cy);
       const Kind grove_kind = drawKind(trees, &centre, r);
       const int count = r.poisson(trees.grove);
+      const std::uint64_t grove_stream = streamValue(stream, 0x67000000ull + static_cast<std::uint64_t>(g));
       for (int i = 0; i < count; ++i) {
-        const double x = cx + sigma * r.normal(), y = cy + sigma * r.normal();
-        const double keep = r.uniform();
+        Random tr(streamValue(grove_stream, static_cast<std::uint64_t>(i)));
+        const double x = cx + sigma * tr.normal(), y = cy + sigma * tr.normal();
+        const double keep = tr.uniform();
         glm::dvec3 p;
         double slope = 0.0;
         if (!terrain.surface(x, y, p, slope)) continue;
@@ -259,50 +266,61 @@ std::vector<Instance> placeElements(const mesh::Mesh& m, const TreeOptions& tree
         if (keep >= treeSuitability(s, trees)) continue;
         Instance t;
         t.position = glm::vec3(p);
-        t.kind = r.uniform() < 0.75 ? grove_kind : drawKind(trees, &s, r);
-        t.size = static_cast<float>(trees.size * kindScale(t.kind) * std::exp(trees.size_spread * r.normal()));
-        t.lean = static_cast<float>(0.06 * r.normal());
-        t.mirrored = r.uniform() < 0.5;
-        t.seed = static_cast<std::uint32_t>(r.bits());
+        t.kind = tr.uniform() < 0.75 ? grove_kind : drawKind(trees, &s, tr);
+        t.size = static_cast<float>(trees.size * kindScale(t.kind) * std::exp(trees.size_spread * tr.normal()));
+        t.lean = static_cast<float>(0.06 * tr.normal());
+        t.mirrored = tr.uniform() < 0.5;
+        t.seed = static_cast<std::uint32_t>(tr.bits());
         out.push_back(t);
       }
     }
   }
 
   if (want_dots) {
-    Random r(streamValue(dots.seed ? dots.seed : scene_seed, 0xd075ull));
+    const std::uint64_t stream = streamValue(dots.seed ? dots.seed : scene_seed, 0xd075ull);
+    Random r(stream);
     const double side = std::max(std::max(b.size().x, b.size().y), 1e-9);
     const double sigma = std::min(dots.spread > 0.0 ? dots.spread : 0.004 * side, side);
-    auto addDot = [&](double x, double y) {
+    auto addDot = [&](Random& dr, double x, double y) {
+      const double size = dr.uniform(0.65, 1.35), lean = dr.uniform(-0.6, 0.6);
+      const auto seed = static_cast<std::uint32_t>(dr.bits());
       glm::dvec3 p;
       double slope = 0.0;
       if (!terrain.surface(x, y, p, slope)) return;
       Instance d;
       d.position = glm::vec3(p);
       d.kind = Kind::MossDot;
-      d.size = static_cast<float>(r.uniform(0.65, 1.35));
-      d.lean = static_cast<float>(r.uniform(-0.6, 0.6));
-      d.seed = static_cast<std::uint32_t>(r.bits());
+      d.size = static_cast<float>(size);
+      d.lean = static_cast<float>(lean);
+      d.seed = seed;
       out.push_back(d);
     };
-    // At the feet of trees: one to three dots beside the trunk.
+    // At the feet of trees: one to three dots beside the trunk, drawn from the tree's own seed.
     const std::size_t tree_count = out.size();
     for (std::size_t i = 0; i < tree_count; ++i) {
-      if (r.uniform() >= dots.at_trees) continue;
       const Instance t = out[i];
-      const int n = 1 + static_cast<int>(r.uniform() * 3.0);
-      for (int k = 0; k < n; ++k)
-        addDot(t.position.x + t.size * r.uniform(-0.5, 0.5), t.position.y + t.size * r.uniform(-0.5, 0.5));
+      Random dr(streamValue(stream, 0x74000000ull + t.seed));
+      if (dr.uniform() >= dots.at_trees) continue;
+      const int n = 1 + static_cast<int>(dr.uniform() * 3.0);
+      for (int k = 0; k < n; ++k) {
+        const double x = t.position.x + t.size * dr.uniform(-0.5, 0.5),
+                     y = t.position.y + t.size * dr.uniform(-0.5, 0.5);
+        addDot(dr, x, y);
+      }
     }
     // Clusters along ridges and rock edges.
     const double reach = std::min(3.0 * sigma, 0.5 * side);
     const double w = b.size().x + 2 * reach, h = b.size().y + 2 * reach;
     const int clusters = dots.density > 0.0 ? r.poisson(dots.density / 1e4 * w * h) : 0;
     for (int c = 0; c < clusters; ++c) {
-      const double cx = b.min.x - reach + w * r.uniform(), cy = b.min.y - reach + h * r.uniform();
-      if (r.uniform() >= dotSuitability(terrain.site(cx, cy))) continue;
-      const int n = 1 + r.poisson(dots.cluster - 1.0);
-      for (int k = 0; k < n; ++k) addDot(cx + sigma * r.normal(), cy + sigma * r.normal());
+      Random cr(streamValue(stream, 0x63000000ull + static_cast<std::uint64_t>(c)));
+      const double cx = b.min.x - reach + w * cr.uniform(), cy = b.min.y - reach + h * cr.uniform();
+      if (cr.uniform() >= dotSuitability(terrain.site(cx, cy))) continue;
+      const int n = 1 + cr.poisson(dots.cluster - 1.0);
+      for (int k = 0; k < n; ++k) {
+        const double x = cx + sigma * cr.normal(), y = cy + sigma * cr.normal();
+        addDot(cr, x, y);
+      }
     }
   }
   return out;

@@ -1,0 +1,112 @@
+// Heights stored in steps, smoothed within their steps (heightfield.h's dequantize).
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <sstream>
+
+#include <opencv2/core.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "shanshui/terrain/heightfield.h"
+
+namespace shanshui::terrain {
+
+namespace {
+
+// A sample lies on the step's lattice when it is within this share of a step of it: text
+// DEMs give tenths as the nearest double ("42.1"), and the sums and scalings the readers do
+// (feet to metres, a band's scale) add rounding of about 1e-16 of the height.
+constexpr double kOnLattice = 1e-3;
+
+}  // namespace
+
+double heightStep(const Heightfield& h) {
+  const auto [lo, hi] = h.elevationRange();
+  if (std::isnan(lo) || !(hi > lo)) return 0.0;
+  // The least height difference between neighbouring samples that is not zero: on a
+  // staircase, one step (a surface smooth at the scale of the grid has neighbours one
+  // step apart wherever it is gentle).
+  double least = std::numeric_limits<double>::infinity();
+  auto neighbours = [&](std::size_t a, std::size_t b) {
+    const double d = std::abs(h.elevation[a] - h.elevation[b]);
+    if (d > 0.0 && d < least) least = d;  // NaN compares false
+  };
+  const std::size_t w = static_cast<std::size_t>(h.columns), n = static_cast<std::size_t>(h.rows);
+  for (std::size_t r = 0; r < n; ++r) {
+    for (std::size_t c = 0; c < w; ++c) {
+      if (c + 1 < w) neighbours(r * w + c, r * w + c + 1);
+      if (r + 1 < n) neighbours(r * w + c, (r + 1) * w + c);
+    }
+  }
+  // Too coarse a step to be a storage step (a terrace model, a mesa of three levels), or one
+  // at the rounding of doubles: not stored in steps.
+  if (!std::isfinite(least) || least > (hi - lo) / 8.0 || least < 1e-9 * std::max(std::abs(lo), std::abs(hi)))
+    return 0.0;
+  for (double z : h.elevation) {
+    if (std::isnan(z)) continue;
+    const double k = (z - lo) / least;
+    if (std::abs(k - std::round(k)) > kOnLattice) return 0.0;
+  }
+  return least;
+}
+
+Dequantized dequantize(Heightfield& h, double sigma, int sweeps) {
+  Dequantized out;
+  out.step = heightStep(h);
+  if (out.step <= 0.0 || sweeps <= 0 || !(sigma > 0.0)) return out;
+  const int w = h.columns, n = h.rows;
+  const double half = 0.5 * out.step;
+  // The stored heights and which samples hold one; no-data samples take no part (each blur
+  // is normalised by the weight of the valid samples it covers) and stay no data.
+  cv::Mat stored(n, w, CV_64F), valid(n, w, CV_64F);
+  for (int r = 0; r < n; ++r) {
+    for (int c = 0; c < w; ++c) {
+      const double z = h.elevation[static_cast<std::size_t>(r) * w + c];
+      stored.at<double>(r, c) = std::isnan(z) ? 0.0 : z;
+      valid.at<double>(r, c) = std::isnan(z) ? 0.0 : 1.0;
+    }
+  }
+  // The smoothing kernel: twice a Gaussian of sigma less one of sigma·√2. Its second moments
+  // cancel, so it leaves every quadratic (and cubic) surface as it is: a hill's curved top is
+  // not flattened, as a Gaussian alone would flatten it by sigma²/2 times its Laplacian (more
+  // than half a step on the sample hill), and its powers, the sweeps, keep that.
+  const double wide = sigma * std::numbers::sqrt2;
+  auto blur = [&](const cv::Mat& m, double s) {
+    cv::Mat b;
+    cv::GaussianBlur(m, b, cv::Size(), s, s, cv::BORDER_REPLICATE);
+    return b;
+  };
+  const cv::Mat weight_near = blur(valid, sigma), weight_wide = blur(valid, wide);
+  cv::Mat z = stored.clone();
+  for (int sweep = 0; sweep < sweeps; ++sweep) {
+    const cv::Mat masked = z.mul(valid);
+    const cv::Mat near = blur(masked, sigma), far = blur(masked, wide);
+    for (int r = 0; r < n; ++r) {
+      for (int c = 0; c < w; ++c) {
+        if (valid.at<double>(r, c) == 0.0) continue;
+        const double smooth =
+            2.0 * near.at<double>(r, c) / weight_near.at<double>(r, c) - far.at<double>(r, c) / weight_wide.at<double>(r, c);
+        // Held within half a step of the stored height: what the file says, to its precision.
+        const double s = stored.at<double>(r, c);
+        z.at<double>(r, c) = std::clamp(smooth, s - half, s + half);
+      }
+    }
+  }
+  for (int r = 0; r < n; ++r) {
+    for (int c = 0; c < w; ++c) {
+      double& e = h.elevation[static_cast<std::size_t>(r) * w + c];
+      if (std::isnan(e)) continue;
+      out.largest_change = std::max(out.largest_change, std::abs(z.at<double>(r, c) - e));
+      e = z.at<double>(r, c);
+    }
+  }
+  std::ostringstream note;
+  note << "heights stored in steps of " << out.step << " m smoothed within half a step (at most "
+       << out.largest_change << " m moved), so flat ground is not drawn as terraces";
+  h.notes.push_back(note.str());
+  return out;
+}
+
+}  // namespace shanshui::terrain
