@@ -196,7 +196,11 @@ LoadedObject AssetCache::get(const Scene& scene, std::size_t index) {
         const std::shared_ptr<const terrain::Heightfield> h = takeOrRead(
             read_heightfields_, heightfieldKey(source, hopt),
             [&] { return std::make_shared<const terrain::Heightfield>(terrain::loadHeightfield(source, hopt)); });
-        asset->mesh = terrain::heightfieldToMesh(*h, topt, nullptr, source.string());
+        // Heights stored in whole metres (or tenths, or grey levels) are smoothed within
+        // their steps: otherwise the treads' edges on gentle ground are drawn as cracks.
+        terrain::Heightfield field = *h;
+        terrain::dequantize(field);
+        asset->mesh = terrain::heightfieldToMesh(field, topt, nullptr, source.string());
       } else {
         // Every component is drawn (a teapot's lid and spout); only parameterisation
         // needs a single disc.

@@ -1,5 +1,7 @@
 #include <sys/stat.h>
 
+#include <cmath>
+#include <cstdio>
 #include <fstream>
 
 #include "mesh_checks.h"
@@ -8,6 +10,7 @@
 #include "shanshui/image/image_io.h"
 #include "shanshui/terrain/heightfield.h"
 #include "shanshui/terrain/terrain_mesh.h"
+#include "stepped_hill.h"
 #include "test_support.h"
 
 namespace shanshui::terrain {
@@ -275,4 +278,55 @@ TEST(TerrainMesh, StHelensMeshIsCleanAndKeepsElevations) {
 }
 
 }  // namespace
+}  // namespace shanshui::terrain
+
+namespace shanshui::terrain {
+
+// A smooth hill stored in whole metres, as SRTM and USGS DEMs store heights: on its gentle
+// top the steps' edges were the strongest curvature. Smoothed within its steps, every
+// sample moves at most half a metre and the curvature (the discrete Laplacian) comes within
+// a twentieth of its error against the true hill, on a steep hill and on a gentle one.
+TEST(Dequantize, HeightsInWholeMetresBecomeTheSmoothHillWithinHalfAMetre) {
+  for (double height : {400.0, 40.0}) {
+    Heightfield h = test::steppedHill(height, 1.0);
+    const Heightfield stored = h;
+    const auto [z_before, lap_before] = test::hillErrors(h, height);
+    const Dequantized d = dequantize(h);
+    const auto [z_after, lap_after] = test::hillErrors(h, height);
+    EXPECT_DOUBLE_EQ(d.step, 1.0);
+    EXPECT_LE(d.largest_change, 0.5 + 1e-12);
+    for (std::size_t i = 0; i < h.elevation.size(); ++i)
+      ASSERT_LE(std::abs(h.elevation[i] - stored.elevation[i]), 0.5 + 1e-12) << i;
+    EXPECT_LT(lap_after, 0.05 * lap_before) << height << " m: " << lap_before << " -> " << lap_after;
+    EXPECT_LT(z_after, 0.4 * z_before) << height << " m: " << z_before << " -> " << z_after;
+    EXPECT_NE(h.notes.back().find("steps of 1 m"), std::string::npos) << h.notes.back();
+  }
+}
+
+// Heights stored as floats, or in too few levels to be a storage step, are left as they
+// are; tenths and no-data samples are handled: a no-data sample stays so and does not pull
+// its neighbours.
+TEST(Dequantize, OnlyHeightsStoredInStepsAreTouchedAndNoDataStaysSo) {
+  Heightfield smooth = test::steppedHill(400.0, 0.0);
+  const Heightfield before = smooth;
+  EXPECT_EQ(dequantize(smooth).step, 0.0);
+  EXPECT_EQ(smooth.elevation, before.elevation);
+  EXPECT_TRUE(smooth.notes.empty());
+
+  Heightfield mesa = test::steppedHill(400.0, 100.0);  // five levels: a terrace model, not storage
+  EXPECT_EQ(heightStep(mesa), 0.0);
+
+  Heightfield tenths = test::steppedHill(40.0, 0.1);
+  tenths.elevation[100 * 200 + 100] = kNoData;
+  const Heightfield stored = tenths;
+  const Dequantized d = dequantize(tenths);
+  EXPECT_NEAR(d.step, 0.1, 1e-9);
+  EXPECT_TRUE(std::isnan(tenths.elevation[100 * 200 + 100]));
+  for (std::size_t i = 0; i < tenths.elevation.size(); ++i) {
+    if (std::isnan(stored.elevation[i])) continue;
+    ASSERT_TRUE(std::isfinite(tenths.elevation[i])) << i;
+    ASSERT_LE(std::abs(tenths.elevation[i] - stored.elevation[i]), 0.05 + 1e-9) << i;
+  }
+}
+
 }  // namespace shanshui::terrain

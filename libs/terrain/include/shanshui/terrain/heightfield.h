@@ -87,6 +87,31 @@ void cropHeightfield(Heightfield& h, const std::array<double, 4>& crop, const st
 //! around them (GDAL's GDALFillNodata) and says so in its notes; returns how many.
 std::size_t fillNoData(Heightfield& h);
 
+//! The step heights are stored in (whole metres, as SRTM and USGS DEMs store them; tenths;
+//! an image's grey levels): the least height difference between neighbouring samples, when
+//! every valid sample lies on that step's lattice and the relief spans at least 8 steps;
+//! 0 when they do not (heights stored as floats, or too few levels to be a storage step).
+double heightStep(const Heightfield& h);
+
+//! A Gaussian of this many cells, then each sample held to within half a step of its stored
+//! height, this many times (dequantize).
+constexpr double kDequantizeSigma = 2.0;
+constexpr int kDequantizeSweeps = 2;
+
+//! What dequantize found and did.
+struct Dequantized {
+  double step = 0.0;            //!< heightStep (0: not stored in steps, nothing done)
+  double largest_change = 0.0;  //!< metres; at most half a step
+};
+
+//! Heights stored in steps make gentle ground a staircase, whose treads' edges are the
+//! strongest curvature there (drawn as a net of cracks over a smooth summit). Replaces the
+//! staircase by a smooth surface within each sample's step: blurred (kDequantizeSigma),
+//! then every sample held to within half a step of its stored height, kDequantizeSweeps
+//! times. The surface then says what the file says, to its precision. No-data samples stay
+//! so and are not used; heights not stored in steps are not touched. Says so in `notes`.
+Dequantized dequantize(Heightfield& h, double sigma = kDequantizeSigma, int sweeps = kDequantizeSweeps);
+
 //! The OpenImageIO height map reader that GDAL replaced for images; kept as the tests' oracle.
 Heightfield loadHeightmapImage(const std::filesystem::path& path, const HeightfieldOptions& options);
 Heightfield loadUsgsDem(const std::filesystem::path& path, const HeightfieldOptions& options);
