@@ -62,6 +62,30 @@ uniform vec2 u_half_extent;
 uniform float u_border_width;  // 0: no border
 uniform float u_border_roughness;
 layout(r8, binding = 0) readonly uniform image2D u_value_noise;  // the border's noise (with a border)
+// What stands on this object (a hut, a pagoda, a boulder: objects grounded on it), at most
+// kMaxClearings of them: its centre (world) and its horizontal radius. No tree stands within
+// that radius and half its own height of one, nor in front of it, between it and the eye,
+// as far as the tree's crown would reach up over it on the picture: a building stands in a
+// clearing, flanked by trees instead of behind a trunk. Moss dots may grow to its foot.
+const int kMaxClearings = 16;
+uniform int u_clearings;
+uniform vec4 u_clearing[kMaxClearings];
+
+bool inAClearing(vec3 foot, float height) {
+  for (int k = 0; k < u_clearings; ++k) {
+    vec3 c = u_clearing[k].xyz;
+    vec2 to_eye = u_eye.xy - c.xy;
+    float level = length(to_eye);
+    vec2 ahead = level > 1e-6 ? to_eye / level : vec2(0.0);
+    // A tree this far in front of the building covers it up to its top: its height over the
+    // tangent of the eye's elevation seen from the building, at most four heights.
+    float reach = min(height * level / max(u_eye.z - c.z, 0.25 * level), 4.0 * height);
+    vec2 d = foot.xy - c.xy;
+    vec2 nearest = c.xy + ahead * clamp(dot(d, ahead), 0.0, reach);
+    if (distance(foot.xy, nearest) < u_clearing[k].w + 0.5 * height) return true;
+  }
+  return false;
+}
 #include "border_noise.glsl"
 
 // What the distance fade and the mist leave at a foot (world).
@@ -107,6 +131,7 @@ int marks(uint i, out vec3 world, out float ppu, out float height, out float ink
   t = uint(e.lean_seed.w + 0.5);
   dot = t == u_dot_template;
   height = dot ? u_dot_px * u_per_1024 * e.position_size.w / ppu : e.position_size.w * u_scale;
+  if (!dot && inAClearing(world, height)) return 0;
   // In view, with room for the element above its foot.
   float reach = 2.0 * height * ppu / u_height_px + 0.05;
   vec2 ndc = clip.xy / clip.w;

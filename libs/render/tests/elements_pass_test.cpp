@@ -357,6 +357,76 @@ TEST_F(Elements, EachObjectDrawsItsOwnElements) {
   EXPECT_LT(inkAbove({120.0, 0.0, 0.0}), 0.02 * second) << "the first object's tree drawn on the second";
 }
 
+// A building standing on the land stands in a clearing: no tree grows within its radius and
+// half the tree's height of it, nor in front of it (between it and the eye) where the tree's
+// crown would cover it on the picture; a tree beside it at twice that keeps its ink, and
+// without the building the same trees all draw.
+TEST_F(Elements, ABuildingStandsInAClearing) {
+  const mesh::Mesh land = plane();
+  json base = {{"up", "z"},
+               {"recentre", false},
+               {"lines", {{"enabled", false}}},
+               {"shading", {{"enabled", false}}},
+               {"border", {{"mode", "keep"}}}};
+  json ground = base, hut = base;
+  ground["name"] = "land";
+  ground["mesh"] = "land.obj";
+  ground["trees"] = {{"enabled", true}};
+  hut["name"] = "hut";
+  hut["mesh"] = "hut.obj";
+  hut["transform"] = {{"translate", {0.0, 0.0, 0.0}}, {"scale", {8.0, 8.0, 8.0}}};
+  hut["ground"] = {{"on", "land"}};
+  const json output = {{"fade", 0.0}, {"width", kWidth}, {"height", kHeight}};
+  const scene::Scene with = scene::parseScene({{"objects", {ground, hut}}, {"output", output}}, "test", ".");
+  const scene::Scene without = scene::parseScene({{"objects", {ground}}, {"output", output}}, "test", ".");
+  // Trees 20 high: beside the hut (radius 8·√2/2 ≈ 5.7, so the clearing reaches 15.7), in
+  // front of it towards the eye, and beside it at 40.
+  constexpr float kTree = 20.0f;
+  const OrbitCamera probe = [&] {
+    InkRenderer r(without, {{std::make_shared<const scene::ObjectAsset>(scene::prepareAsset(land, without.objects[0])),
+                             nullptr}});
+    return r.camera({-60.0, 25.0, 1.0}, static_cast<double>(kWidth) / kHeight);
+  }();
+  const glm::dvec2 ahead = glm::normalize(glm::dvec2(probe.eye()));  // from the hut (at the origin) to the eye
+  const glm::dvec2 side(-ahead.y, ahead.x);
+  const std::vector<glm::dvec2> feet = {10.0 * side, 30.0 * ahead, 40.0 * side};
+  auto trees = [&] {
+    auto set = std::make_shared<scene::ElementSet>();
+    for (const glm::dvec2& f : feet) {
+      elements::Instance t;
+      t.kind = elements::Kind::Pine;
+      t.position = glm::vec3(glm::vec2(f), 0.0f);
+      t.size = kTree;
+      t.seed = 5;
+      set->instances.push_back(t);
+    }
+    return set;
+  };
+  auto inkOfEachTree = [&](const scene::Scene& s) {
+    std::vector<scene::LoadedObject> loaded;
+    loaded.push_back({std::make_shared<const scene::ObjectAsset>(scene::prepareAsset(land, s.objects[0])), nullptr});
+    if (s.objects.size() > 1)
+      loaded.push_back(
+          {std::make_shared<const scene::ObjectAsset>(scene::prepareAsset(mesh::unitCube(), s.objects[1])), nullptr});
+    loaded[0].elements = trees();
+    InkRenderer r(s, loaded);
+    r.render(probe, kWidth, kHeight);
+    const image::Image e = elementInk(r);
+    std::vector<double> ink;
+    for (const glm::dvec2& f : feet) {
+      const glm::dvec3 foot(f, 0.0);
+      const glm::dvec2 top = projected(probe, foot + glm::dvec3(0.0, 0.0, kTree)), bottom = projected(probe, foot);
+      ink.push_back(inkCentre(e, 0.5 * (top + bottom), 0.4 * glm::length(top - bottom)).z);
+    }
+    return ink;
+  };
+  const std::vector<double> open = inkOfEachTree(without), cleared = inkOfEachTree(with);
+  for (std::size_t k = 0; k < feet.size(); ++k) EXPECT_GT(open[k], 5.0) << "tree " << k << " without the hut";
+  EXPECT_LT(cleared[0], 0.02 * open[0]) << "the tree beside the hut";
+  EXPECT_LT(cleared[1], 0.02 * open[1]) << "the tree in front of the hut";
+  EXPECT_GT(cleared[2], 0.9 * open[2]) << "the tree beside it, beyond the clearing";
+}
+
 TEST_F(Elements, TheSameSeedPaintsTheSamePicture) {
   const mesh::Mesh m = mesh::heightGrid(
       41, 41, 10.0, [](double x, double y) { return 30.0 * std::sin(x / 60.0) * std::cos(y / 50.0); },

@@ -31,6 +31,7 @@
 #include "shanshui/render/gl_check.h"
 #include "shanshui/render/render_pass.h"
 #include "shanshui/render/shader_program.h"
+#include "shanshui/scene/grounding.h"
 
 namespace shanshui::render {
 
@@ -273,9 +274,28 @@ class ElementsPass final : public RenderPass {
       expand_.set("u_border_width",
                   o.dissolvesBorder() ? static_cast<float>(o.border.width * std::min(half.x, half.y)) : 0.0f);
       expand_.set("u_border_roughness", static_cast<float>(o.border.roughness));
+      setClearings(in, r.object);
       glDispatchCompute(static_cast<GLuint>((r.count + 63) / 64), 1, 1);
     }
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
+  }
+
+  // The objects standing on `ground` (the shader's u_clearing): where each stands now and
+  // its horizontal radius, so its clearing follows a live change of its transform.
+  void setClearings(const FrameInputs& in, std::size_t ground) const {
+    constexpr int kMaxClearings = 16;  // elements_expand.comp's
+    int n = 0;
+    for (std::size_t j = 0; j < scene_.objects.size() && n < kMaxClearings; ++j) {
+      if (scene::groundOf(scene_, j) != ground) continue;
+      const glm::dmat4 model = in.modelAt(j);
+      const glm::dvec3 centre(model * glm::dvec4(0.0, 0.0, 0.0, 1.0));  // uploaded about the bounds' centre
+      const glm::dvec3 size = in.objects[j].model_bounds.size();
+      const double scale = std::cbrt(std::abs(glm::determinant(glm::dmat3(model))));
+      const double radius = 0.5 * std::hypot(size.x, size.y) * scale;
+      expand_.set(("u_clearing[" + std::to_string(n) + "]").c_str(), glm::vec4(glm::vec3(centre), radius));
+      ++n;
+    }
+    expand_.set("u_clearings", n);
   }
 
   scene::Scene scene_;
