@@ -240,8 +240,8 @@ namespace {
 constexpr double kLeastReliefRatio = 0.1;
 constexpr double kMostLoneZScale = 20.0;
 // Share of the samples at or below 0 m and open to the grid's edge (seaSamples) that makes
-// the lone DEM's sea, and how far above 0 m its surface lies (of the relief), so that a sea stored as 0 m (SRTM, ASTER)
-// is under it.
+// the lone DEM's sea, and how far above 0 m its surface lies (of the relief), so that a sea
+// stored as 0 m (SRTM, ASTER) is under it.
 constexpr double kLeastSeaShare = 0.01;
 constexpr double kSeaLevelAbove = 0.002;
 // Land at most this wide (metres, its larger side) grows trees and moss dots at their real
