@@ -137,7 +137,7 @@ T takeOrRead(std::map<std::string, T>& kept, const std::string& key, Read read) 
 
 void AssetCache::keepRead(const std::filesystem::path& source, const terrain::HeightfieldOptions& options,
                           terrain::Heightfield h) {
-  read_heightfields_[heightfieldKey(source, options)] = std::make_shared<const terrain::Heightfield>(std::move(h));
+  read_heightfields_[heightfieldKey(source, options)] = std::make_shared<terrain::Heightfield>(std::move(h));
 }
 
 void AssetCache::keepRead(const std::filesystem::path& source, mesh::PolygonSoup soup) {
@@ -193,14 +193,14 @@ LoadedObject AssetCache::get(const Scene& scene, std::size_t index) {
         hopt.max_samples = o.max_vertices;
         hopt.fill_nodata = o.fill_nodata;
         hopt.crop = o.crop;
-        const std::shared_ptr<const terrain::Heightfield> h = takeOrRead(
-            read_heightfields_, heightfieldKey(source, hopt),
-            [&] { return std::make_shared<const terrain::Heightfield>(terrain::loadHeightfield(source, hopt)); });
+        // Taken out of the read-ahead map or read now: this call's own, so smoothed in place.
+        const std::shared_ptr<terrain::Heightfield> field =
+            takeOrRead(read_heightfields_, heightfieldKey(source, hopt),
+                       [&] { return std::make_shared<terrain::Heightfield>(terrain::loadHeightfield(source, hopt)); });
         // Heights stored in whole metres (or tenths, or grey levels) are smoothed within
         // their steps: otherwise the treads' edges on gentle ground are drawn as cracks.
-        terrain::Heightfield field = *h;
-        terrain::dequantize(field);
-        asset->mesh = terrain::heightfieldToMesh(field, topt, nullptr, source.string());
+        terrain::dequantize(*field);
+        asset->mesh = terrain::heightfieldToMesh(*field, topt, nullptr, source.string());
       } else {
         // Every component is drawn (a teapot's lid and spout); only parameterisation
         // needs a single disc.

@@ -64,7 +64,7 @@ class AssetCache {
   //! how the file is read): its mesh is made.
   void dropReads(const std::filesystem::path& source);
 
-  std::map<std::string, std::shared_ptr<const terrain::Heightfield>> read_heightfields_;
+  std::map<std::string, std::shared_ptr<terrain::Heightfield>> read_heightfields_;
   std::map<std::string, mesh::PolygonSoup> read_soups_;
   std::map<std::string, std::shared_ptr<const ObjectAsset>> meshes_;
   std::map<std::string, std::shared_ptr<const image::Image>> images_;
