@@ -158,11 +158,12 @@ LoadedObject AssetCache::get(const Scene& scene, std::size_t index) {
   const std::filesystem::path source = scene.resolve(o.mesh.empty() ? o.dem : o.mesh);
   const std::string key =
       source.string() + "|" + std::to_string(o.z_scale) + "|" + std::to_string(o.max_vertices) + "|" +
-      std::to_string(o.cell_size) + "|" + std::to_string(o.fill_nodata) + "|" + std::to_string(o.crease_angle) + "|" +
-      std::to_string(o.crop[0]) + " " + std::to_string(o.crop[1]) + " " + std::to_string(o.crop[2]) + " " +
-      std::to_string(o.crop[3]) + "|" + std::to_string(static_cast<int>(o.up)) + "|" + std::to_string(o.recentre) +
-      "|" + std::to_string(object_curvature) + std::to_string(curvature) + "|" + std::to_string(o.lines.smoothing) +
-      "|" + (wrinkled ? (o.wrinkle.uv == UvSource::Mesh ? "uv-mesh" : "uv-planar") : "no-uv");
+      std::to_string(o.cell_size) + "|" + std::to_string(o.fill_nodata) + std::to_string(o.smooth_steps) + "|" +
+      std::to_string(o.crease_angle) + "|" + std::to_string(o.crop[0]) + " " + std::to_string(o.crop[1]) + " " +
+      std::to_string(o.crop[2]) + " " + std::to_string(o.crop[3]) + "|" + std::to_string(static_cast<int>(o.up)) + "|" +
+      std::to_string(o.recentre) + "|" + std::to_string(object_curvature) + std::to_string(curvature) + "|" +
+      std::to_string(o.lines.smoothing) + "|" +
+      (wrinkled ? (o.wrinkle.uv == UvSource::Mesh ? "uv-mesh" : "uv-planar") : "no-uv");
   std::shared_ptr<const ObjectAsset>& slot = meshes_[key];
   std::shared_ptr<const image::Image> wrinkle;
   if (wrinkled) {
@@ -199,7 +200,7 @@ LoadedObject AssetCache::get(const Scene& scene, std::size_t index) {
                        [&] { return std::make_shared<terrain::Heightfield>(terrain::loadHeightfield(source, hopt)); });
         // Heights stored in whole metres (or tenths, or grey levels) are smoothed within
         // their steps: otherwise the treads' edges on gentle ground are drawn as cracks.
-        terrain::dequantize(*field);
+        if (o.smooth_steps) terrain::dequantize(*field);
         asset->mesh = terrain::heightfieldToMesh(*field, topt, nullptr, source.string());
       } else {
         // Every component is drawn (a teapot's lid and spout); only parameterisation

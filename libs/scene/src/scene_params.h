@@ -447,6 +447,12 @@ void describe(V& v, Object& o) {
              "out of the mesh as holes",
              kRebuild},
             o.fill_nodata);
+  v.boolean({"smooth_steps",
+             "dem only: heights stored in steps (whole metres as SRTM and USGS DEMs store them, tenths, an image's "
+             "grey levels) are smoothed within half a step, so gentle ground is not drawn as a staircase of cracks; "
+             "false keeps the file's values (a model of terraces in exact steps)",
+             kRebuild},
+            o.smooth_steps);
   v.numbers({"crop",
              "dem only: the part of the grid kept, its west, south, east and north edges as fractions of its width "
              "and height, so one DEM gives several ranges",

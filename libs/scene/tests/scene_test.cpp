@@ -258,9 +258,10 @@ TEST(Scene, RebuildKeysAreTheOnesThatChangeVariantsOrFiles) {
   }
   const std::set<std::string> expected = {
       "objects", "objects.*.mesh", "objects.*.dem", "objects.*.z_scale", "objects.*.max_vertices",
-      "objects.*.cell_size", "objects.*.fill_nodata", "objects.*.crop", "objects.*.crease_angle", "objects.*.up",
-      "objects.*.recentre", "objects.*.lines.enabled", "objects.*.lines.curvature", "objects.*.lines.smoothing",
-      "objects.*.shading.enabled", "objects.*.wrinkle.texture", "objects.*.wrinkle.uv", "objects.*.wrinkle.mapping",
+      "objects.*.cell_size", "objects.*.fill_nodata", "objects.*.smooth_steps", "objects.*.crop",
+      "objects.*.crease_angle", "objects.*.up", "objects.*.recentre", "objects.*.lines.enabled",
+      "objects.*.lines.curvature", "objects.*.lines.smoothing", "objects.*.shading.enabled",
+      "objects.*.wrinkle.texture", "objects.*.wrinkle.uv", "objects.*.wrinkle.mapping",
       "objects.*.strokes.style",  // builds the strokes pass
       "objects.*.pigment.name",   // builds the pigment pass
       // Elements are placed on load from these (and build
@@ -504,6 +505,42 @@ TEST(Scene, ALoneInputIsReadOnceForItsLookAndItsMesh) {
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("hill.asc"), std::string::npos) << e.what();
   }
+}
+
+// A DEM in whole metres is drawn smoothed within half a metre of what it stores, unless
+// `smooth_steps` is off (a model of terraces): then every vertex is at its sample's stored
+// height, found from the function that wrote the file.
+TEST(Scene, SmoothStepsOffKeepsTheHeightsTheFileStores) {
+  test::TempDir dir;
+  const int n = 41;
+  auto stored = [](int c, int r) {
+    return std::round(100.0 + 40.0 * std::exp(-((c - 20.0) * (c - 20.0) + (r - 18.0) * (r - 18.0)) / 150.0));
+  };
+  writeGrid(dir / "hill.asc", n, n, 10.0, stored);
+  // The worst distance of a vertex from its sample's stored height, and the mean.
+  auto fromStored = [&](bool smooth) {
+    nlohmann::json j = {{"objects", {{{"dem", "hill.asc"}, {"recentre", false}, {"smooth_steps", smooth}}}}};
+    const Scene s = parseScene(j, "s.json", dir.path().string());
+    AssetCache cache;
+    const std::vector<glm::dvec3>& p = cache.get(s, 0).geometry->mesh.positions;
+    EXPECT_EQ(p.size(), static_cast<std::size_t>(n * n)) << "every sample a vertex";
+    glm::dvec2 low(1e300);
+    for (const glm::dvec3& v : p) low = glm::min(low, glm::dvec2(v));
+    double worst = 0.0, sum = 0.0;
+    for (const glm::dvec3& v : p) {
+      const int c = static_cast<int>(std::lround((v.x - low.x) / 10.0));
+      const int r = n - 1 - static_cast<int>(std::lround((v.y - low.y) / 10.0));  // rows run north to south
+      const double d = std::abs(v.z - stored(c, r));
+      worst = std::max(worst, d);
+      sum += d;
+    }
+    return std::make_pair(worst, sum / static_cast<double>(p.size()));
+  };
+  const auto [kept_worst, kept_mean] = fromStored(false);
+  EXPECT_LT(kept_worst, 1e-9) << "smooth_steps false keeps the file's values";
+  const auto [smoothed_worst, smoothed_mean] = fromStored(true);
+  EXPECT_LE(smoothed_worst, 0.5 + 1e-9) << "within half a step of what the file stores";
+  EXPECT_GT(smoothed_mean, 0.05) << "the staircase was smoothed";
 }
 
 // A lone mesh that is a piece of land (open, flat along its up axis, facing up) is painted

@@ -243,6 +243,9 @@ struct Object {
   UpAxis up = UpAxis::Auto;           //!< the model axis that is up in the world
   std::size_t max_vertices = 250000;  //!< dem only: grid decimation limit
   bool fill_nodata = false;           //!< dem only: fill no-data samples instead of leaving holes
+  //! dem only: heights stored in steps (whole metres, grey levels) smoothed within half a
+  //! step (terrain::dequantize); false keeps the file's values (a terrace model).
+  bool smooth_steps = true;
   //! dem only: the part kept, west, south, east, north as fractions of the grid.
   std::array<double, 4> crop{0.0, 0.0, 1.0, 1.0};
   //! mesh only: normals split across edges sharper than this (degrees); 180: smooth.
