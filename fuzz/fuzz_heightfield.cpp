@@ -1,5 +1,9 @@
 // Fuzz target for the DEM readers: USGS ASCII DEM (.dem) or ESRI ASCII grid (.asc), chosen
-// by SHANSHUI_FUZZ_FORMAT; a grid that loads must be consistent and meshable or refused.
+// by SHANSHUI_FUZZ_FORMAT; a grid that loads must be consistent and meshable or refused, and
+// smoothing its storage steps (what the renderer does on load) keeps every sample within
+// half a step of its stored height, no-data as no-data, and finite heights finite.
+#include <cmath>
+
 #include "fuzz_input.h"
 #include "shanshui/terrain/heightfield.h"
 #include "shanshui/terrain/terrain_mesh.h"
@@ -8,8 +12,19 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   using namespace shanshui;
   const fuzz::ScratchFile file(data, size, SHANSHUI_FUZZ_FORMAT);
   fuzz::expectParsedOrRefused([&] {
-    const terrain::Heightfield h = terrain::loadHeightfield(file.path(), {});
+    terrain::Heightfield h = terrain::loadHeightfield(file.path(), {});
     SHANSHUI_CHECK_EQ(h.elevation.size(), static_cast<std::size_t>(h.columns) * h.rows);
+    const std::vector<double> stored = h.elevation;
+    const terrain::Dequantized d = terrain::dequantize(h);
+    SHANSHUI_CHECK(std::isfinite(d.step) && d.step >= 0.0);
+    for (std::size_t i = 0; i < stored.size(); ++i) {
+      SHANSHUI_CHECK_EQ(std::isnan(h.elevation[i]), std::isnan(stored[i]));
+      if (std::isnan(stored[i])) continue;
+      SHANSHUI_CHECK(std::isfinite(h.elevation[i]) == std::isfinite(stored[i]));
+      if (std::isfinite(stored[i]))
+        SHANSHUI_CHECK_LE(std::abs(h.elevation[i] - stored[i]),
+                          0.5 * d.step * (1.0 + 1e-5) + 1e-6 * std::abs(stored[i]));
+    }
     terrain::TerrainMeshOptions options;
     options.max_vertices = 4096;
     (void)terrain::heightfieldToMesh(h, options, nullptr, file.path().string());
