@@ -18,6 +18,7 @@
 #include "pixel_stage.glsl"
 #include "ink_objects.glsl"
 #include "ink_surface.glsl"
+#include "ink_hash.glsl"
 // Ink × 255 per pixel, cleared to 0 each frame.
 layout(r32ui, binding = 3) uniform uimage2D u_stroke_ink;
 // What the ink pass would otherwise compute again at each surface pixel: what the atmosphere
@@ -80,6 +81,23 @@ float suggestiveTrough(ivec2 p, vec3 position, vec3 n, float z) {
 #ifndef PIXEL_COMPUTE
 layout(early_fragment_tests) in;
 #endif
+
+// The brush's pressure at q (world position over the break's cell): value noise in [0, 1),
+// smooth, fixed in the world, so a line's gaps stay where they are as the camera moves.
+float strokePressure(vec3 q) {
+  vec3 f = fract(q);
+  uvec3 c = uvec3(ivec3(floor(q)) + 32768);
+  f = f * f * (3.0 - 2.0 * f);
+  float v[2];
+  for (int k = 0; k < 2; ++k) {
+    uint z = (c.z + uint(k)) * 0x27d4eb2du;
+    vec4 h = vec4(cellHash(c.xy ^ uvec2(z, 0u)), cellHash((c.xy + uvec2(1u, 0u)) ^ uvec2(z, 0u)),
+                  cellHash((c.xy + uvec2(0u, 1u)) ^ uvec2(z, 0u)), cellHash((c.xy + uvec2(1u, 1u)) ^ uvec2(z, 0u))) /
+             4294967296.0;
+    v[k] = mix(mix(h.x, h.y, f.x), mix(h.z, h.w, f.x), f.y);
+  }
+  return mix(v[0], v[1], f.z);
+}
 
 void shadePixel() {
   ivec2 p = ivec2(PIXEL_COORD);
@@ -220,6 +238,16 @@ void shadePixel() {
   float far = smoothstep(u_fade_range.x, u_fade_range.y, distance(u_eye, position));
   float half_width = o.stroke_half_width * mix(o.stroke_taper, 1.0, strength) * mix(1.0, o.stroke_far, far);
   ink *= here;
+  // A brush lifting and pressing along the line (lines.break): a loop of at most one turn,
+  // not a branch, so a software rasteriser skips it for groups of pixels without a centre.
+  for (int once = o.line_break > 0.0 ? 0 : 1; once < 1; ++once) {
+    float pressure = strokePressure(position / o.line_break_cell);
+    // Gaps where the pressure is below 0.36 × break (at 1 about a fifth of the line: the
+    // noise's 20th percentile is 0.33), the ink of what stays between 0.55 and 1.
+    float lift = 0.36 * o.line_break;
+    ink *= smoothstep(lift - 0.04, lift + 0.04, pressure) * mix(1.0, 0.55 + 0.45 * pressure, o.line_break);
+    half_width *= mix(1.0, 0.6 + 0.7 * pressure, o.line_break);
+  }
   // The disc, its edge antialiased over one pixel; stamps outside the image are dropped.
   // Only the pixels nearer than `reach` are visited, row by row (a software rasteriser
   // pays for every iteration of the square around it: 49 instead of 21 at 3.5 px wide).

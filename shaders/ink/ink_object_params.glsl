@@ -20,7 +20,7 @@
   F(float, marks_ink)     F(float, marks_density) F(float, marks_spacing_px)    F(float, marks_lit) \
   F(float, marks_ridge)   F(uint, marks_style)   F(uint, marks_seed)            F(float, marks_angle) \
   F(float, wash_ink)      F(float, wash_density) F(float, wash_cell)           F(float, wash_lit) \
-  F(float, wash_follow)   F(float, wash_width)   F(float, spare1)              F(float, spare2)
+  F(float, wash_follow)   F(float, wash_width)   F(float, line_break)          F(float, line_break_cell)
 
 // world_to_model_x/y: rows of the world-to-model affine map (x and y of the model, relative
 // to its bounding-box centre); half_extent: the box's half size; border_width: the
@@ -36,7 +36,9 @@
 // none), log2 of their lattice's cell in world units (one size for the whole object, from its
 // centre's distance), density on lit slopes relative to shadow, how far they follow the
 // fall line (1) rather than run straight down the picture (0), breadth (1: three thin strokes
-// apart; 2 and over: they merge into one broad side-brush stroke).
+// apart; 2 and over: they merge into one broad side-brush stroke). line_break: objects.N.lines.break;
+// line_break_cell: its noise's cell in world units (kLineBreakWidths stroke widths on screen at
+// the object's centre, as wash_cell is sized).
 
 // line_flags bits
 const uint kLinesOn = 1u;

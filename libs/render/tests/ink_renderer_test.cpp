@@ -1341,6 +1341,70 @@ TEST_F(Look, StrokesWidenWithTheFrameHeight) {
   EXPECT_NEAR(width[480] / width[240], 2.0, 0.35) << width[240] << " and " << width[480] << " px";
 }
 
+// lines.break: a hill's skyline seen from low down is one long outline. Without the break
+// every column along it carries the stroke; with it, runs of columns several pixels long
+// are left bare (a brush lifted, not pixel noise), the ink of what stays varies along it
+// where the even stroke's does not, and the same camera draws the same gaps (noise fixed on
+// the land, seeded by nothing that changes between frames).
+TEST_F(Look, BrokenStrokesLiftAlongTheLineInRuns) {
+  const mesh::Mesh hill = roughHill();
+  const int size = 320;
+  auto draw = [&](double line_break) {
+    const scene::Scene s =
+        sceneWith({{"lines", {{"width", 12.0}, {"taper", 1.0}, {"far_width", 1.0}, {"break", line_break}}},
+                   {"shading", {{"enabled", false}}}},
+                  {{"output", {{"fade", 0.0}}}});
+    InkRenderer r(s, prepare(s, hill));
+    const OrbitCamera cam = sceneCamera(s, r.worldBounds(), 1.0, {-30, 4, 1.0});
+    return inkOf(r.render(cam, size, size).colour(0).download(3), s.output.paper);
+  };
+  const std::vector<double> even = draw(0.0), broken = draw(1.0);
+  EXPECT_EQ(draw(1.0), broken) << "the same camera draws the same gaps";
+  auto at = [&](const std::vector<double>& ink, int x, int y) { return ink[static_cast<std::size_t>(y) * size + x]; };
+  // Columns where the even skyline stroke is (its topmost row with ink), away from the ends.
+  std::vector<int> sky(size, -1);
+  int first = size, last = -1;
+  for (int x = 0; x < size; ++x) {
+    for (int y = 0; y < size && sky[x] < 0; ++y)  // row 0 at the top
+      if (at(even, x, y) > 0.5) sky[x] = y;
+    if (sky[x] >= 0) first = std::min(first, x), last = std::max(last, x);
+  }
+  ASSERT_GT(last - first, size / 3) << "a long skyline";
+  int columns = 0, bare = 0, runs = 0;
+  std::vector<double> peak_even, peak_broken;  // the stroke's darkest ink in each column
+  bool in_gap = false;
+  for (int x = first + 8; x <= last - 8; ++x) {
+    if (sky[x] < 0) continue;
+    ++columns;
+    double e = 0, b = 0;
+    for (int y = std::max(0, sky[x] - 4); y <= std::min(size - 1, sky[x] + 4); ++y) {
+      e = std::max(e, at(even, x, y));
+      b = std::max(b, at(broken, x, y));
+    }
+    const bool gap = b < 0.2;
+    bare += gap;
+    runs += gap && !in_gap;
+    in_gap = gap;
+    peak_even.push_back(e);
+    if (!gap) peak_broken.push_back(b);
+  }
+  ASSERT_GT(columns, 80);
+  auto spread = [](const std::vector<double>& v) {
+    double m = 0, q = 0;
+    for (double x : v) m += x;
+    m /= static_cast<double>(v.size());
+    for (double x : v) q += (x - m) * (x - m);
+    return std::sqrt(q / static_cast<double>(v.size()));
+  };
+  const double share = static_cast<double>(bare) / columns;
+  EXPECT_GT(share, 0.04) << "the broken line has gaps";
+  EXPECT_LT(share, 0.45) << "most of it stays";
+  ASSERT_GT(runs, 0);
+  EXPECT_GE(static_cast<double>(bare) / runs, 3.0) << "gaps are lifts of the brush, several pixels long";
+  EXPECT_GT(spread(peak_broken), 2.0 * spread(peak_even) + 0.02)
+      << "the pressure varies the ink: " << spread(peak_broken) << " against " << spread(peak_even);
+}
+
 // The sample scene as a whole (lines, wrinkles, shading, mist, rice paper, trees and dots):
 // drawn at 512x384 and averaged over 2x2 pixels it is the picture drawn at 256x192, up to
 // where its marks fall within a pixel. Oracle: the two pictures' ink, per pixel and in

@@ -175,6 +175,11 @@ void describe(V& v, LineParams& p) {
             "direction projected into the surface, drawn where that trough is at least this deep 3 pixels "
             "either side (the lines a contour would become from a little lower); light ink, as valleys; 0 = off"},
            p.suggestive, {0, 1});
+  v.number({"break",
+            "strokes: how far they break along their length as a brush lifts and presses (gaps where noise fixed "
+            "on the land is low, a cell 8 stroke widths across near the object's centre; the ink and width of what "
+            "stays vary): at 1 about a fifth of a line is left as gaps; 0 = even lines"},
+           p.line_break, kUnit);
 }
 
 template <typename V>

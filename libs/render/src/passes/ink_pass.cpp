@@ -19,6 +19,10 @@ namespace shanshui::render {
 
 namespace {
 
+// A cell of the noise that breaks strokes (objects.N.lines.break), in stroke widths at the
+// object's centre: a gap is a few widths long, and lifts come every few cells.
+constexpr double kLineBreakWidths = 8.0;
+
 // The paper grain goes on last: here, or after the diffusion when there is one.
 bool grainHere(const scene::Scene& s) {
   return s.canvas.type != scene::CanvasType::None && !s.diffusion.enabled();
@@ -330,6 +334,9 @@ class InkPass final : public RenderPass {
       p.stroke_far = static_cast<float>(l.far_width);
       p.valley_ink = static_cast<float>(l.valley_ink);
       p.suggestive = l.suggestiveContours() ? static_cast<float>(l.suggestive) : 0.0f;
+      p.line_break = l.strokes() ? static_cast<float>(l.line_break) : 0.0f;
+      p.line_break_cell =
+          static_cast<float>(std::max(kLineBreakWidths * l.width, 1.0) * per_1024 * d / pixels_per_unit_at_1);
       p.tones = glm::vec4(sh.tones[0], sh.tones[1], sh.tones[2], sh.tones[3]);
       p.thresholds = glm::vec4(sh.thresholds[0], sh.thresholds[1], sh.thresholds[2], sh.thresholds[3]);
       p.tone5 = static_cast<float>(sh.tones[4]);

@@ -70,6 +70,10 @@ struct LineParams {
   //! along w, the view direction projected into the tangent plane, at least this much
   //! deeper than N·V a few pixels either side along w; 0 = off. Strokes only.
   double suggestive = 0.0;
+  //! How far strokes break along their length as a brush lifts and presses: value noise
+  //! fixed on the land, a cell 8 stroke widths across, leaves gaps where it is low and
+  //! varies the ink and width of what stays; 0 = even lines. Strokes only.
+  double line_break = 0.0;
   bool strokes() const { return enabled && width > 0; }
   bool suggestiveContours() const { return strokes() && suggestive > 0; }
 };
