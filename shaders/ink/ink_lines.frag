@@ -241,7 +241,8 @@ void shadePixel() {
   // A brush lifting and pressing along the line (lines.break): a loop of at most one turn,
   // not a branch, so a software rasteriser skips it for groups of pixels without a centre.
   for (int once = o.line_break > 0.0 ? 0 : 1; once < 1; ++once) {
-    float pressure = strokePressure(position / o.line_break_cell);
+    // Held within a million cells of the origin, where the cell index stays an integer.
+    float pressure = strokePressure(clamp(position / o.line_break_cell, vec3(-1e6), vec3(1e6)));
     // Gaps where the pressure is below 0.36 × break (at 1 about a fifth of the line: the
     // noise's 20th percentile is 0.33), the ink of what stays between 0.55 and 1.
     float lift = 0.36 * o.line_break;

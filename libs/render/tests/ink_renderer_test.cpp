@@ -750,11 +750,15 @@ TEST_F(Ink, ExtremeInputsGiveFinitePicturesOrClearErrors) {
     const image::Image img = r.renderImage({-60, 25, 1.0});
     EXPECT_TRUE(finite(img));
   }
-  const scene::Scene far = sceneWith({{"recentre", false}});
-  InkRenderer r(far, prepare(far, test::uvSphere(1.0, 24, 48, glm::dvec3(1e4, -2e4, 50))));
-  for (const auto& [w, h] : {std::pair{1, 1}, std::pair{4096, 2}, std::pair{3, 700}}) {
-    const OrbitCamera cam = sceneCamera(far, r.worldBounds(), static_cast<double>(w) / h, {10, 10, 1.0});
-    EXPECT_TRUE(finite(r.render(cam, w, h).colour(0).download(3))) << w << "x" << h;
+  // The same with strokes broken by noise over world coordinates (lines.break) 2e4 from the
+  // origin: from about 2e4 of the noise's cells (the 1-pixel frame) to 3e5 (700 pixels).
+  for (const nlohmann::json& lines : {nlohmann::json::object(), nlohmann::json{{"width", 4.0}, {"break", 1.0}}}) {
+    const scene::Scene far = sceneWith({{"recentre", false}, {"lines", lines}});
+    InkRenderer r(far, prepare(far, test::uvSphere(1.0, 24, 48, glm::dvec3(1e4, -2e4, 50))));
+    for (const auto& [w, h] : {std::pair{1, 1}, std::pair{4096, 2}, std::pair{3, 700}}) {
+      const OrbitCamera cam = sceneCamera(far, r.worldBounds(), static_cast<double>(w) / h, {10, 10, 1.0});
+      EXPECT_TRUE(finite(r.render(cam, w, h).colour(0).download(3))) << w << "x" << h << " " << lines;
+    }
   }
   // Degenerate triangles only: the mesh is refused on upload, naming the problem.
   mesh::Mesh empty;

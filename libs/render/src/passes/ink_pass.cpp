@@ -335,8 +335,9 @@ class InkPass final : public RenderPass {
       p.valley_ink = static_cast<float>(l.valley_ink);
       p.suggestive = l.suggestiveContours() ? static_cast<float>(l.suggestive) : 0.0f;
       p.line_break = l.strokes() ? static_cast<float>(l.line_break) : 0.0f;
-      p.line_break_cell =
-          static_cast<float>(std::max(kLineBreakWidths * l.width, 1.0) * per_1024 * d / pixels_per_unit_at_1);
+      // At least a millionth of the object's radius: a camera at its centre gives no cell.
+      p.line_break_cell = static_cast<float>(
+          std::max(std::max(kLineBreakWidths * l.width, 1.0) * per_1024 * d / pixels_per_unit_at_1, 1e-6 * g.radius));
       p.tones = glm::vec4(sh.tones[0], sh.tones[1], sh.tones[2], sh.tones[3]);
       p.thresholds = glm::vec4(sh.thresholds[0], sh.thresholds[1], sh.thresholds[2], sh.thresholds[3]);
       p.tone5 = static_cast<float>(sh.tones[4]);
