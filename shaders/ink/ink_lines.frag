@@ -83,7 +83,8 @@ layout(early_fragment_tests) in;
 #endif
 
 // The brush's pressure at q (world position over the break's cell): value noise in [0, 1),
-// smooth, fixed in the world, so a line's gaps stay where they are as the camera moves.
+// smooth and fixed on the land, so a line's gaps stay put as the camera turns about it (the
+// cell, sized from the object's distance as the wet strokes' is, rescales with a zoom).
 float strokePressure(vec3 q) {
   vec3 f = fract(q);
   uvec3 c = uvec3(ivec3(floor(q)) + 32768);
