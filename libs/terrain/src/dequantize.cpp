@@ -76,44 +76,39 @@ Dequantized dequantize(Heightfield& h, double sigma, int sweeps) {
   // Beyond the grid's edges the heights go on as the edge's tangent would (2·edge − the
   // sample as far inside), so a ramp stays a ramp to its last sample instead of being bent
   // towards the inside (a replicated edge pulled a ramp's end samples in by half a step).
-  // A padded sample counts where both samples it comes from hold a height.
+  // A padded sample counts where both samples it comes from hold a height (the weights
+  // extended by a product, made once; the heights by the tangent, each sweep).
   // (OpenCV's kernel for doubles reaches 4 sigma.)
   const int pad = static_cast<int>(std::ceil(4.0 * wide)) + 1;
-  auto padded = [&](const cv::Mat& heights) {
-    cv::Mat z(n + 2 * pad, w + 2 * pad, CV_64F, cv::Scalar(0.0)), v(z.size(), CV_64F, cv::Scalar(0.0));
-    heights.copyTo(z(cv::Rect(pad, pad, w, n)));
-    valid.copyTo(v(cv::Rect(pad, pad, w, n)));
+  auto extend = [&](const cv::Mat& inside, auto beyond) {
+    cv::Mat m(n + 2 * pad, w + 2 * pad, CV_64F, cv::Scalar(0.0));
+    inside.copyTo(m(cv::Rect(pad, pad, w, n)));
     for (int r = pad; r < pad + n; ++r) {
       for (int j = 1; j <= pad; ++j) {
-        const int k = std::min(j, w - 1);
-        z.at<double>(r, pad - j) = 2.0 * z.at<double>(r, pad) - z.at<double>(r, pad + k);
-        v.at<double>(r, pad - j) = v.at<double>(r, pad) * v.at<double>(r, pad + k);
-        const int e = pad + w - 1;
-        z.at<double>(r, e + j) = 2.0 * z.at<double>(r, e) - z.at<double>(r, e - k);
-        v.at<double>(r, e + j) = v.at<double>(r, e) * v.at<double>(r, e - k);
+        const int k = std::min(j, w - 1), e = pad + w - 1;
+        m.at<double>(r, pad - j) = beyond(m.at<double>(r, pad), m.at<double>(r, pad + k));
+        m.at<double>(r, e + j) = beyond(m.at<double>(r, e), m.at<double>(r, e - k));
       }
     }
     for (int j = 1; j <= pad; ++j) {
       const int k = std::min(j, n - 1), e = pad + n - 1;
       for (int c = 0; c < w + 2 * pad; ++c) {
-        z.at<double>(pad - j, c) = 2.0 * z.at<double>(pad, c) - z.at<double>(pad + k, c);
-        v.at<double>(pad - j, c) = v.at<double>(pad, c) * v.at<double>(pad + k, c);
-        z.at<double>(e + j, c) = 2.0 * z.at<double>(e, c) - z.at<double>(e - k, c);
-        v.at<double>(e + j, c) = v.at<double>(e, c) * v.at<double>(e - k, c);
+        m.at<double>(pad - j, c) = beyond(m.at<double>(pad, c), m.at<double>(pad + k, c));
+        m.at<double>(e + j, c) = beyond(m.at<double>(e, c), m.at<double>(e - k, c));
       }
     }
-    return std::pair{z.mul(v), v};
+    return m;
   };
+  const cv::Mat weight = extend(valid, [](double edge, double in) { return edge * in; });
   auto blur = [&](const cv::Mat& m, double s) {
     cv::Mat b;
     cv::GaussianBlur(m, b, cv::Size(), s, s, cv::BORDER_REPLICATE);
     return b(cv::Rect(pad, pad, w, n)).clone();
   };
   cv::Mat z = stored.clone();
-  const cv::Mat weight = padded(z).second;  // the same every sweep
   const cv::Mat weight_near = blur(weight, sigma), weight_wide = blur(weight, wide);
   for (int sweep = 0; sweep < sweeps; ++sweep) {
-    const cv::Mat masked = padded(z).first;
+    const cv::Mat masked = extend(z, [](double edge, double in) { return 2.0 * edge - in; }).mul(weight);
     const cv::Mat near = blur(masked, sigma), far = blur(masked, wide);
     for (int r = 0; r < n; ++r) {
       for (int c = 0; c < w; ++c) {

@@ -93,8 +93,9 @@ std::size_t fillNoData(Heightfield& h);
 //! 0 when they do not (heights stored as floats, or too few levels to be a storage step).
 double heightStep(const Heightfield& h);
 
-//! A Gaussian of this many cells, then each sample held to within half a step of its stored
-//! height, this many times (dequantize).
+//! The smoothing's width in cells (twice a Gaussian of it less one √2 times as wide), and
+//! how many times it runs, each followed by every sample held to within half a step of its
+//! stored height (dequantize).
 constexpr double kDequantizeSigma = 2.0;
 constexpr int kDequantizeSweeps = 2;
 
@@ -106,7 +107,7 @@ struct Dequantized {
 
 //! Heights stored in steps make gentle ground a staircase, whose treads' edges are the
 //! strongest curvature there (drawn as a net of cracks over a smooth summit). Replaces the
-//! staircase by a smooth surface within each sample's step: blurred (kDequantizeSigma),
+//! staircase by a smooth surface within each sample's step: smoothed (kDequantizeSigma),
 //! then every sample held to within half a step of its stored height, kDequantizeSweeps
 //! times. The surface then says what the file says, to its precision. No-data samples stay
 //! so and are not used; heights not stored in steps are not touched. Says so in `notes`.
