@@ -89,15 +89,8 @@ float strokePressure(vec3 q) {
   vec3 f = fract(q);
   uvec3 c = uvec3(ivec3(floor(q)) + 32768);
   f = f * f * (3.0 - 2.0 * f);
-  float v[2];
-  for (int k = 0; k < 2; ++k) {
-    uint z = (c.z + uint(k)) * 0x27d4eb2du;
-    vec4 h = vec4(cellHash(c.xy ^ uvec2(z, 0u)), cellHash((c.xy + uvec2(1u, 0u)) ^ uvec2(z, 0u)),
-                  cellHash((c.xy + uvec2(0u, 1u)) ^ uvec2(z, 0u)), cellHash((c.xy + uvec2(1u, 1u)) ^ uvec2(z, 0u))) /
-             4294967296.0;
-    v[k] = mix(mix(h.x, h.y, f.x), mix(h.z, h.w, f.x), f.y);
-  }
-  return mix(v[0], v[1], f.z);
+  // Two slices of 2-D value noise, salted by their z, blended along z.
+  return mix(cellValue(c.xy, f.xy, c.z * 0x27d4eb2du), cellValue(c.xy, f.xy, (c.z + 1u) * 0x27d4eb2du), f.z);
 }
 
 void shadePixel() {

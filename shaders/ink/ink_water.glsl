@@ -96,10 +96,7 @@ float openWaterInk(ivec2 p) {
 float bankInk(vec2 xy) {
   vec2 q = xy / max(0.5 * u_water.y, 1e-6), f = fract(q);
   uvec2 c = uvec2(ivec2(floor(q)) + 32768);
-  f = f * f * (3.0 - 2.0 * f);
-  vec4 h = vec4(cellHash(c), cellHash(c + uvec2(1u, 0u)), cellHash(c + uvec2(0u, 1u)), cellHash(c + uvec2(1u, 1u))) /
-           4294967296.0;
-  float n = mix(mix(h.x, h.y, f.x), mix(h.z, h.w, f.x), f.y);
+  float n = cellValue(c, f * f * (3.0 - 2.0 * f), 0u);
   return mix(1.0, smoothstep(0.33, 0.43, n) * (0.6 + 0.4 * n), u_water_bank_break);
 }
 
