@@ -22,6 +22,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <optional>
+#include <string>
 
 #include <glm/gtc/matrix_access.hpp>
 
@@ -284,6 +285,12 @@ class ElementsPass final : public RenderPass {
   // its horizontal radius, so its clearing follows a live change of its transform.
   void setClearings(const FrameInputs& in, std::size_t ground) const {
     constexpr int kMaxClearings = 16;  // elements_expand.comp's
+    // The array's element names, made once, not each frame.
+    static const std::array<std::string, kMaxClearings> names = [] {
+      std::array<std::string, kMaxClearings> a;
+      for (int k = 0; k < kMaxClearings; ++k) a[k] = "u_clearing[" + std::to_string(k) + "]";
+      return a;
+    }();
     int n = 0;
     for (std::size_t j = 0; j < scene_.objects.size() && n < kMaxClearings; ++j) {
       if (scene::groundOf(scene_, j) != ground) continue;
@@ -292,7 +299,7 @@ class ElementsPass final : public RenderPass {
       const glm::dvec3 size = in.objects[j].model_bounds.size();
       const double scale = std::cbrt(std::abs(glm::determinant(glm::dmat3(model))));
       const double radius = 0.5 * std::hypot(size.x, size.y) * scale;
-      expand_.set(("u_clearing[" + std::to_string(n) + "]").c_str(), glm::vec4(glm::vec3(centre), radius));
+      expand_.set(names[n].c_str(), glm::vec4(glm::vec3(centre), radius));
       ++n;
     }
     expand_.set("u_clearings", n);
