@@ -1,7 +1,9 @@
 // Fuzz target for the DEM readers: USGS ASCII DEM (.dem) or ESRI ASCII grid (.asc), chosen
 // by SHANSHUI_FUZZ_FORMAT; a grid that loads must be consistent and meshable or refused, and
 // smoothing its storage steps (what the renderer does on load) keeps every sample within
-// half a step of its stored height, no-data as no-data, and finite heights finite.
+// half a step of its stored height, no-data as no-data, and finite heights finite; made
+// finer (upsample), it keeps its samples and its holes and stays finite.
+#include <algorithm>
 #include <cmath>
 
 #include "fuzz_input.h"
@@ -24,6 +26,30 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       if (std::isfinite(stored[i]))
         SHANSHUI_CHECK_LE(std::abs(h.elevation[i] - stored[i]),
                           0.5 * d.step * (1.0 + 1e-5) + 1e-6 * std::abs(stored[i]));
+    }
+    // Made finer (what a lone coarse DEM gets): the smoothed samples kept exactly, a new
+    // sample no data only beside no data, and finite everywhere else, however large the
+    // heights.
+    if (h.elevation.size() <= 65536) {
+      terrain::Heightfield fine = h;
+      terrain::upsample(fine, 2, "fuzz");
+      SHANSHUI_CHECK_EQ(fine.columns, h.columns < 2 || h.rows < 2 ? h.columns : 2 * h.columns - 1);
+      for (int r = 0; r < fine.rows; ++r) {
+        for (int c = 0; c < fine.columns; ++c) {
+          const double z = fine.at(c, r);
+          if (fine.columns == h.columns) {
+            SHANSHUI_CHECK(z == h.at(c, r) || (std::isnan(z) && std::isnan(h.at(c, r))));
+            continue;
+          }
+          const int c0 = c / 2, r0 = r / 2, c1 = std::min(c0 + c % 2, h.columns - 1),
+                    r1 = std::min(r0 + r % 2, h.rows - 1);
+          const bool hole = std::isnan(h.at(c0, r0)) || std::isnan(h.at(c1, r0)) || std::isnan(h.at(c0, r1)) ||
+                            std::isnan(h.at(c1, r1));
+          SHANSHUI_CHECK_EQ(std::isnan(z), hole);
+          if (c % 2 == 0 && r % 2 == 0 && !hole) SHANSHUI_CHECK(z == h.at(c0, r0));
+          if (!hole) SHANSHUI_CHECK(std::isfinite(z));
+        }
+      }
     }
     terrain::TerrainMeshOptions options;
     options.max_vertices = 4096;

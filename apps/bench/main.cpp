@@ -37,9 +37,9 @@ const std::vector<StageDef> kStages = {
      {"bench_param_tradeoff"},
      "parameterization: every method's distortion and time; a developable ridge has an isometric answer"},
     {"curvature",
-     {"bench_curvature_tradeoff", "bench_ink_tradeoff", "bench_dequantize_tradeoff"},
+     {"bench_curvature_tradeoff", "bench_ink_tradeoff", "bench_dequantize_tradeoff", "bench_upsample_tradeoff"},
      "curvature estimators on analytic surfaces, per vertex and per pixel; the ink frame against Lambert; wrinkle "
-     "filters; heights stored in steps smoothed within them"},
+     "filters; heights stored in steps smoothed within them; coarse DEMs made finer"},
     {"diffusion",
      {"bench_diffusion_tradeoff"},
      "ink diffusion: distance transform against rings, n against a converged result"},

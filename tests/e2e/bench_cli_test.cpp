@@ -76,7 +76,7 @@ TEST(BenchCli, QuickStagesWriteTablesPointsAndPlots) {
                            test::quote(dir.path()));
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const std::string index = readText(dir / "README.md");
-  const char* programs[] = {"quilt",     "param",   "curvature", "dequantize", "ink",
+  const char* programs[] = {"quilt",     "param",   "curvature", "dequantize", "upsample", "ink",
                             "diffusion", "strokes", "paper",     "canvas",     "pipeline"};
   for (const char* program : programs) {
     EXPECT_NE(index.find(std::string("| bench_") + program + "_tradeoff |"), std::string::npos) << program;
@@ -108,11 +108,11 @@ TEST(BenchCli, QuickStagesWriteTablesPointsAndPlots) {
     EXPECT_GE(colours(image::loadImage(dir / target)), 3u) << target;
     ++plots;
   }
-  // quilt 2, param 2 (the developable ridge, the charts of a cube), curvature 5 (object space, per pixel, the CDF, the
-  // wrinkle filter, heights stored in steps), diffusion 2, canvas 5 (N′: spectrum and Gaussianity; tiles: spectrum and
-  // warping against patch; the mottle against its cell), strokes 2 (spline sampling, linking), paper 2 (edge taps,
-  // shadow map), pipeline 1; and the pictures.
-  EXPECT_EQ(plots, 21) << index;
+  // quilt 2, param 2 (the developable ridge, the charts of a cube), curvature 6 (object space, per pixel, the CDF, the
+  // wrinkle filter, heights stored in steps, coarse grids made finer), diffusion 2, canvas 5 (N′: spectrum and
+  // Gaussianity; tiles: spectrum and warping against patch; the mottle against its cell), strokes 2 (spline sampling,
+  // linking), paper 2 (edge taps, shadow map), pipeline 1; and the pictures.
+  EXPECT_EQ(plots, 22) << index;
   EXPECT_GE(colours(image::loadImage(dir / "canvas_dolly.png")), 3u);
   EXPECT_TRUE(fs::exists(dir / "pipeline_presets.png"));
 
@@ -132,7 +132,7 @@ TEST(BenchCli, AFailingProgramIsReportedAndTheOthersStillRun) {
   const auto r = test::run(test::quote(test::binDir() / "shanshui-bench") + " --stage curvature --quick --out " +
                            test::quote(dir.path()));
   EXPECT_EQ(r.exit_code, 1) << r.output;
-  EXPECT_NE(r.output.find("1 of 3 bench programs failed"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("1 of 4 bench programs failed"), std::string::npos) << r.output;
   const std::string index = readText(dir / "README.md");
   EXPECT_NE(index.find("| bench_curvature_tradeoff |"), std::string::npos);
   EXPECT_NE(index.find("**failed**: error: "), std::string::npos) << index;

@@ -61,6 +61,17 @@ TEST(Cli, EveryProgramLoadsOnlyTheLibrariesItUses) {
   }
 }
 
+// --upsample: the sample hill (160 x 160 samples) twice as fine is 319 x 319 vertices, and
+// says so.
+TEST(Cli, TerrainUpsamplesACoarseGrid) {
+  test::TempDir dir;
+  const auto r = run(bin("shanshui-terrain") + " " + quote(test::sourceDir() / "samples/terrain/hill.asc") + " -o " +
+                     quote(dir / "fine.obj") + " --upsample 2");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("made 2 times finer (319 x 319"), std::string::npos) << r.output;
+  EXPECT_EQ(mesh::readPolygonSoup(dir / "fine.obj").positions.size(), 319u * 319u);
+}
+
 TEST(Cli, DemToMeshToHeadlessRender) {
   test::TempDir dir;
   auto r = run(bin("shanshui-terrain") + " " + quote(kDem) + " -o " + quote(dir / "msh.obj") + " --max-vertices 20000");
@@ -150,6 +161,8 @@ TEST(Cli, BadInputGivesOneLineNamingTheFileAndWritesNothing) {
       {bin("shanshui-terrain") + " " + quote(kDem) + " -o " + quote(dir / "c.obj") + " --step 0", "--step",
        dir / "c.obj"},
       {bin("shanshui-terrain") + " " + quote(kDem) + " -o " + quote(dir / "c.obj") + " --cell-size 0", "--cell-size",
+       dir / "c.obj"},
+      {bin("shanshui-terrain") + " " + quote(kDem) + " -o " + quote(dir / "c.obj") + " --upsample 9", "--upsample",
        dir / "c.obj"},
       {bin("shanshui-repair") + " " + quote(dir / "nofaces.off") + " -o " + quote(dir / "keep.obj"), "nofaces.off",
        dir / "keep.obj"},

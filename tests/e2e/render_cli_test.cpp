@@ -131,8 +131,9 @@ TEST(RenderCli, MarksWithoutRoomAreReportedNotLostSilently) {
   for (const json& f : readJson(dir / "t.json")["frames"]) EXPECT_FALSE(f.contains("marks_dropped")) << f.dump();
 }
 
-// A lone coastal DEM (a quarter of it under the sea, relief 1:50) is painted raised and with
-// its sea as water, and the tool says so, each in a line naming the key that undoes it.
+// A lone coastal DEM (a quarter of it under the sea, relief 1:50, 60 samples across) is
+// painted raised, with its sea as water and its grid made finer, and the tool says so, each
+// in a line naming the key that undoes it.
 TEST(RenderCli, ALoneCoastalDemSaysItIsRaisedAndGetsItsSea) {
   test::TempDir dir;
   {
@@ -148,7 +149,11 @@ TEST(RenderCli, ALoneCoastalDemSaysItIsRaisedAndGetsItsSea) {
   EXPECT_NE(r.output.find("raised"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("(objects.0.z_scale)"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("is sea (water.level"), std::string::npos) << r.output;
-  r = run(base + " -o " + quote(dir / "b.png") + " --set water.enabled=false --set objects.0.z_scale=1");
+  EXPECT_NE(r.output.find("60 x 40 samples: made 7 times finer by bicubic interpolation (objects.0.upsample)"),
+            std::string::npos)
+      << r.output;
+  r = run(base + " -o " + quote(dir / "b.png") +
+          " --set water.enabled=false --set objects.0.z_scale=1 --set objects.0.upsample=1");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_EQ(r.output.find("note:"), std::string::npos) << "what the user set is not announced: " << r.output;
 }

@@ -3,6 +3,7 @@
 
 #include "shanshui/core/atomic_output.h"
 #include "shanshui/mesh/mesh_io.h"
+#include "shanshui/terrain/heightfield.h"
 #include "shanshui/terrain/terrain_mesh.h"
 #include "tool_main.h"
 
@@ -17,7 +18,8 @@ int main(int argc, char** argv) {
   app.footer(
       "Examples:\n  shanshui-terrain samples/terrain/mount_st_helens.dem -o out/st_helens.obj --max-vertices 100000\n"
       "  shanshui-terrain samples/terrain/hill_utm.tif -o hill.obj\n"
-      "  shanshui-terrain N46E007.hgt -o alps.ply --max-vertices 250000 --fill-nodata");
+      "  shanshui-terrain N46E007.hgt -o alps.ply --max-vertices 250000 --fill-nodata\n"
+      "  shanshui-terrain coast_gebco.asc -o coast.obj --upsample 4");
   std::string input, output;
   terrain::HeightfieldOptions field;
   terrain::TerrainMeshOptions meshOptions;
@@ -38,6 +40,12 @@ int main(int argc, char** argv) {
       ->expected(4);
   app.add_flag("--fill-nodata", field.fill_nodata,
                "fill no-data samples (voids, the sea) by interpolation instead of leaving holes");
+  int upsample = 1;
+  app.add_option("--upsample", upsample,
+                 "make the grid N times finer along each side by bicubic interpolation (1-8; every stored sample "
+                 "keeps its height), so a coarse DEM's coasts and ridges are curves, not the grid's facets")
+      ->check(tools::integerIn(1, terrain::kMostUpsample))
+      ->default_val(1);
   return tools::runBatchableTool(app, argc, argv, [&] {
     if (field.cell_size < 0 || (app.count("--cell-size") && field.cell_size == 0)) {
       throw makeError("--cell-size: ", field.cell_size, " is out of range; expected (0, 1e6] metres");
@@ -48,7 +56,8 @@ int main(int argc, char** argv) {
     if (!crop.empty()) std::copy(crop.begin(), crop.end(), field.crop.begin());
     // A large raster is read decimated to the vertex budget (GDAL formats) instead of whole.
     field.max_samples = meshOptions.max_vertices;
-    const terrain::Heightfield h = terrain::loadHeightfield(input, field);
+    terrain::Heightfield h = terrain::loadHeightfield(input, field);
+    terrain::upsample(h, upsample, "--upsample");
     const auto [lo, hi] = h.elevationRange();
     std::fprintf(stderr, "%s; cells %.3f x %.3f m; elevations %.1f to %.1f m; %zu of %zu samples valid\n",
                  h.source.c_str(), h.cell_x, h.cell_y, lo, hi, h.validCount(), h.elevation.size());

@@ -248,6 +248,10 @@ constexpr double kSeaLevelAbove = 0.002;
 // size: on St. Helens (14 km) they are groves of small marks along its ridges and gullies;
 // on a coast 300 km wide they would be specks, and millions of them.
 constexpr double kMostWoodedSide = 20000.0;
+// A lone DEM with fewer samples than this along its larger side is made finer
+// (terrain::upsample) until it has them: a grid of 120 cells across a 1024-pixel picture
+// draws each cell 6-8 pixels wide, and its coasts and islands as polygons.
+constexpr int kLeastLoneSamples = 400;
 
 // printf into a string (the notes' numbers are rounded as a reader wants them).
 template <typename... Args>
@@ -264,7 +268,8 @@ struct LandLook {
   double z_scale = 1.0;
   std::optional<double> water_level;  //!< fraction of the relief from the lowest sample
   bool wooded = false;                //!< trees and moss dots
-  std::string land_note, relief_note, sea_note, dry_note, wooded_note;
+  int upsample = 1;                   //!< a DEM's objects.0.upsample
+  std::string land_note, relief_note, sea_note, dry_note, wooded_note, upsample_note;
 };
 
 // Raised when flatter than kLeastReliefRatio; trees and dots when at most kMostWoodedSide
@@ -329,6 +334,11 @@ LandLook demLook(const terrain::Heightfield& h) {
   look.land = true;
   const auto [lo, hi] = h.elevationRange();
   const double side = std::max(h.columns * h.cell_x, h.rows * h.cell_y), relief = hi - lo;
+  look.upsample = terrain::upsampleFactor(h, kLeastLoneSamples, Object{}.max_vertices);
+  if (look.upsample > 1) {
+    look.upsample_note = formatted("%d x %d samples: made %d times finer by bicubic interpolation (objects.0.upsample)",
+                                   h.columns, h.rows, look.upsample);
+  }
   if (!proportions(look, side, relief, "objects.0.z_scale")) return look;  // the sea divides by the relief
   const auto [sea, inland] = seaSamples(h);
   const double valid = static_cast<double>(std::max<std::size_t>(h.validCount(), 1));
@@ -486,6 +496,7 @@ Scene loadSceneInput(const std::filesystem::path& path, const std::vector<std::s
       j["objects"][0]["transform"] = {{"scale", {1.0, 1.0, look.z_scale}}};  // applied with z up
     }
   }
+  if (look.upsample > 1) j["objects"][0]["upsample"] = look.upsample;
   if (look.water_level) j["water"] = {{"enabled", true}, {"level", *look.water_level}};
   if (look.wooded) {
     j["objects"][0]["trees"] = {{"enabled", true}};
@@ -503,6 +514,7 @@ Scene loadSceneInput(const std::filesystem::path& path, const std::vector<std::s
     if (look.water_level && s.water.enabled && s.water.level == *look.water_level) notes->push_back(look.sea_note);
     if (!look.dry_note.empty() && !s.water.enabled) notes->push_back(look.dry_note);
     if (look.wooded && o.trees.enabled && o.dots.enabled) notes->push_back(look.wooded_note);
+    if (look.upsample > 1 && o.upsample == look.upsample) notes->push_back(look.upsample_note);
   }
   return s;
 }

@@ -159,10 +159,10 @@ LoadedObject AssetCache::get(const Scene& scene, std::size_t index) {
   const std::string key =
       source.string() + "|" + std::to_string(o.z_scale) + "|" + std::to_string(o.max_vertices) + "|" +
       std::to_string(o.cell_size) + "|" + std::to_string(o.fill_nodata) + std::to_string(o.smooth_steps) + "|" +
-      std::to_string(o.crease_angle) + "|" + std::to_string(o.crop[0]) + " " + std::to_string(o.crop[1]) + " " +
-      std::to_string(o.crop[2]) + " " + std::to_string(o.crop[3]) + "|" + std::to_string(static_cast<int>(o.up)) + "|" +
-      std::to_string(o.recentre) + "|" + std::to_string(object_curvature) + std::to_string(curvature) + "|" +
-      std::to_string(o.lines.smoothing) + "|" +
+      std::to_string(o.upsample) + "|" + std::to_string(o.crease_angle) + "|" + std::to_string(o.crop[0]) + " " +
+      std::to_string(o.crop[1]) + " " + std::to_string(o.crop[2]) + " " + std::to_string(o.crop[3]) + "|" +
+      std::to_string(static_cast<int>(o.up)) + "|" + std::to_string(o.recentre) + "|" +
+      std::to_string(object_curvature) + std::to_string(curvature) + "|" + std::to_string(o.lines.smoothing) + "|" +
       (wrinkled ? (o.wrinkle.uv == UvSource::Mesh ? "uv-mesh" : "uv-planar") : "no-uv");
   std::shared_ptr<const ObjectAsset>& slot = meshes_[key];
   std::shared_ptr<const image::Image> wrinkle;
@@ -201,6 +201,12 @@ LoadedObject AssetCache::get(const Scene& scene, std::size_t index) {
         // Heights stored in whole metres (or tenths, or grey levels) are smoothed within
         // their steps: otherwise the treads' edges on gentle ground are drawn as cracks.
         if (o.smooth_steps) terrain::dequantize(*field);
+        // Finer by the factor asked, or by the most that stays within the mesh's vertices.
+        int factor = o.upsample;
+        while (factor > 1 && static_cast<double>((field->columns - 1) * factor + 1) * ((field->rows - 1) * factor + 1) >
+                                 static_cast<double>(o.max_vertices))
+          --factor;
+        terrain::upsample(*field, factor, where(index, "upsample"));
         asset->mesh = terrain::heightfieldToMesh(*field, topt, nullptr, source.string());
       } else {
         // Every component is drawn (a teapot's lid and spout); only parameterisation

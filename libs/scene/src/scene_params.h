@@ -22,6 +22,7 @@
 #include "shanshui/noise/gabor.h"
 #include "shanshui/scene/grounding.h"
 #include "shanshui/scene/scene.h"
+#include "shanshui/terrain/heightfield.h"
 
 namespace shanshui::scene {
 
@@ -458,6 +459,12 @@ void describe(V& v, Object& o) {
              "false keeps the file's values (a model of terraces in exact steps)",
              kRebuild},
             o.smooth_steps);
+  v.integer({"upsample",
+             "dem only: the grid made this many times finer along each side by bicubic interpolation (within "
+             "max_vertices; every stored sample keeps its height), so a coarse DEM's coasts, islands and ridges are "
+             "drawn as curves, not as the grid's facets; 1 keeps the file's grid",
+             kRebuild},
+            o.upsample, {1, terrain::kMostUpsample});
   v.numbers({"crop",
              "dem only: the part of the grid kept, its west, south, east and north edges as fractions of its width "
              "and height, so one DEM gives several ranges",

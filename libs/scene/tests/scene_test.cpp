@@ -258,7 +258,7 @@ TEST(Scene, RebuildKeysAreTheOnesThatChangeVariantsOrFiles) {
   }
   const std::set<std::string> expected = {
       "objects", "objects.*.mesh", "objects.*.dem", "objects.*.z_scale", "objects.*.max_vertices",
-      "objects.*.cell_size", "objects.*.fill_nodata", "objects.*.smooth_steps", "objects.*.crop",
+      "objects.*.cell_size", "objects.*.fill_nodata", "objects.*.smooth_steps", "objects.*.upsample", "objects.*.crop",
       "objects.*.crease_angle", "objects.*.up", "objects.*.recentre", "objects.*.lines.enabled",
       "objects.*.lines.curvature", "objects.*.lines.smoothing", "objects.*.shading.enabled",
       "objects.*.wrinkle.texture", "objects.*.wrinkle.uv", "objects.*.wrinkle.mapping",
@@ -384,12 +384,17 @@ TEST(Scene, ALoneDemFlatterThanOneInTenIsRaisedAndItsSeaBecomesWater) {
   EXPECT_NEAR(coast.objects[0].z_scale, 0.1 / (2000.0 / 100000.0), 1e-9);
   EXPECT_TRUE(coast.water.enabled);
   EXPECT_NEAR(coast.water.level, 500.0 / 2000.0 + 0.002, 1e-9);
-  ASSERT_EQ(notes.size(), 2u);
+  // 100 samples across: made finer until it has 400 (99 · 5 + 1 = 496).
+  EXPECT_EQ(coast.objects[0].upsample, 5);
+  ASSERT_EQ(notes.size(), 3u);
   EXPECT_NE(notes[0].find("raised 5 times"), std::string::npos) << notes[0];
   EXPECT_NE(notes[1].find("25 % of it at or below 0 m is sea"), std::string::npos) << notes[1];
+  EXPECT_NE(notes[2].find("100 x 80 samples: made 5 times finer"), std::string::npos) << notes[2];
 
   notes.clear();
-  const Scene kept = loadSceneInput(dir / "coast.asc", {"objects.0.z_scale=1", "water.enabled=false"}, &notes);
+  const Scene kept =
+      loadSceneInput(dir / "coast.asc", {"objects.0.z_scale=1", "water.enabled=false", "objects.0.upsample=1"}, &notes);
+  EXPECT_EQ(kept.objects[0].upsample, 1);
   EXPECT_EQ(kept.objects[0].z_scale, 1.0);
   EXPECT_FALSE(kept.water.enabled);
   EXPECT_TRUE(notes.empty()) << notes.front();
@@ -402,10 +407,11 @@ TEST(Scene, ALoneDemFlatterThanOneInTenIsRaisedAndItsSeaBecomesWater) {
   // across, none.
   EXPECT_TRUE(hill.objects[0].trees.enabled && hill.objects[0].dots.enabled);
   EXPECT_FALSE(coast.objects[0].trees.enabled || coast.objects[0].dots.enabled);
-  ASSERT_EQ(notes.size(), 1u);
+  ASSERT_EQ(notes.size(), 2u);
   EXPECT_NE(notes[0].find("trees and moss dots grown"), std::string::npos) << notes[0];
+  EXPECT_EQ(hill.objects[0].upsample, 8) << "50 samples across: the most, 393";
   notes.clear();
-  loadSceneInput(dir / "hill.asc", {"objects.0.trees.enabled=false"}, &notes);
+  loadSceneInput(dir / "hill.asc", {"objects.0.trees.enabled=false", "objects.0.upsample=2"}, &notes);
   EXPECT_TRUE(notes.empty()) << notes.front();
   // A flat plain is raised no more than 20 times; a file that does not load is left for the
   // asset cache to report, with the plain look.
@@ -541,6 +547,39 @@ TEST(Scene, SmoothStepsOffKeepsTheHeightsTheFileStores) {
   const auto [smoothed_worst, smoothed_mean] = fromStored(true);
   EXPECT_LE(smoothed_worst, 0.5 + 1e-9) << "within half a step of what the file stores";
   EXPECT_GT(smoothed_mean, 0.05) << "the staircase was smoothed";
+}
+
+// objects.N.upsample meshes the grid that many times finer: (n − 1)·f + 1 vertices a side,
+// those over a stored sample at its height, within max_vertices (the most factor that fits
+// is taken); the cubic between them follows a bowl (a quadratic, which Catmull-Rom
+// reproduces) to rounding, where the coarse mesh's flat triangles miss by up to a quarter
+// of its curvature times a cell squared.
+TEST(Scene, UpsampleMeshesTheGridFinerWithinTheVertices) {
+  test::TempDir dir;
+  const int n = 21;
+  auto bowl = [](double x, double y) { return 0.01 * ((x - 95.0) * (x - 95.0) + (y - 80.0) * (y - 80.0)); };
+  writeGrid(dir / "bowl.asc", n, n, 10.0, [&](int c, int r) { return bowl(10.0 * c, 10.0 * (n - 1 - r)); });
+  auto mesh = [&](int upsample, int max_vertices) {
+    nlohmann::json j = {{"objects",
+                         {{{"dem", "bowl.asc"},
+                           {"recentre", false},
+                           {"smooth_steps", false},  // its heights lie on a lattice of whole metres and quarters
+                           {"upsample", upsample},
+                           {"max_vertices", max_vertices}}}}};
+    AssetCache cache;
+    return cache.get(parseScene(j, "s.json", dir.path().string()), 0).geometry->mesh.positions;
+  };
+  const std::vector<glm::dvec3> fine = mesh(3, 250000);
+  ASSERT_EQ(fine.size(), static_cast<std::size_t>(61 * 61));
+  glm::dvec2 low(1e300);
+  for (const glm::dvec3& v : fine) low = glm::min(low, glm::dvec2(v));
+  double worst = 0.0;
+  for (const glm::dvec3& v : fine) worst = std::max(worst, std::abs(v.z - bowl(v.x - low.x, v.y - low.y)));
+  EXPECT_LT(worst, 1e-6) << "the bowl, between the samples too";
+  EXPECT_EQ(mesh(3, 1000).size(), static_cast<std::size_t>(21 * 21)) << "2 x (41² = 1681) is over 1000 too";
+  EXPECT_EQ(mesh(3, 2000).size(), static_cast<std::size_t>(41 * 41)) << "the most that fits";
+  nlohmann::json bad = {{"objects", {{{"dem", "bowl.asc"}, {"upsample", 9}}}}};
+  EXPECT_THROW(parseScene(bad, "s.json", dir.path().string()), Error);
 }
 
 // A lone mesh that is a piece of land (open, flat along its up axis, facing up) is painted

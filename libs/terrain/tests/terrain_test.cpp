@@ -330,3 +330,116 @@ TEST(Dequantize, OnlyHeightsStoredInStepsAreTouchedAndNoDataStaysSo) {
 }
 
 }  // namespace shanshui::terrain
+
+namespace shanshui::terrain {
+namespace {
+
+// A smooth landform known everywhere: two wavelengths of about 7 and 11 cells of the coarse
+// grid, so a coarse grid resolves it but draws it with visible facets.
+double waves(double x, double y) {
+  return 300.0 * std::sin(0.9 * x) * std::cos(0.55 * y) + 80.0 * std::cos(0.35 * x + 0.6 * y);
+}
+
+Heightfield sampled(int columns, int rows, double cell) {
+  Heightfield h;
+  h.columns = columns;
+  h.rows = rows;
+  h.cell_x = h.cell_y = cell;
+  for (int r = 0; r < rows; ++r)
+    for (int c = 0; c < columns; ++c) h.elevation.push_back(waves(c * cell, r * cell));
+  return h;
+}
+
+}  // namespace
+
+// Made four times finer, the grid keeps every stored sample to the bit, covers the same
+// ground, and lies on the true landform between them far closer than straight lines between
+// the stored samples do (bilinear interpolation, what the coarse mesh's triangles draw).
+TEST(Upsample, KeepsTheStoredSamplesAndFollowsTheLandformBetweenThem) {
+  const Heightfield coarse = sampled(30, 20, 1.0);
+  Heightfield fine = coarse;
+  upsample(fine, 4, "test");
+  ASSERT_EQ(fine.columns, 29 * 4 + 1);
+  ASSERT_EQ(fine.rows, 19 * 4 + 1);
+  EXPECT_DOUBLE_EQ(fine.cell_x, 0.25);
+  EXPECT_DOUBLE_EQ(fine.cell_y, 0.25);
+  for (int r = 0; r < coarse.rows; ++r) {
+    for (int c = 0; c < coarse.columns; ++c) ASSERT_EQ(fine.at(4 * c, 4 * r), coarse.at(c, r)) << c << " " << r;
+  }
+  // Inside, away from the edge (where the cubic continues the edge instead of the landform).
+  double cubic = 0.0, linear = 0.0;
+  for (int r = 8; r < fine.rows - 8; ++r) {
+    for (int c = 8; c < fine.columns - 8; ++c) {
+      const double x = c * 0.25, y = r * 0.25, truth = waves(x, y);
+      const int c0 = c / 4, r0 = r / 4;
+      const double fx = x - c0, fy = y - r0;
+      const double bilinear = (1 - fy) * ((1 - fx) * coarse.at(c0, r0) + fx * coarse.at(c0 + 1, r0)) +
+                              fy * ((1 - fx) * coarse.at(c0, r0 + 1) + fx * coarse.at(c0 + 1, r0 + 1));
+      cubic = std::max(cubic, std::abs(fine.at(c, r) - truth));
+      linear = std::max(linear, std::abs(bilinear - truth));
+    }
+  }
+  EXPECT_LT(cubic, 0.2 * linear) << cubic << " against " << linear;
+  EXPECT_NE(fine.notes.back().find("4 times finer"), std::string::npos) << fine.notes.back();
+}
+
+// No data stays where it was: a new sample is no data exactly when a stored sample at a
+// corner of its cell is, so a hole keeps its extent and no stand-in height shows; everything
+// else is finite. Factor 1 changes nothing; a factor outside [1, 8] is refused by name.
+TEST(Upsample, HolesKeepTheirExtentAndBadFactorsAreRefused) {
+  Heightfield coarse = sampled(12, 10, 30.0);
+  coarse.elevation[4 * 12 + 5] = kNoData;                              // one sample
+  for (int c = 0; c < 3; ++c) coarse.elevation[9 * 12 + c] = kNoData;  // a corner of sea
+  Heightfield fine = coarse;
+  upsample(fine, 3, "objects.0.upsample");
+  for (int r = 0; r < fine.rows; ++r) {
+    for (int c = 0; c < fine.columns; ++c) {
+      const int c0 = c / 3, r0 = r / 3, c1 = std::min(c0 + (c % 3 ? 1 : 0), 11), r1 = std::min(r0 + (r % 3 ? 1 : 0), 9);
+      const bool hole = std::isnan(coarse.at(c0, r0)) || std::isnan(coarse.at(c1, r0)) ||
+                        std::isnan(coarse.at(c0, r1)) || std::isnan(coarse.at(c1, r1));
+      ASSERT_EQ(std::isnan(fine.at(c, r)), hole) << c << " " << r;
+      if (!hole) {
+        ASSERT_TRUE(std::isfinite(fine.at(c, r))) << c << " " << r;
+      }
+    }
+  }
+  Heightfield same = coarse;
+  upsample(same, 1, "objects.0.upsample");
+  EXPECT_EQ(same.columns, coarse.columns);
+  EXPECT_TRUE(same.notes.empty());
+  for (int bad : {0, -2, kMostUpsample + 1}) {
+    try {
+      upsample(same, bad, "objects.0.upsample");
+      ADD_FAILURE() << bad;
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find("objects.0.upsample"), std::string::npos) << e.what();
+    }
+  }
+}
+
+// The factor a lone DEM gets: the least that gives its larger side the samples asked for,
+// held to what fits in the mesh's vertices; none for a grid that has them.
+TEST(Upsample, TheFactorReachesTheSidesAskedForWithinTheVertices) {
+  const Heightfield coast = sampled(120, 91, 1.0);   // the BC coast's grid
+  EXPECT_EQ(upsampleFactor(coast, 400, 250000), 4);  // 477 x 361
+  EXPECT_EQ(upsampleFactor(coast, 400, 100000), 3);  // 357 x 271 = 96.7k; 4 x is over
+  EXPECT_EQ(upsampleFactor(coast, 400, 90000), 2);
+  EXPECT_EQ(upsampleFactor(sampled(468, 327, 1.0), 400, 250000), 1);
+  EXPECT_EQ(upsampleFactor(sampled(20, 20, 1.0), 400, 1 << 28), kMostUpsample);
+}
+
+}  // namespace shanshui::terrain
+
+namespace shanshui::terrain {
+
+// Heights near the largest double (a corrupt or hostile file) overflow the cubic's sums; the
+// new samples there fall back to straight lines between the cell's corners and stay finite.
+TEST(Upsample, HeightsNearTheLargestDoubleStayFinite) {
+  Heightfield h;
+  h.columns = h.rows = 4;
+  for (int i = 0; i < 16; ++i) h.elevation.push_back(i % 2 ? 1.7e308 : -1.7e308);
+  upsample(h, 3, "test");
+  for (double z : h.elevation) ASSERT_TRUE(std::isfinite(z)) << z;
+}
+
+}  // namespace shanshui::terrain

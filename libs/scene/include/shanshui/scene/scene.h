@@ -250,6 +250,10 @@ struct Object {
   //! dem only: heights stored in steps (whole metres, grey levels) smoothed within half a
   //! step (terrain::dequantize); false keeps the file's values (a terrace model).
   bool smooth_steps = true;
+  //! dem only: the grid made this many times finer along each side by bicubic interpolation
+  //! (terrain::upsample), within max_vertices, so a coarse DEM's coasts and ridges are
+  //! curves rather than the grid's facets; 1 keeps the file's grid.
+  int upsample = 1;
   //! dem only: the part kept, west, south, east, north as fractions of the grid.
   std::array<double, 4> crop{0.0, 0.0, 1.0, 1.0};
   //! mesh only: normals split across edges sharper than this (degrees); 180: smooth.

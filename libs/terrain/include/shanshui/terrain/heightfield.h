@@ -113,6 +113,22 @@ struct Dequantized {
 //! so and are not used; heights not stored in steps are not touched. Says so in `notes`.
 Dequantized dequantize(Heightfield& h, double sigma = kDequantizeSigma, int sweeps = kDequantizeSweeps);
 
+//! Most times finer upsample() makes a grid along each side.
+constexpr int kMostUpsample = 8;
+
+//! A grid `factor` times finer along each side: (columns − 1)·factor + 1 by
+//! (rows − 1)·factor + 1 samples over the same ground, the new ones by bicubic
+//! (Catmull-Rom) interpolation along the rows and then the columns, so every stored sample keeps its
+//! height and a coarse grid's coasts and silhouettes are curves, not the grid's facets. A new
+//! sample between stored ones of which any is no data is no data (the holes keep their
+//! extent); heights beyond the edge continue the last three samples' parabola. Says so in `notes`. factor 1: nothing
+//! done; outside [1, kMostUpsample], or a result over kMaxGridSamples: Error naming `what`.
+void upsample(Heightfield& h, int factor, const std::string& what);
+
+//! The least factor (at most kMostUpsample) that gives the grid's larger side at least
+//! `least_side` samples, within `max_samples` in all; 1 when it has them already.
+int upsampleFactor(const Heightfield& h, int least_side, std::size_t max_samples);
+
 //! The OpenImageIO height map reader that GDAL replaced for images; kept as the tests' oracle.
 Heightfield loadHeightmapImage(const std::filesystem::path& path, const HeightfieldOptions& options);
 Heightfield loadUsgsDem(const std::filesystem::path& path, const HeightfieldOptions& options);
