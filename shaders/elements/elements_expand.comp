@@ -67,7 +67,7 @@ layout(r8, binding = 0) readonly uniform image2D u_value_noise;  // the border's
 // that radius and half its own height of one, nor in front of it, between it and the eye,
 // as far as the tree's crown would reach up over it on the picture: a building stands in a
 // clearing, flanked by trees instead of behind a trunk. Moss dots may grow to its foot.
-const int kMaxClearings = 16;
+const int kMaxClearings = MAX_CLEARINGS;  // elements_pass.cpp's, defined when built
 uniform int u_clearings;
 uniform vec4 u_clearing[kMaxClearings];
 

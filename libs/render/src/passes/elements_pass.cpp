@@ -147,7 +147,7 @@ class ElementsPass final : public RenderPass {
     return made > capacity_ ? made - capacity_ : 0;
   }
   void buildPrograms() override {
-    Program expand({"elements_expand.comp"});
+    Program expand({"elements_expand.comp"}, {"MAX_CLEARINGS=" + std::to_string(kMaxClearings)});
     draw_ = Program({"elements.vert", "elements.frag"}, defines());
     expand_ = std::move(expand);
   }
@@ -284,7 +284,6 @@ class ElementsPass final : public RenderPass {
   // The objects standing on `ground` (the shader's u_clearing): where each stands now and
   // its horizontal radius, so its clearing follows a live change of its transform.
   void setClearings(const FrameInputs& in, std::size_t ground) const {
-    constexpr int kMaxClearings = 16;  // elements_expand.comp's
     // The array's element names, made once, not each frame.
     static const std::array<std::string, kMaxClearings> names = [] {
       std::array<std::string, kMaxClearings> a;
@@ -304,6 +303,10 @@ class ElementsPass final : public RenderPass {
     }
     expand_.set("u_clearings", n);
   }
+
+  // The most objects that stand on one ground and clear its trees (elements_expand.comp's
+  // u_clearing, sized by this).
+  static constexpr int kMaxClearings = 16;
 
   scene::Scene scene_;
   std::vector<Run> runs_;
