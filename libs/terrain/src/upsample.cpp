@@ -24,10 +24,10 @@ void upsample(Heightfield& h, int factor, const std::string& what) {
     throw makeError(what, ": ", w, " x ", n, " samples ", factor, " times finer is ", fine_w, " x ", fine_n,
                     ", more than the ", kMaxGridSamples, " samples a grid may hold");
   }
-  // The heights the interpolation reads: no-data samples take the mean of their valid
-  // neighbours (twice over, so a hole's rim two samples deep), the rest 0. Only new samples
-  // between valid ones are kept, and the cubic reads two samples either way, so these
-  // stand-ins shape only the ground within two cells of a hole, as a continuation of it.
+  // The heights the interpolation reads: a no-data sample takes the mean of its valid
+  // neighbours (8-neighbours), the rest 0. Only new samples whose cell has valid corners are
+  // kept, and the cubic reads the samples one beyond those corners, each a neighbour of a
+  // valid corner: so the stand-ins shape the ground only at a hole's rim, continuing it.
   cv::Mat z(n, w, CV_64F), valid(n, w, CV_8U);
   for (int r = 0; r < n; ++r) {
     for (int c = 0; c < w; ++c) {
@@ -38,30 +38,21 @@ void upsample(Heightfield& h, int factor, const std::string& what) {
   }
   const bool holes = cv::countNonZero(valid) < w * n;
   if (holes) {
-    cv::Mat known = valid.clone();
-    for (int pass = 0; pass < 2; ++pass) {
-      cv::Mat next_z = z.clone(), next_known = known.clone();
-      for (int r = 0; r < n; ++r) {
-        for (int c = 0; c < w; ++c) {
-          if (known.at<unsigned char>(r, c)) continue;
-          double sum = 0.0;
-          int count = 0;
-          for (int dr = -1; dr <= 1; ++dr) {
-            for (int dc = -1; dc <= 1; ++dc) {
-              const int rr = r + dr, cc = c + dc;
-              if (rr < 0 || cc < 0 || rr >= n || cc >= w || !known.at<unsigned char>(rr, cc)) continue;
-              sum += z.at<double>(rr, cc);
-              ++count;
-            }
-          }
-          if (count > 0) {
-            next_z.at<double>(r, c) = sum / count;
-            next_known.at<unsigned char>(r, c) = 1;
+    const cv::Mat stored = z.clone();
+    for (int r = 0; r < n; ++r) {
+      for (int c = 0; c < w; ++c) {
+        if (valid.at<unsigned char>(r, c)) continue;
+        double sum = 0.0;
+        int count = 0;
+        for (int rr = std::max(r - 1, 0); rr <= std::min(r + 1, n - 1); ++rr) {
+          for (int cc = std::max(c - 1, 0); cc <= std::min(c + 1, w - 1); ++cc) {
+            if (!valid.at<unsigned char>(rr, cc)) continue;
+            sum += stored.at<double>(rr, cc);
+            ++count;
           }
         }
+        if (count > 0) z.at<double>(r, c) = sum / count;
       }
-      z = next_z;
-      known = next_known;
     }
   }
   // Catmull-Rom (the cubic that passes through the samples and reproduces quadratics: Keys'
