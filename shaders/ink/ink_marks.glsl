@@ -1,5 +1,5 @@
 // Texture strokes (cun) as discrete brush marks (issue 45), beside seed 001's wrinkle
-// texture: hemp-fibre marks (long, thin, wavy, tapering at both ends) or axe-cut marks
+// texture: hemp-fibre marks (long, thin, bowed, tapering at both ends) or axe-cut marks
 // (short wedges, broad at the downhill end, turned a little off the fall line), laid down
 // the fall line on a jittered lattice over the object's horizontal plane. A lattice cell
 // holds at most one mark; whether it does is a random threshold against the density there,
@@ -60,11 +60,13 @@ float marksOctave(vec2 q, vec2 dir, float density, uint style, uint seed) {
       float width = (0.04 + 0.1 * b.z) * clamp(0.5 + 0.5 * t, 0.0, 1.0);
       cover = (1.0 - smoothstep(0.85, 1.0, abs(t))) * (1.0 - smoothstep(0.7 * width, width, abs(across)));
     } else {
-      // A long fibre, gently waving across its length, tapering to both ends.
+      // A long hemp fibre down the slope, bowed once to one side as a brush drawn down a
+      // slope bows, with a slight S over it, tapering to both ends. (A fibre that waved
+      // across itself twice read as a stray hair; bundles of three as tally marks.)
       float along = dot(d, dir), across = dot(d, perp);
       float half_length = 0.36 + 0.1 * b.y;
       float t = along / half_length;
-      across += 0.035 * sin(12.0 * along + 6.2832 * b.x);
+      across -= (b.x - 0.5) * 0.1 * (1.0 - t * t) + 0.01 * sin(6.2832 * (t + b.x));
       float width = (0.022 + 0.018 * b.z) * sqrt(max(1.0 - t * t, 0.0));
       cover = abs(t) < 1.0 ? 1.0 - smoothstep(0.5 * width, width + 1e-4, abs(across)) : 0.0;
     }
