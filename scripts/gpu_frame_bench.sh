@@ -2,7 +2,8 @@
 # The frame on a GPU against issue 47's targets, every figure from one run: the default
 # sample at 1024² (with and without its trees and dots) and at 3840x2160, the light-colour
 # sample, the default sample with the tuned diffusion (n = 5, d = 3), lines and shading
-# alone, and the painting beside the level-distance sample (issue 45's cost). Each with
+# alone, the painting beside the level-distance sample (issue 45's cost), and the strokes
+# gathered instead of stamped (SHANSHUI_STROKES=gather). Each with
 # `shanshui-render --benchmark` (frames back to back, the camera turning, two frames in
 # flight, GPU timestamps per pass read late, two seconds of warm-up). Run here (llvmpipe,
 # give a small FRAMES) or on a lent GPU from the device kit (R=.gpu/bin/shanshui-render).
@@ -31,4 +32,11 @@ run lines_shading_1024 default 1024x1024 --set canvas.type=none --set mist.densi
   --set objects.0.trees.enabled=false --set objects.0.dots.enabled=false
 run default_2160 default 3840x2160
 run default_diffusion_2160 default 3840x2160 --set diffusion.ring_steps=3 --set diffusion.iterations=5
+# The strokes gathered instead of stamped (SHANSHUI_STROKES=gather, off by default until
+# timed here): the lines and ink passes at 1024² and 4K, beside the rows above.
+for round in 1 2; do
+  SHANSHUI_STROKES=gather run "default_gather_1024_$round" default 1024x1024
+  SHANSHUI_STROKES=gather run "painting_gather_1024_$round" painting 1024x1024
+done
+SHANSHUI_STROKES=gather run default_gather_2160 default 3840x2160
 tail -n +1 "$out"/*.txt

@@ -11,6 +11,7 @@
 // moss dots' ink over the rest; ELEMENT_NEARNESS with animated objects), WATER (a water level:
 // the land below it hidden, paper with wave strokes, bank lines), MARKS (some object's
 // texture strokes as discrete marks, ink_marks.glsl; WASH: some object's broad wet strokes),
+// STROKE_GATHER (compute only: each pixel gathers the strokes' ink from the centres near it),
 // DEBUG_OUTPUTS (line weight, tone and wrinkle luma as extra targets, for tests). PAPER
 // builds the background's program, which the pass draws apart by the depth test; BARE the
 // surfaces' where the atmosphere leaves nothing of the land (ink_classes.frag sorts them out
@@ -23,9 +24,14 @@
 #endif
 #include "ink_surface.glsl"
 #ifdef STROKES
-// The strokes' ink × 255, stamped by ink_lines.frag, and the presence and shading noise it
-// found per surface pixel.
+// The strokes' ink × 255, stamped by ink_lines.frag (with STROKE_GATHER each centre's ink
+// and reach, gathered here), and the presence and shading noise it found per surface pixel.
+#ifdef STROKE_GATHER
+layout(rg32f, binding = 3) readonly uniform image2D u_stroke_centre;
+uniform int u_stroke_reach;  // the most pixels any centre's ink reaches (a whole number)
+#else
 layout(r32ui, binding = 3) readonly uniform uimage2D u_stroke_ink;
+#endif
 layout(rgba16, binding = 4) readonly uniform image2D u_presence_noise;
 #endif
 #ifdef ELEMENTS
@@ -160,9 +166,27 @@ vec4 onPaper(ivec2 p, vec3 colour) {
 }
 
 #ifdef STROKES
+#ifdef STROKE_GATHER
+// What the most inking centre within reach gives p: the ink a centre q stamps at p + (q − p)
+// in ink_lines.frag, by the same expression (the disc's antialiased edge leaves nothing
+// beyond its reach, so the square around p holds every centre that inks it). Centres off
+// the image read as 0.
+float strokeInk(ivec2 p) {
+  uint best = 0u;
+  for (int dy = -u_stroke_reach; dy <= u_stroke_reach; ++dy) {
+    for (int dx = -u_stroke_reach; dx <= u_stroke_reach; ++dx) {
+      vec2 c = imageLoad(u_stroke_centre, p - ivec2(dx, dy)).rg;  // ink, reach
+      float cover = clamp(c.y - length(vec2(dx, dy)), 0.0, 1.0);
+      best = max(best, uint(c.x * cover * 255.0 + 0.5));
+    }
+  }
+  return float(best) / 255.0;
+}
+#else
 float strokeInk(ivec2 p) {
   return float(imageLoad(u_stroke_ink, p).r) / 255.0;
 }
+#endif
 #endif
 
 // Depth-tested against the G-buffer's depth before shading: the pass draws the surfaces

@@ -19,16 +19,37 @@
 #include "ink_objects.glsl"
 #include "ink_surface.glsl"
 #include "ink_hash.glsl"
+#ifdef STROKE_GATHER
+// Each centre's ink and reach (half-width + half a pixel), cleared to 0 each frame; ink.frag
+// gathers them. Compute only: a centre is a pixel output, stored by pixelStore.
+#ifndef PIXEL_COMPUTE
+#error STROKE_GATHER needs PIXEL_COMPUTE
+#endif
+layout(rg32f, binding = 3) writeonly uniform image2D u_stroke_centre;
+#else
 // Ink × 255 per pixel, cleared to 0 each frame.
 layout(r32ui, binding = 3) uniform uimage2D u_stroke_ink;
+#endif
 // What the ink pass would otherwise compute again at each surface pixel: what the atmosphere
 // and the border leave (presence(), r; for land under water, at the water's surface above
 // it) and the shading's noise (surfaceNoise(): erosion g, added noise b).
 #ifdef PIXEL_COMPUTE
 layout(rgba16, binding = 7) writeonly uniform image2D u_presence_noise_out;
 vec4 o_presence_noise;
+#ifdef STROKE_GATHER
+vec2 o_centre;  // ink, reach; 0 where p is no centre
+void pixelOutputsClear() {
+  o_presence_noise = vec4(0.0);
+  o_centre = vec2(0.0);
+}
+void pixelStore(ivec2 p) {
+  imageStore(u_presence_noise_out, p, o_presence_noise);
+  imageStore(u_stroke_centre, p, vec4(o_centre, 0.0, 0.0));
+}
+#else
 void pixelOutputsClear() { o_presence_noise = vec4(0.0); }
 void pixelStore(ivec2 p) { imageStore(u_presence_noise_out, p, o_presence_noise); }
+#endif
 #else
 layout(location = 0) out vec4 o_presence_noise;
 #endif
@@ -247,6 +268,9 @@ void shadePixel() {
   // Only the pixels nearer than `reach` are visited, row by row (a software rasteriser
   // pays for every iteration of the square around it: 49 instead of 21 at 3.5 px wide).
   float reach = half_width + 0.5;
+#ifdef STROKE_GATHER
+  o_centre = vec2(ink, reach);  // the pixels around gather it (ink.frag's strokeInk)
+#else
   int r = int(reach);
   for (int dy = -r; dy <= r; ++dy) {
     int w = int(sqrt(reach * reach - float(dy * dy)));
@@ -256,5 +280,6 @@ void shadePixel() {
       if (v > 0u) imageAtomicMax(u_stroke_ink, p + ivec2(dx, dy), v);
     }
   }
+#endif
 }
 #include "pixel_main.glsl"

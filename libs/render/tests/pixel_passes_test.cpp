@@ -25,6 +25,7 @@ class PixelPasses : public test::HeadlessGl {
  protected:
   void TearDown() override {
     unsetenv("SHANSHUI_PIXEL_PASSES");
+    unsetenv("SHANSHUI_STROKES");
     test::HeadlessGl::TearDown();
   }
 };
@@ -53,12 +54,16 @@ Drawn drawSample(const std::string& sample, const char* stage, int frames, std::
   return d;
 }
 
-bool builtAsCompute(const Drawn& d, const std::string& pass) {
+bool builtWith(const Drawn& d, const std::string& pass, const std::string& define) {
   const auto it = d.variants.find(pass);
   if (it == d.variants.end()) return false;
   for (const std::string& v : it->second)
-    if (v.find("PIXEL_COMPUTE") != std::string::npos) return true;
+    if (v.find(define) != std::string::npos) return true;
   return false;
+}
+
+bool builtAsCompute(const Drawn& d, const std::string& pass) {
+  return builtWith(d, pass, "PIXEL_COMPUTE");
 }
 
 // Mean and largest difference of two pictures (per channel, 0-1), and the share of pixels
@@ -123,6 +128,45 @@ TEST_F(PixelPasses, ARedrawnRegionIsTheSameInBothStages) {
   }
   // The frames differ from each other (the boat moved), so the comparison can fail.
   EXPECT_GT(differenceOf(compute.frames[0], compute.frames[2]).largest, 0.1);
+}
+
+// Strokes gathered by each pixel from the centres near it (SHANSHUI_STROKES=gather) instead
+// of stamped by each centre with atomics: the same ink, by the same expression. The default
+// sample (strokes 3.5 px wide), the painting (three widths, lines.break's pressed strokes,
+// water), the default with strokes 14 px wide (a reach of 8 pixels), and the moving boat,
+// whose later frames redraw its region only: each drawn both ways with compute passes.
+TEST_F(PixelPasses, GatheredStrokesAreTheStampedOnes) {
+  struct Case {
+    std::string sample;
+    std::vector<std::string> overrides;
+    int frames;
+  };
+  const Case cases[] = {
+      {"default", {}, 1}, {"painting", {}, 1}, {"default", {"objects.0.lines.width=14"}, 1}, {"moving_boat", {}, 3}};
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.sample + (c.overrides.empty() ? "" : " " + c.overrides[0]));
+    setenv("SHANSHUI_STROKES", "stamp", 1);
+    const Drawn stamped = drawSample(c.sample, "compute", c.frames, c.overrides);
+    setenv("SHANSHUI_STROKES", "gather", 1);
+    const Drawn gathered = drawSample(c.sample, "compute", c.frames, c.overrides);
+    EXPECT_FALSE(builtWith(stamped, "ink", "STROKE_GATHER"));
+    EXPECT_TRUE(builtWith(gathered, "ink", "STROKE_GATHER"));
+    for (int i = 0; i < c.frames; ++i) {
+      const Difference d = differenceOf(stamped.frames[i], gathered.frames[i]);
+      EXPECT_LE(d.largest, 1.5 / 255) << "frame " << i << ": at most a grey level, from rounding";
+      EXPECT_EQ(d.share_off, 0.0) << "frame " << i;
+    }
+  }
+  // Fragment passes stamp whatever is asked; a value neither way is an error naming it.
+  const Drawn fragment = drawSample("default", "fragment", 1);
+  EXPECT_FALSE(builtWith(fragment, "ink", "STROKE_GATHER"));
+  setenv("SHANSHUI_STROKES", "scatter", 1);
+  try {
+    strokesGathered();
+    ADD_FAILURE() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("SHANSHUI_STROKES is 'scatter'"), std::string::npos) << e.what();
+  }
 }
 
 // The fragment stage draws the surfaces a dissolved border leaves bare (the lines pass found

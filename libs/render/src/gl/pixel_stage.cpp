@@ -21,6 +21,14 @@ bool pixelPassesAsCompute() {
   return r.find("llvmpipe") == std::string::npos && r.find("softpipe") == std::string::npos;
 }
 
+bool strokesGathered() {
+  const char* choice = std::getenv("SHANSHUI_STROKES");
+  const std::string c = choice ? choice : "";
+  if (c.empty() || c == "stamp") return false;
+  if (c == "gather") return true;
+  throw makeError("SHANSHUI_STROKES is '", c, "'; expected 'gather', 'stamp' or unset (stamp)");
+}
+
 void dispatchPixels(const Program& p, const glm::ivec4& rect) {
   const int width = rect.z - rect.x, height = rect.w - rect.y;
   if (width <= 0 || height <= 0) return;

@@ -94,6 +94,9 @@ class InkPass final : public RenderPass {
     toStorage(defines);
     // On a GPU compute shaders (the debug outputs' extra targets stay a fragment pass's).
     const bool compute = pixelPassesAsCompute() && !debug_outputs_;
+    // The strokes gathered by each pixel instead of stamped with atomics (compute only).
+    const bool gather = scene_.usesStrokes() && strokesGathered() && compute;  // a bad value is an error anywhere
+    if (gather) defines.emplace_back("STROKE_GATHER");
     auto build = [compute](const std::string& frag, std::vector<std::string> d, const char* test) {
       if (compute) d.emplace_back(test);  // the depth test the fragment stage gets from the depth buffer
       return pixelProgram(frag, d, compute);
@@ -106,6 +109,7 @@ class InkPass final : public RenderPass {
       if (scene_.usesShading()) line_defines.emplace_back("SHADING");  // it samples the shading's noise
       if (scene_.usesSuggestiveContours()) line_defines.emplace_back("SUGGESTIVE");
       if (scene_.usesWater()) line_defines.emplace_back("WATER");  // the atmosphere over hidden land
+      if (gather) line_defines.emplace_back("STROKE_GATHER");
       lines.emplace(build("ink_lines.frag", line_defines, "PIXEL_SURFACES"));
     }
     std::vector<std::string> paper_defines = defines;
@@ -124,6 +128,7 @@ class InkPass final : public RenderPass {
     }
     program_ = build("ink.frag", defines, "PIXEL_SURFACES");  // a throw keeps the old programs
     compute_ = compute;
+    gather_ = gather;
     paper_ = std::move(paper);
     bare_ = std::move(bare);
     classes_ = std::move(classes);
@@ -198,14 +203,18 @@ class InkPass final : public RenderPass {
       glDepthFunc(GL_GREATER);  // the triangle lies at depth 1: surfaces only
     }
     if (lines_) {  // built exactly when some object draws strokes
-      if (stroke_ink_.width() != target_.width() || stroke_ink_.height() != target_.height()) {
+      // The strokes' ink by atomic max, or (gather_) each centre's ink and reach.
+      const GLenum stroke_format = gather_ ? GL_RG32F : GL_R32UI;
+      if (stroke_ink_.width() != target_.width() || stroke_ink_.height() != target_.height() ||
+          stroke_ink_.format() != stroke_format) {
         strokes_ = Framebuffer(target_.width(), target_.height(), {GL_RGBA16}, false);
-        stroke_ink_ = Texture2D(target_.width(), target_.height(), GL_R32UI);
+        stroke_ink_ = Texture2D(target_.width(), target_.height(), stroke_format);
       }
       if (in.timer) in.timer->begin("lines");
-      const GLuint zero = 0;
-      glClearTexImage(stroke_ink_.id(), 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
-      glBindImageTexture(3, stroke_ink_.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
+      const GLuint zero[2] = {0, 0};
+      glClearTexImage(stroke_ink_.id(), 0, gather_ ? GL_RG : GL_RED_INTEGER, gather_ ? GL_FLOAT : GL_UNSIGNED_INT,
+                      zero);
+      glBindImageTexture(3, stroke_ink_.id(), 0, GL_FALSE, 0, GL_READ_WRITE, stroke_format);
       if (compute_) {
         glBindImageTexture(7, strokes_.colour(0).id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16);
       } else {
@@ -241,7 +250,7 @@ class InkPass final : public RenderPass {
       }
       if (in.timer) in.timer->end();
       SHANSHUI_GL_CHECK("ink lines");
-      glBindImageTexture(3, stroke_ink_.id(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_R32UI);
+      glBindImageTexture(3, stroke_ink_.id(), 0, GL_FALSE, 0, GL_READ_ONLY, stroke_format);
       glBindImageTexture(4, strokes_.colour(0).id(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA16);
     }
     if (in.timer) in.timer->begin("ink");
@@ -273,6 +282,7 @@ class InkPass final : public RenderPass {
       ink->use();
       if (images.elements) ink->set("u_element_colour", elementColour(in.scene));
       if (grainHere(in.scene)) ink->set("u_canvas_contrast", static_cast<float>(in.scene.canvas.contrast));
+      if (gather_) ink->set("u_stroke_reach", stroke_reach_);
       if (compute_) {
         dispatchPixels(*ink, rect);
       } else if (classes_) {
@@ -307,6 +317,7 @@ class InkPass final : public RenderPass {
   void uploadObjectParams(const FrameInputs& in) {
     std::vector<gpu::ObjectParams> params(in.objects.size());
     const double pixels_per_unit_at_1 = 0.5 * in.height / std::tan(glm::radians(in.camera.fov_y_deg) * 0.5);
+    int reach = 0;
     for (std::size_t i = 0; i < in.objects.size(); ++i) {
       const scene::Object& o = in.scene.objects[i];
       const SceneObjectGpu& g = in.objects[i];
@@ -335,6 +346,13 @@ class InkPass final : public RenderPass {
       p.valley_ink = static_cast<float>(l.valley_ink);
       p.suggestive = l.suggestiveContours() ? static_cast<float>(l.suggestive) : 0.0f;
       p.line_break = l.strokes() ? static_cast<float>(l.line_break) : 0.0f;
+      if (l.strokes()) {
+        // ink_lines.frag's widest disc: its half-width at the strongest crest, far away and
+        // pressed hardest (lines.break), plus half a pixel; a hair more, for float rounding.
+        const double widest = p.stroke_half_width * std::max<double>(p.stroke_taper, 1.0) *
+                              std::max<double>(p.stroke_far, 1.0) * (1.0 + 0.3 * std::max<double>(p.line_break, 0.0));
+        reach = std::max(reach, static_cast<int>((widest + 0.5) * (1.0 + 1e-5)));
+      }
       // At least a millionth of the object's radius: a camera at its centre gives no cell.
       p.line_break_cell = static_cast<float>(
           std::max(std::max(kLineBreakWidths * l.width, 1.0) * per_1024 * d / pixels_per_unit_at_1, 1e-6 * g.radius));
@@ -386,6 +404,7 @@ class InkPass final : public RenderPass {
       p.border_width = o.dissolvesBorder() ? static_cast<float>(o.border.width * std::min(half.x, half.y)) : 0.0f;
       p.border_roughness = static_cast<float>(o.border.roughness);
     }
+    stroke_reach_ = reach;
     const std::size_t bytes = params.size() * sizeof(gpu::ObjectParams);
     if (bytes > capacity_) {
       params_ = Buffer::create();
@@ -407,6 +426,8 @@ class InkPass final : public RenderPass {
   std::optional<Program> classes_;  //!< sorts the pixels for bare_ (ink_classes.frag)
   Framebuffer kinds_;               //!< classes_'s depth: 0 shade, 0.5 bare, 1 background
   bool compute_ = false;            //!< the three are compute shaders (pixelPassesAsCompute)
+  bool gather_ = false;             //!< strokes gathered, not stamped (strokesGathered)
+  int stroke_reach_ = 0;            //!< the most pixels a stroke centre's ink reaches this frame
   std::vector<std::string> line_defines_;
   VertexArray vao_;
   Buffer params_;

@@ -23,6 +23,14 @@ namespace shanshui::render {
 //! error naming it.
 bool pixelPassesAsCompute();
 
+//! Whether the strokes' ink is gathered by each pixel from the stroke centres near it
+//! (ink_lines.frag writes each centre's ink and reach, ink.frag takes the most any centre
+//! within the widest reach gives it) instead of stamped by each centre with image atomics:
+//! the same ink to within rounding, no atomics. Only with compute per-pixel passes; off
+//! unless SHANSHUI_STROKES=gather (=stamp, or unset, keeps the atomics) until a GPU has
+//! timed both; any other value is an error naming it.
+bool strokesGathered();
+
 //! Runs `p` (made by Program::pixelCompute, in use) over the pixels [x0, x1) × [y0, y1) of
 //! `rect` in 8x8 groups, then makes its stores visible to whatever reads them next:
 //! textures, images, framebuffers and read-back.
