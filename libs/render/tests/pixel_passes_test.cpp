@@ -132,9 +132,9 @@ TEST_F(PixelPasses, ARedrawnRegionIsTheSameInBothStages) {
 
 // Strokes gathered by each pixel from the centres near it (SHANSHUI_STROKES=gather) instead
 // of stamped by each centre with atomics: the same ink, by the same expression. The default
-// sample (strokes 3.5 px wide), the painting (three widths, lines.break's pressed strokes,
-// water), the default with strokes 14 px wide (a reach of 8 pixels), and the moving boat,
-// whose later frames redraw its region only: each drawn both ways with compute passes.
+// sample (a reach of 1 pixel at 240 high), the painting (three widths, lines.break's pressed
+// strokes, water: 2), the default with the widest strokes, 32 (4), and the moving boat, whose later
+// frames redraw its region only: each drawn both ways with compute passes.
 TEST_F(PixelPasses, GatheredStrokesAreTheStampedOnes) {
   struct Case {
     std::string sample;
@@ -142,7 +142,7 @@ TEST_F(PixelPasses, GatheredStrokesAreTheStampedOnes) {
     int frames;
   };
   const Case cases[] = {
-      {"default", {}, 1}, {"painting", {}, 1}, {"default", {"objects.0.lines.width=14"}, 1}, {"moving_boat", {}, 3}};
+      {"default", {}, 1}, {"painting", {}, 1}, {"default", {"objects.0.lines.width=32"}, 1}, {"moving_boat", {}, 3}};
   for (const Case& c : cases) {
     SCOPED_TRACE(c.sample + (c.overrides.empty() ? "" : " " + c.overrides[0]));
     setenv("SHANSHUI_STROKES", "stamp", 1);
