@@ -3,6 +3,7 @@
 // headers into every mesh-reading translation unit.
 #include <algorithm>
 #include <bit>
+#include <cmath>
 #include <cstring>
 #include <fstream>
 #include <sstream>
@@ -244,11 +245,15 @@ PolygonSoup readPly(const fs::path& path) {
           continue;
         }
         const double n = body.read(p.countType);
-        if (n < 0 || n > 1e6) throw bad("bad list length " + std::to_string(n));
+        if (!(n >= 0 && n <= 1e6) || n != std::floor(n)) throw bad("bad list length " + std::to_string(n));
         for (std::size_t j = 0; j < static_cast<std::size_t>(n); ++j) {
           const double idx = body.read(p.type);
           if (isFace && static_cast<int>(k) == iface) {
-            if (idx < 0) throw bad("negative vertex index in face " + std::to_string(i));
+            // A text file may hold any number here: only a whole one a vertex can have.
+            if (!(idx >= 0 && idx <= 4294967295.0) || idx != std::floor(idx)) {
+              throw bad("face " + std::to_string(i) + ": vertex index " + std::to_string(idx) +
+                        " is not a whole number from 0 to 4294967295");
+            }
             face.push_back(static_cast<std::uint32_t>(idx));
           }
         }

@@ -102,6 +102,12 @@ TEST(MeshIo, BadInputNamesTheFileAndTheProblem) {
   std::ofstream(dir / "nan.obj") << "v 0 0 0\nv 1 0 0\nv nan 1 0\nf 1 2 3\n";
   std::ofstream(dir / "inf.obj") << "# c\nv 0 0 0\nv 1 inf 0\nv 0 1 0\nf 1 2 3\n";
   std::ofstream(dir / "word.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 zero\nf 1 2 3\n";
+  // A text PLY may hold any number as an index (the fuzzer's 2.4e124 was cast to 32 bits).
+  const std::string ply_header =
+      "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+      "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n";
+  std::ofstream(dir / "hugeindex.ply") << ply_header << "3 0 1 2444444444444444444444444444\n";
+  std::ofstream(dir / "halfindex.ply") << ply_header << "3 0 1 1.5\n";
   const std::pair<const char*, const char*> cases[] = {{"nan.obj", "line 3: vertex coordinate 'nan'"},
                                                        {"inf.obj", "line 3: vertex coordinate 'inf'"},
                                                        {"word.obj", "'zero'"},
@@ -110,6 +116,8 @@ TEST(MeshIo, BadInputNamesTheFileAndTheProblem) {
                                                        {"cut.off", "truncated"},
                                                        {"nofaces.obj", "no faces"},
                                                        {"badindex.off", "vertex 7"},
+                                                       {"hugeindex.ply", "face 0: vertex index 2444444"},
+                                                       {"halfindex.ply", "vertex index 1.5"},
                                                        {"garbage.off", "'zero'"},
                                                        {"empty.obj", "empty file"},
                                                        {"notes.xyz", "not a mesh Assimp can read"}};
