@@ -61,6 +61,10 @@ inline void checkBodyCanHold(const std::string& name, std::uintmax_t file_bytes,
 // Each reader throws Error naming `path` for a truncated, corrupt or unsupported file.
 Decoded readPng(const std::filesystem::path& path);
 Decoded readJpeg(const std::filesystem::path& path);
+//! ASCII and bitmap PNM (P1-P4, which OpenImageIO decodes): throws Error naming `path` when
+//! the body is too short for what the header promises (P4 a bit a pixel; P1 a character;
+//! P2, P3 a digit and a blank a sample), before a decoder allocates for it.
+void checkTextPnmBody(const std::filesystem::path& path);
 //! Binary PNM (P5 grey, P6 RGB), 8 or 16 bits.
 Decoded readBinaryPnm(const std::filesystem::path& path);
 

@@ -195,6 +195,7 @@ Image loadImage(const fs::path& path, ImageInfo* info) {
       decoded = detail::readBinaryPnm(path);
       break;
     case Codec::Module: {
+      if (sniffed.format == "pnm") detail::checkTextPnmBody(path);  // before OpenImageIO allocates for it
       const std::string error =
           detail::oiioCodec(name, "reading this format").load(name, sniffed.format, memoryBudget(), &decoded);
       if (!error.empty()) throw Error(error);

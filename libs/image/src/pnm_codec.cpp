@@ -1,7 +1,7 @@
 // Binary PGM/PPM (P5 grey, P6 RGB), 8 and 16 bits, by hand: the format is a text header
 // and raw samples, and OpenImageIO 2.4 gets its 16-bit case wrong both ways (it reads 65535
 // as 65534 and writes samples in the wrong byte order). ASCII and bitmap PNM (P1-P4) are
-// left to OpenImageIO.
+// left to OpenImageIO, once their body is known to be long enough for their header.
 #include <algorithm>
 #include <fstream>
 #include <limits>
@@ -11,6 +11,33 @@
 #include "shanshui/core/error.h"
 
 namespace shanshui::image::detail {
+
+void checkTextPnmBody(const std::filesystem::path& path) {
+  const std::string name = path.string();
+  std::ifstream in(path, std::ios::binary);
+  std::string magic(2, '\0');
+  if (!in.read(magic.data(), 2) || magic[0] != 'P' || magic[1] < '1' || magic[1] > '4') return;
+  // Width, height (and maxval for P2, P3), separated by blanks and # comments; a header
+  // that does not parse is left to the decoder to refuse.
+  const int kind = magic[1] - '0', count = kind == 2 || kind == 3 ? 3 : 2;
+  long long fields[3] = {};
+  for (int k = 0; k < count; ++k) {
+    while (in >> std::ws && in.peek() == '#') in.ignore(std::numeric_limits<std::streamsize>::max(), '\n');
+    if (!(in >> fields[k])) return;
+  }
+  const long long width = fields[0], height = fields[1];
+  if (width <= 0 || height <= 0 || width > (1LL << 31) || height > (1LL << 31)) return;
+  const std::uintmax_t samples = static_cast<std::uintmax_t>(width) * static_cast<std::uintmax_t>(height) *
+                                 static_cast<std::uintmax_t>(kind == 3 ? 3 : 1);
+  const std::uintmax_t least = kind == 4   ? (static_cast<std::uintmax_t>(width) + 7) / 8 * height
+                               : kind == 1 ? samples
+                                           : 2 * samples - 1;
+  std::error_code ec;
+  const auto size = std::filesystem::file_size(path, ec);
+  const std::streamoff at = in.tellg();
+  const std::uintmax_t body = !ec && at > 0 && size > static_cast<std::uintmax_t>(at) ? size - at : 0;
+  checkBodyCanHold(name, body, least, 1, "PNM");
+}
 
 Decoded readBinaryPnm(const std::filesystem::path& path) {
   const std::string name = path.string();

@@ -313,6 +313,21 @@ TEST(ImageIo, AHeaderPromisingMoreThanTheFileCanHoldIsRefusedBeforeDecoding) {
   // An uncompressed PNM must hold every sample.
   std::ofstream(dir / "short.ppm", std::ios::binary) << "P6\n4000 3000\n255\n" << std::string(100, 'x');
   test::expectErrorNaming([&] { loadImage(dir / "short.ppm"); }, "short.ppm", "truncated or corrupt PNM");
+  // So must ASCII and bitmap PNM, which OpenImageIO decodes: the fuzzer's 14-byte P4 of
+  // 99949994 x 1 and 23-byte P2 of 77777777 x 1 made it allocate half a gigabyte. Whole
+  // small ones of each kind still read.
+  std::ofstream(dir / "wide.pbm", std::ios::binary) << "P499949994 1\n6";
+  std::ofstream(dir / "wide.pgm", std::ios::binary) << "P2#\n77777777\n\n\n1\n\n62\n\n\n";
+  test::expectErrorNaming([&] { loadImage(dir / "wide.pbm"); }, "wide.pbm", "truncated or corrupt PNM");
+  test::expectErrorNaming([&] { loadImage(dir / "wide.pgm"); }, "wide.pgm", "truncated or corrupt PNM");
+  std::ofstream(dir / "ok.pbm", std::ios::binary) << "P4\n9 2\n" << std::string("\xff\x80\x00\x00", 4);
+  std::ofstream(dir / "ok.pgm", std::ios::binary) << "P2\n3 1\n9\n0 4 9\n";
+  std::ofstream(dir / "ok.ppm", std::ios::binary) << "P3 1 1 255 10 20 30";
+  std::ofstream(dir / "ok1.pbm", std::ios::binary) << "P1\n3 1\n0 1 0\n";
+  EXPECT_EQ(loadImage(dir / "ok.pbm").width, 9);
+  EXPECT_NEAR(loadImage(dir / "ok.pgm").at(1, 0, 0), 4.0 / 9.0, 0.5 / 255);  // OpenImageIO goes through 8 bits
+  EXPECT_EQ(loadImage(dir / "ok.ppm").channels, 3);
+  EXPECT_EQ(loadImage(dir / "ok1.pbm").width, 3);
   // The same layout, whole, still reads: the bound is the format's, not a guess.
   const Image small = randomImage(64, 48, 4, PixelDepth::UInt16, 5);
   saveImage(small, dir / "whole.png", PixelDepth::UInt16);
