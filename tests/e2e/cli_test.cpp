@@ -72,6 +72,22 @@ TEST(Cli, TerrainUpsamplesACoarseGrid) {
   EXPECT_EQ(mesh::readPolygonSoup(dir / "fine.obj").positions.size(), 319u * 319u);
 }
 
+// --subdivide: the sample hill's mesh at every 16th sample (10 x 10) Loop-subdivided twice
+// is 37 x 37 vertices, and the report says so.
+TEST(Cli, RepairSubdividesALowPolyLand) {
+  test::TempDir dir;
+  auto r = run(bin("shanshui-terrain") + " " + quote(test::sourceDir() / "samples/terrain/hill.asc") + " -o " +
+               quote(dir / "low.obj") + " --step 16");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  r = run(bin("shanshui-repair") + " " + quote(dir / "low.obj") + " -o " + quote(dir / "round.obj") +
+          " --subdivide 2 --report " + quote(dir / "r.json"));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_EQ(mesh::readPolygonSoup(dir / "round.obj").positions.size(), 37u * 37u);
+  std::ifstream in(dir / "r.json");
+  const std::string report((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_NE(report.find("\"subdivided\""), std::string::npos) << report;
+}
+
 TEST(Cli, DemToMeshToHeadlessRender) {
   test::TempDir dir;
   auto r = run(bin("shanshui-terrain") + " " + quote(kDem) + " -o " + quote(dir / "msh.obj") + " --max-vertices 20000");
@@ -164,6 +180,8 @@ TEST(Cli, BadInputGivesOneLineNamingTheFileAndWritesNothing) {
        dir / "c.obj"},
       {bin("shanshui-terrain") + " " + quote(kDem) + " -o " + quote(dir / "c.obj") + " --upsample 9", "--upsample",
        dir / "c.obj"},
+      {bin("shanshui-repair") + " " + quote(dir / "nofaces.off") + " -o " + quote(dir / "keep.obj") + " --subdivide 5",
+       "--subdivide", dir / "keep.obj"},
       {bin("shanshui-repair") + " " + quote(dir / "nofaces.off") + " -o " + quote(dir / "keep.obj"), "nofaces.off",
        dir / "keep.obj"},
       {bin("shanshui-render") + " " + quote(dir / "nofaces.off") + " -o " + quote(dir / "d.png"), "nofaces.off",

@@ -17,7 +17,9 @@ int main(int argc, char** argv) {
       "duplicates, orients, splits non-manifold vertices, triangulates, removes degenerate\n"
       "faces and extra components, fills holes; reports what it changed.",
       "shanshui-repair"};
-  app.footer("Example:\n  shanshui-repair broken.off -o fixed.obj --report repair.json");
+  app.footer(
+      "Examples:\n  shanshui-repair broken.off -o fixed.obj --report repair.json\n"
+      "  shanshui-repair lowpoly_land.glb -o land.obj --subdivide 2");
   std::string input, output, reportPath, components = "keep-largest";
   mesh::RepairOptions options;
   bool noFill = false;
@@ -33,6 +35,12 @@ int main(int argc, char** argv) {
       ->check(tools::integerIn(0, 2000000000))
       ->default_val(1000);
   app.add_option("--report", reportPath, "write what was changed as JSON");
+  int subdivide = 0;
+  app.add_option("--subdivide", subdivide,
+                 "then N steps of Loop subdivision (0-4), each making four triangles of one and rounding the "
+                 "surface: a low-poly land drawn as rounded ground (UVs are dropped)")
+      ->check(tools::integerIn(0, mesh::kMostSubdivisions))
+      ->default_val(0);
   return tools::runBatchableTool(app, argc, argv, [&] {
     options.fill_holes = !noFill;
     options.components = components == "fail"       ? mesh::ComponentPolicy::Fail
@@ -43,7 +51,7 @@ int main(int argc, char** argv) {
     if (!reportPath.empty()) outputs.declare(reportPath, "--report", {".json"});
     const mesh::PolygonSoup soup = mesh::readPolygonSoup(input);
     mesh::RepairReport report;
-    const mesh::Mesh m = mesh::repairMesh(soup, options, &report, input);
+    const mesh::Mesh m = mesh::subdivideLoop(mesh::repairMesh(soup, options, &report, input), subdivide, input);
     outputs.stage(output, mesh::encodeMesh(m, output));
     if (!reportPath.empty()) {
       nlohmann::json j;
@@ -56,6 +64,9 @@ int main(int argc, char** argv) {
       for (const auto& [name, value] : report.counters()) j["changes"][name] = value;
       j["attributes_dropped"] = report.attributes_dropped;
       j["warnings"] = report.warnings;
+      if (subdivide > 0) {
+        j["subdivided"] = {{"steps", subdivide}, {"vertices", m.positions.size()}, {"faces", m.triangles.size()}};
+      }
       outputs.stage(reportPath, tools::jsonText(j, reportPath));
     }
     outputs.commit();

@@ -18,6 +18,7 @@
 #include <CGAL/Polygon_mesh_processing/repair_polygon_soup.h>
 #include <CGAL/Polygon_mesh_processing/triangulate_faces.h>
 #include <CGAL/Polygon_mesh_processing/triangulate_hole.h>
+#include <CGAL/Subdivision_method_3/subdivision_methods_3.h>
 #include <CGAL/Surface_mesh.h>
 
 #include "shanshui/core/error.h"
@@ -427,6 +428,29 @@ Mesh repairMesh(const PolygonSoup& soup, const RepairOptions& options, RepairRep
   }
   if (out.normals.empty()) out.normals = vertexNormals(out);
   if (reportOut) *reportOut = r;
+  return out;
+}
+
+Mesh subdivideLoop(const Mesh& m, int iterations, const std::string& what) {
+  if (iterations < 0 || iterations > kMostSubdivisions) {
+    throw makeError(what, ": ", iterations, " Loop subdivisions; expected a whole number from 0 to ",
+                    kMostSubdivisions);
+  }
+  if (iterations == 0) return m;
+  std::vector<Point> points;
+  points.reserve(m.positions.size());
+  for (const glm::dvec3& p : m.positions) points.emplace_back(p.x, p.y, p.z);
+  std::vector<std::array<std::size_t, 3>> faces;
+  faces.reserve(m.triangles.size());
+  for (const glm::uvec3& t : m.triangles) faces.push_back({t.x, t.y, t.z});
+  if (faces.empty() || !PMP::is_polygon_soup_a_polygon_mesh(faces)) {
+    throw makeError(what, ": the mesh is not one manifold surface, so it cannot be Loop-subdivided");
+  }
+  SurfaceMesh sm;
+  PMP::polygon_soup_to_polygon_mesh(points, faces, sm);
+  CGAL::Subdivision_method_3::Loop_subdivision(sm, CGAL::parameters::number_of_iterations(iterations));
+  Mesh out = toMesh(sm);
+  out.normals = vertexNormals(out);
   return out;
 }
 

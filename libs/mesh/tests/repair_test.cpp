@@ -1,7 +1,9 @@
 #include "shanshui/mesh/repair.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <random>
 
 #include "mesh_checks.h"
@@ -306,4 +308,67 @@ TEST(Repair, UvSeamsSurviveTheMergeOfCoincidentVertices) {
 }
 
 }  // namespace
+}  // namespace shanshui::mesh
+
+namespace shanshui::mesh {
+namespace {
+
+// The largest angle (degrees) between the normals of two triangles that share an edge: how
+// sharp the mesh's sharpest crease is.
+double sharpestCrease(const Mesh& m) {
+  std::map<std::pair<unsigned, unsigned>, std::vector<glm::dvec3>> by_edge;
+  for (const glm::uvec3& t : m.triangles) {
+    const glm::dvec3 n =
+        glm::normalize(glm::cross(m.positions[t.y] - m.positions[t.x], m.positions[t.z] - m.positions[t.x]));
+    for (int k = 0; k < 3; ++k) {
+      const unsigned a = t[k], b = t[(k + 1) % 3];
+      by_edge[{std::min(a, b), std::max(a, b)}].push_back(n);
+    }
+  }
+  double worst = 0.0;
+  for (const auto& [edge, normals] : by_edge)
+    if (normals.size() == 2)
+      worst = std::max(worst, glm::degrees(std::acos(std::clamp(glm::dot(normals[0], normals[1]), -1.0, 1.0))));
+  return worst;
+}
+
+}  // namespace
+
+// Loop subdivision (CGAL) makes four triangles of one and a vertex on every edge: the
+// icosahedron (12 vertices, 30 edges, 20 faces) twice gives 162 and 320; a 9 x 9 land grid
+// twice, 33 x 33 with its border kept open. The sharpest crease rounds off: the
+// icosahedron's 41.8° to under a third, the 90° ridge of a roof-shaped grid to under half.
+TEST(Subdivide, LoopMakesFourTrianglesOfOneAndRoundsTheCreases) {
+  const Mesh ico = icosphere(0);
+  ASSERT_EQ(ico.positions.size(), 12u);
+  const Mesh round = subdivideLoop(ico, 2, "icosahedron");
+  EXPECT_EQ(round.positions.size(), 162u);
+  EXPECT_EQ(round.triangles.size(), 320u);
+  EXPECT_EQ(round.normals.size(), round.positions.size());
+  EXPECT_NEAR(sharpestCrease(ico), 41.81, 0.01);
+  EXPECT_LT(sharpestCrease(round), sharpestCrease(ico) / 3.0) << sharpestCrease(round);
+
+  const Mesh roof = heightGrid(9, 9, 1.0, [](double x, double) { return 4.0 - std::abs(x - 4.0); });
+  const Mesh smooth = subdivideLoop(roof, 2, "roof");
+  EXPECT_EQ(smooth.positions.size(), 33u * 33u);
+  EXPECT_EQ(smooth.triangles.size(), 16 * roof.triangles.size());
+  test::expectCleanMesh(smooth, "roof");
+  EXPECT_NEAR(sharpestCrease(roof), 90.0, 1e-9);
+  EXPECT_LT(sharpestCrease(smooth), 0.5 * sharpestCrease(roof)) << sharpestCrease(smooth);
+  EXPECT_EQ(subdivideLoop(roof, 0, "roof").positions, roof.positions);
+}
+
+// Three triangles on one edge are no surface to subdivide, and the steps are bounded: each
+// refused by name.
+TEST(Subdivide, RefusesANonManifoldMeshAndTooManySteps) {
+  Mesh fin;
+  fin.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}};
+  fin.triangles = {{0, 1, 2}, {1, 0, 3}, {0, 1, 4}};
+  test::expectErrorNaming([&] { subdivideLoop(fin, 1, "fin.obj"); }, "fin.obj", "not one manifold surface");
+  test::expectErrorNaming([&] { subdivideLoop(icosphere(0), kMostSubdivisions + 1, "objects.0.subdivide"); },
+                          "objects.0.subdivide", "from 0 to 4");
+  test::expectErrorNaming([&] { subdivideLoop(icosphere(0), -1, "objects.0.subdivide"); }, "objects.0.subdivide",
+                          "Loop subdivisions");
+}
+
 }  // namespace shanshui::mesh

@@ -269,7 +269,8 @@ struct LandLook {
   std::optional<double> water_level;  //!< fraction of the relief from the lowest sample
   bool wooded = false;                //!< trees and moss dots
   int upsample = 1;                   //!< a DEM's objects.0.upsample
-  std::string land_note, relief_note, sea_note, dry_note, wooded_note, upsample_note;
+  int subdivide = 0;                  //!< a land mesh's objects.0.subdivide
+  std::string land_note, relief_note, sea_note, dry_note, wooded_note, upsample_note, subdivide_note;
 };
 
 // Raised when flatter than kLeastReliefRatio; trees and dots when at most kMostWoodedSide
@@ -381,6 +382,10 @@ LandLook loneDemLook(const std::filesystem::path& path, AssetCache* cache) {
 // faces up over nearly all its area, as a heightfield does. A building, a boulder or a boat
 // is closed, so about half its area faces down or sideways. Units are taken as metres.
 constexpr double kLeastUpShare = 0.85;
+// A lone land mesh with fewer vertices than this is Loop-subdivided (at most 3 times) until
+// it has them: a low-poly land's creases along its triangles' edges are drawn as ladders of
+// short lines, its facets as flat tones.
+constexpr std::size_t kLeastLandVertices = 4000;
 
 LandLook meshLook(const mesh::PolygonSoup& soup, const std::string& asked_up) {
   LandLook look;
@@ -413,6 +418,12 @@ LandLook meshLook(const mesh::PolygonSoup& soup, const std::string& asked_up) {
       "(camera.preset deep, mist, objects.0.border.mode dissolve, wet strokes)",
       100.0 * facing_up / total);
   proportions(look, std::max(e[(up + 1) % 3], e[(up + 2) % 3]), e[up], "objects.0.transform.scale");
+  for (std::size_t v = soup.positions.size(); v < kLeastLandVertices && look.subdivide < 3 && v > 0; v *= 4)
+    ++look.subdivide;
+  if (look.subdivide > 0) {
+    look.subdivide_note = formatted("%zu vertices: Loop-subdivided %d times (objects.0.subdivide)",
+                                    soup.positions.size(), look.subdivide);
+  }
   return look;
 }
 
@@ -497,6 +508,7 @@ Scene loadSceneInput(const std::filesystem::path& path, const std::vector<std::s
     }
   }
   if (look.upsample > 1) j["objects"][0]["upsample"] = look.upsample;
+  if (look.subdivide > 0) j["objects"][0]["subdivide"] = look.subdivide;
   if (look.water_level) j["water"] = {{"enabled", true}, {"level", *look.water_level}};
   if (look.wooded) {
     j["objects"][0]["trees"] = {{"enabled", true}};
@@ -515,6 +527,7 @@ Scene loadSceneInput(const std::filesystem::path& path, const std::vector<std::s
     if (!look.dry_note.empty() && !s.water.enabled) notes->push_back(look.dry_note);
     if (look.wooded && o.trees.enabled && o.dots.enabled) notes->push_back(look.wooded_note);
     if (look.upsample > 1 && o.upsample == look.upsample) notes->push_back(look.upsample_note);
+    if (look.subdivide > 0 && o.subdivide == look.subdivide) notes->push_back(look.subdivide_note);
   }
   return s;
 }

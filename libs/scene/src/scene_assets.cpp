@@ -159,11 +159,11 @@ LoadedObject AssetCache::get(const Scene& scene, std::size_t index) {
   const std::string key =
       source.string() + "|" + std::to_string(o.z_scale) + "|" + std::to_string(o.max_vertices) + "|" +
       std::to_string(o.cell_size) + "|" + std::to_string(o.fill_nodata) + std::to_string(o.smooth_steps) + "|" +
-      std::to_string(o.upsample) + "|" + std::to_string(o.crease_angle) + "|" + std::to_string(o.crop[0]) + " " +
-      std::to_string(o.crop[1]) + " " + std::to_string(o.crop[2]) + " " + std::to_string(o.crop[3]) + "|" +
-      std::to_string(static_cast<int>(o.up)) + "|" + std::to_string(o.recentre) + "|" +
-      std::to_string(object_curvature) + std::to_string(curvature) + "|" + std::to_string(o.lines.smoothing) + "|" +
-      (wrinkled ? (o.wrinkle.uv == UvSource::Mesh ? "uv-mesh" : "uv-planar") : "no-uv");
+      std::to_string(o.upsample) + "|" + std::to_string(o.crease_angle) + " " + std::to_string(o.subdivide) + "|" +
+      std::to_string(o.crop[0]) + " " + std::to_string(o.crop[1]) + " " + std::to_string(o.crop[2]) + " " +
+      std::to_string(o.crop[3]) + "|" + std::to_string(static_cast<int>(o.up)) + "|" + std::to_string(o.recentre) +
+      "|" + std::to_string(object_curvature) + std::to_string(curvature) + "|" + std::to_string(o.lines.smoothing) +
+      "|" + (wrinkled ? (o.wrinkle.uv == UvSource::Mesh ? "uv-mesh" : "uv-planar") : "no-uv");
   std::shared_ptr<const ObjectAsset>& slot = meshes_[key];
   std::shared_ptr<const image::Image> wrinkle;
   if (wrinkled) {
@@ -218,6 +218,11 @@ LoadedObject AssetCache::get(const Scene& scene, std::size_t index) {
         asset->mesh = mesh::repairMesh(soup, ropt, nullptr, source.string());
         // The file's normals survive repair only where it kept the file's vertices.
         file_normals = !soup.normals.empty() && asset->mesh.normals == soup.normals;
+        if (o.subdivide > 0) {
+          asset->mesh =
+              mesh::subdivideLoop(asset->mesh, o.subdivide, source.string() + " (" + where(index, "subdivide") + ")");
+          file_normals = false;
+        }
       }
     } catch (const Error& e) {
       meshes_.erase(key);

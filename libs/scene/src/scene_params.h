@@ -19,6 +19,7 @@
 
 #include "shanshui/core/range.h"
 #include "shanshui/ink/diffusion.h"
+#include "shanshui/mesh/repair.h"
 #include "shanshui/noise/gabor.h"
 #include "shanshui/scene/grounding.h"
 #include "shanshui/scene/scene.h"
@@ -491,6 +492,12 @@ void describe(V& v, Object& o) {
             "normals are kept where repair keeps its vertices",
             kRebuild, "degrees"},
            o.crease_angle, {0, 180});
+  v.integer({"subdivide",
+             "mesh only: Loop subdivision steps after repair, each making four triangles of one and rounding the "
+             "surface, so a low-poly land's facets and their creases are not drawn as ladders of lines (a lone land "
+             "mesh under 4000 vertices gets enough of them by itself); 0 keeps the file's triangles",
+             kRebuild},
+            o.subdivide, {0, mesh::kMostSubdivisions});
   v.boolean(
       {"recentre", "move the mesh so its bounding-box centre is the model origin (keeps UTM-sized coordinates precise)",
        kRebuild},

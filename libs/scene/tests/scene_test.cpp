@@ -258,9 +258,9 @@ TEST(Scene, RebuildKeysAreTheOnesThatChangeVariantsOrFiles) {
   }
   const std::set<std::string> expected = {
       "objects", "objects.*.mesh", "objects.*.dem", "objects.*.z_scale", "objects.*.max_vertices",
-      "objects.*.cell_size", "objects.*.fill_nodata", "objects.*.smooth_steps", "objects.*.upsample", "objects.*.crop",
-      "objects.*.crease_angle", "objects.*.up", "objects.*.recentre", "objects.*.lines.enabled",
-      "objects.*.lines.curvature", "objects.*.lines.smoothing", "objects.*.shading.enabled",
+      "objects.*.cell_size", "objects.*.fill_nodata", "objects.*.smooth_steps", "objects.*.upsample",
+      "objects.*.subdivide", "objects.*.crop", "objects.*.crease_angle", "objects.*.up", "objects.*.recentre",
+      "objects.*.lines.enabled", "objects.*.lines.curvature", "objects.*.lines.smoothing", "objects.*.shading.enabled",
       "objects.*.wrinkle.texture", "objects.*.wrinkle.uv", "objects.*.wrinkle.mapping",
       "objects.*.strokes.style",  // builds the strokes pass
       "objects.*.pigment.name",   // builds the pigment pass
@@ -600,9 +600,18 @@ TEST(Scene, ALoneMeshThatIsAPieceOfLandIsPaintedAsLand) {
   EXPECT_FALSE(land.water.enabled) << "a mesh's heights need not be elevations: no sea";
   EXPECT_NEAR(land.objects[0].transform.scale.z, 0.1 * 8000.0 / 400.0, 1e-9) << "1:20 raised to 1:10";
   EXPECT_EQ(land.objects[0].transform.scale.x, 1.0);
-  ASSERT_EQ(notes.size(), 3u);
+  // 41² = 1681 vertices, under 4000: Loop-subdivided once (6561).
+  EXPECT_EQ(land.objects[0].subdivide, 1);
+  ASSERT_EQ(notes.size(), 4u);
   EXPECT_NE(notes[0].find("a piece of land (100 % of its surface faces up)"), std::string::npos) << notes[0];
   EXPECT_NE(notes[1].find("objects.0.transform.scale"), std::string::npos) << notes[1];
+  EXPECT_NE(notes[3].find("1681 vertices: Loop-subdivided 1 times (objects.0.subdivide)"), std::string::npos)
+      << notes[3];
+  AssetCache cache;
+  EXPECT_EQ(cache.get(land, 0).geometry->mesh.positions.size(), 6561u) << "a vertex on each of its 4880 edges";
+  notes.clear();
+  EXPECT_EQ(loadSceneInput(dir / "land.obj", {"objects.0.subdivide=0"}, &notes).objects[0].subdivide, 0);
+  EXPECT_EQ(notes.size(), 3u) << "what the user set is not said";
 
   // The same land Y up, as glTF writes it: land too.
   writeLandObj(dir / "land_y.obj", 21, 10.0, 1, [](int i, int) { return 30.0 + 2.0 * i; });

@@ -258,6 +258,9 @@ struct Object {
   std::array<double, 4> crop{0.0, 0.0, 1.0, 1.0};
   //! mesh only: normals split across edges sharper than this (degrees); 180: smooth.
   double crease_angle = 40.0;
+  //! mesh only: Loop subdivision steps after repair (mesh::subdivideLoop), so a low-poly
+  //! land's facets are drawn as rounded ground; 0 keeps the file's triangles.
+  int subdivide = 0;
   //! true: the mesh is moved so its bounding-box centre is the model origin.
   bool recentre = true;
   Transform transform;
