@@ -437,6 +437,11 @@ Mesh subdivideLoop(const Mesh& m, int iterations, const std::string& what) {
                     kMostSubdivisions);
   }
   if (iterations == 0) return m;
+  const std::size_t made = m.triangles.size() << (2 * iterations);
+  if (made > kMostSubdividedTriangles) {
+    throw makeError(what, ": ", m.triangles.size(), " triangles ", iterations, " times Loop-subdivided would be ", made,
+                    ", more than the ", kMostSubdividedTriangles, " this makes");
+  }
   std::vector<Point> points;
   points.reserve(m.positions.size());
   for (const glm::dvec3& p : m.positions) points.emplace_back(p.x, p.y, p.z);

@@ -358,8 +358,8 @@ TEST(Subdivide, LoopMakesFourTrianglesOfOneAndRoundsTheCreases) {
   EXPECT_EQ(subdivideLoop(roof, 0, "roof").positions, roof.positions);
 }
 
-// Three triangles on one edge are no surface to subdivide, and the steps are bounded: each
-// refused by name.
+// Three triangles on one edge are no surface to subdivide, and the steps and what they make
+// are bounded: each refused by name.
 TEST(Subdivide, RefusesANonManifoldMeshAndTooManySteps) {
   Mesh fin;
   fin.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}};
@@ -369,6 +369,9 @@ TEST(Subdivide, RefusesANonManifoldMeshAndTooManySteps) {
                           "objects.0.subdivide", "from 0 to 4");
   test::expectErrorNaming([&] { subdivideLoop(icosphere(0), -1, "objects.0.subdivide"); }, "objects.0.subdivide",
                           "Loop subdivisions");
+  // 69 938 triangles four times would be 17.9 million: refused before any work.
+  const Mesh big = heightGrid(188, 188, 1.0, [](double, double) { return 0.0; });
+  test::expectErrorNaming([&] { subdivideLoop(big, 4, "big.obj"); }, "big.obj", "more than the 16777216");
 }
 
 }  // namespace shanshui::mesh

@@ -15,6 +15,11 @@
 
 namespace shanshui::scene {
 
+namespace {
+// The most triangles objects.N.subdivide makes: a step that would make more is not taken.
+constexpr std::size_t kMostSubdividedTriangles = std::size_t{1} << 21;
+}  // namespace
+
 void planarUvs(mesh::Mesh& m) {
   const mesh::Bounds b = mesh::bounds(m);
   const double extent = std::max({b.size().x, b.size().y, 1e-300});
@@ -218,9 +223,12 @@ LoadedObject AssetCache::get(const Scene& scene, std::size_t index) {
         asset->mesh = mesh::repairMesh(soup, ropt, nullptr, source.string());
         // The file's normals survive repair only where it kept the file's vertices.
         file_normals = !soup.normals.empty() && asset->mesh.normals == soup.normals;
-        if (o.subdivide > 0) {
+        // The steps asked for, or the most that stay within kMostSubdividedTriangles.
+        int steps = o.subdivide;
+        while (steps > 0 && (asset->mesh.triangles.size() << (2 * steps)) > kMostSubdividedTriangles) --steps;
+        if (steps > 0) {
           asset->mesh =
-              mesh::subdivideLoop(asset->mesh, o.subdivide, source.string() + " (" + where(index, "subdivide") + ")");
+              mesh::subdivideLoop(asset->mesh, steps, source.string() + " (" + where(index, "subdivide") + ")");
           file_normals = false;
         }
       }

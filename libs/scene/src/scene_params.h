@@ -495,7 +495,8 @@ void describe(V& v, Object& o) {
   v.integer({"subdivide",
              "mesh only: Loop subdivision steps after repair, each making four triangles of one and rounding the "
              "surface, so a low-poly land's facets and their creases are not drawn as ladders of lines (a lone land "
-             "mesh under 4000 vertices gets enough of them by itself); 0 keeps the file's triangles",
+             "mesh under 4000 vertices gets enough of them by itself; a step that would make more than 2 million "
+             "triangles is not taken); 0 keeps the file's triangles",
              kRebuild},
             o.subdivide, {0, mesh::kMostSubdivisions});
   v.boolean(

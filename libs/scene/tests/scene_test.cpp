@@ -609,6 +609,12 @@ TEST(Scene, ALoneMeshThatIsAPieceOfLandIsPaintedAsLand) {
       << notes[3];
   AssetCache cache;
   EXPECT_EQ(cache.get(land, 0).geometry->mesh.positions.size(), 6561u) << "a vertex on each of its 4880 edges";
+  // Asked for four steps, a land of 199 712 triangles takes one (798 848): a second would
+  // make 3.2 million, over the 2 million a scene's subdivision makes.
+  writeLandObj(dir / "big.obj", 317, 10.0, 2, [](int i, int j) { return 0.1 * i * j; });
+  nlohmann::json big_scene = {{"objects", {{{"mesh", "big.obj"}, {"subdivide", 4}}}}};
+  EXPECT_EQ(cache.get(parseScene(big_scene, "s.json", dir.path().string()), 0).geometry->mesh.triangles.size(),
+            4u * 199712u);
   notes.clear();
   EXPECT_EQ(loadSceneInput(dir / "land.obj", {"objects.0.subdivide=0"}, &notes).objects[0].subdivide, 0);
   EXPECT_EQ(notes.size(), 3u) << "what the user set is not said";

@@ -61,15 +61,18 @@ struct RepairReport {
 Mesh repairMesh(const PolygonSoup& soup, const RepairOptions& options, RepairReport* report,
                 const std::string& name = "mesh");
 
-//! Most Loop subdivision steps subdivideLoop takes (each makes four triangles of one).
+//! Most Loop subdivision steps subdivideLoop takes (each makes four triangles of one), and
+//! the most triangles it makes.
 constexpr int kMostSubdivisions = 4;
+constexpr std::size_t kMostSubdividedTriangles = std::size_t{1} << 24;
 
 //! The triangle mesh `iterations` times Loop-subdivided (CGAL::Subdivision_method_3; the
 //! border as a cubic B-spline): each step makes four triangles of one and moves the
 //! vertices towards the smooth limit surface, so a low-poly land's facets and their creases
 //! become rounded ground. Vertex normals are made anew; UVs are dropped (they would need
 //! their seams subdivided with them). iterations 0: `m` as it is. Throws Error naming `what`
-//! for iterations outside [0, kMostSubdivisions], or a mesh that is no manifold surface.
+//! for iterations outside [0, kMostSubdivisions], a result over kMostSubdividedTriangles, or
+//! a mesh that is no manifold surface.
 Mesh subdivideLoop(const Mesh& m, int iterations, const std::string& what);
 
 }  // namespace shanshui::mesh
