@@ -421,8 +421,9 @@ LandLook meshLook(const mesh::PolygonSoup& soup, const std::string& asked_up) {
   for (std::size_t v = soup.positions.size(); v < kLeastLandVertices && look.subdivide < 3 && v > 0; v *= 4)
     ++look.subdivide;
   if (look.subdivide > 0) {
-    look.subdivide_note = formatted("%zu vertices: Loop-subdivided %d times (objects.0.subdivide)",
-                                    soup.positions.size(), look.subdivide);
+    const char* times[] = {"", "once", "twice", "3 times"};
+    look.subdivide_note = formatted("%zu vertices: Loop-subdivided %s (objects.0.subdivide)", soup.positions.size(),
+                                    times[look.subdivide]);
   }
   return look;
 }
