@@ -55,6 +55,10 @@ Decoded readBinaryPnm(const std::filesystem::path& path) {
   }
   const long long width = fields[0], height = fields[1], maxval = fields[2];
   if (width <= 0 || height <= 0) throw makeError(name, ": zero-size image (", width, "x", height, ")");
+  // Each side below 2^31, so that the products below stay within 64 bits.
+  if (width > (1LL << 31) || height > (1LL << 31)) {
+    throw makeError(name, ": PNM of ", width, " x ", height, " pixels; expected sides under 2147483648");
+  }
   if (maxval < 1 || maxval > 65535) {
     throw makeError(name, ": PNM maximum value ", maxval, " is outside 1..65535");
   }

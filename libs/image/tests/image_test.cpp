@@ -320,6 +320,9 @@ TEST(ImageIo, AHeaderPromisingMoreThanTheFileCanHoldIsRefusedBeforeDecoding) {
   std::ofstream(dir / "wide.pgm", std::ios::binary) << "P2#\n77777777\n\n\n1\n\n62\n\n\n";
   test::expectErrorNaming([&] { loadImage(dir / "wide.pbm"); }, "wide.pbm", "truncated or corrupt PNM");
   test::expectErrorNaming([&] { loadImage(dir / "wide.pgm"); }, "wide.pgm", "truncated or corrupt PNM");
+  // Sides whose product overflows 64 bits (the fuzzer's 6666966665 x 3666966665 P6).
+  std::ofstream(dir / "huge.ppm", std::ios::binary) << "P6666966665\n3666966665\n3\n6";
+  test::expectErrorNaming([&] { loadImage(dir / "huge.ppm"); }, "huge.ppm", "expected sides under 2147483648");
   std::ofstream(dir / "ok.pbm", std::ios::binary) << "P4\n9 2\n" << std::string("\xff\x80\x00\x00", 4);
   std::ofstream(dir / "ok.pgm", std::ios::binary) << "P2\n3 1\n9\n0 4 9\n";
   std::ofstream(dir / "ok.ppm", std::ios::binary) << "P3 1 1 255 10 20 30";
