@@ -72,6 +72,30 @@ TEST(Cli, TerrainUpsamplesACoarseGrid) {
   EXPECT_EQ(mesh::readPolygonSoup(dir / "fine.obj").positions.size(), 319u * 319u);
 }
 
+// --smooth-steps: the sample hill stores tenths; smoothed within them, every vertex stays
+// within 0.05 m of the height the plain mesh has, and some move.
+TEST(Cli, TerrainSmoothsHeightsStoredInSteps) {
+  test::TempDir dir;
+  const std::string base = bin("shanshui-terrain") + " " + quote(test::sourceDir() / "samples/terrain/hill.asc");
+  auto r = run(base + " -o " + quote(dir / "plain.obj"));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_EQ(r.output.find("smoothed within half a step"), std::string::npos) << r.output;
+  r = run(base + " -o " + quote(dir / "smooth.obj") + " --smooth-steps");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("steps of 0.1 m smoothed within half a step"), std::string::npos) << r.output;
+  const mesh::PolygonSoup plain = mesh::readPolygonSoup(dir / "plain.obj"),
+                          smooth = mesh::readPolygonSoup(dir / "smooth.obj");
+  ASSERT_EQ(plain.positions.size(), smooth.positions.size());
+  double worst = 0.0, moved = 0.0;
+  for (std::size_t i = 0; i < plain.positions.size(); ++i) {
+    const double d = std::abs(plain.positions[i].z - smooth.positions[i].z);
+    worst = std::max(worst, d);
+    moved += d > 1e-3 ? 1.0 : 0.0;
+  }
+  EXPECT_LE(worst, 0.05 + 1e-6);
+  EXPECT_GT(moved, 0.1 * static_cast<double>(plain.positions.size()));
+}
+
 // --subdivide: the sample hill's mesh at every 16th sample (10 x 10) Loop-subdivided twice
 // is 37 x 37 vertices, and the report says so.
 TEST(Cli, RepairSubdividesALowPolyLand) {

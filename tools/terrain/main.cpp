@@ -40,6 +40,10 @@ int main(int argc, char** argv) {
       ->expected(4);
   app.add_flag("--fill-nodata", field.fill_nodata,
                "fill no-data samples (voids, the sea) by interpolation instead of leaving holes");
+  bool smooth_steps = false;
+  app.add_flag("--smooth-steps", smooth_steps,
+               "smooth heights stored in steps (whole metres, tenths, grey levels) within half a step, as the "
+               "renderer does when it loads a DEM, so gentle ground is not meshed as a staircase of cracks");
   int upsample = 1;
   app.add_option("--upsample", upsample,
                  "make the grid N times finer along each side by bicubic interpolation (1-8; every stored sample "
@@ -57,10 +61,11 @@ int main(int argc, char** argv) {
     // A large raster is read decimated to the vertex budget (GDAL formats) instead of whole.
     field.max_samples = meshOptions.max_vertices;
     terrain::Heightfield h = terrain::loadHeightfield(input, field);
-    terrain::upsample(h, upsample, "--upsample");
     const auto [lo, hi] = h.elevationRange();
     std::fprintf(stderr, "%s; cells %.3f x %.3f m; elevations %.1f to %.1f m; %zu of %zu samples valid\n",
                  h.source.c_str(), h.cell_x, h.cell_y, lo, hi, h.validCount(), h.elevation.size());
+    if (smooth_steps) terrain::dequantize(h);
+    terrain::upsample(h, upsample, "--upsample");
     for (const auto& note : h.notes) std::fprintf(stderr, "note: %s\n", note.c_str());
     terrain::TerrainMeshInfo info;
     const mesh::Mesh m = terrain::heightfieldToMesh(h, meshOptions, &info, input);
