@@ -208,9 +208,7 @@ LoadedObject AssetCache::get(const Scene& scene, std::size_t index) {
         if (o.smooth_steps) terrain::dequantize(*field);
         // Finer by the factor asked, or by the most that stays within the mesh's vertices.
         int factor = o.upsample;
-        while (factor > 1 && static_cast<double>((field->columns - 1) * factor + 1) * ((field->rows - 1) * factor + 1) >
-                                 static_cast<double>(o.max_vertices))
-          --factor;
+        while (factor > 1 && terrain::upsampledSamples(*field, factor) > static_cast<double>(o.max_vertices)) --factor;
         terrain::upsample(*field, factor, where(index, "upsample"));
         asset->mesh = terrain::heightfieldToMesh(*field, topt, nullptr, source.string());
       } else {

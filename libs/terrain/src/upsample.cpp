@@ -20,7 +20,7 @@ void upsample(Heightfield& h, int factor, const std::string& what) {
   if (factor == 1 || h.columns < 2 || h.rows < 2) return;
   const int w = h.columns, n = h.rows;
   const int fine_w = (w - 1) * factor + 1, fine_n = (n - 1) * factor + 1;
-  if (static_cast<double>(fine_w) * fine_n > static_cast<double>(kMaxGridSamples)) {
+  if (upsampledSamples(h, factor) > static_cast<double>(kMaxGridSamples)) {
     throw makeError(what, ": ", w, " x ", n, " samples ", factor, " times finer is ", fine_w, " x ", fine_n,
                     ", more than the ", kMaxGridSamples, " samples a grid may hold");
   }
@@ -124,13 +124,16 @@ void upsample(Heightfield& h, int factor, const std::string& what) {
   h.notes.push_back(note.str());
 }
 
+double upsampledSamples(const Heightfield& h, int factor) {
+  return (static_cast<double>(h.columns - 1) * factor + 1.0) * (static_cast<double>(h.rows - 1) * factor + 1.0);
+}
+
 int upsampleFactor(const Heightfield& h, int least_side, std::size_t max_samples) {
   const int side = std::max(h.columns, h.rows);
   if (side < 2 || side >= least_side) return 1;
   int factor = 1;
   while (factor < kMostUpsample && (side - 1) * factor + 1 < least_side) {
-    const double next = static_cast<double>((h.columns - 1) * (factor + 1) + 1) * ((h.rows - 1) * (factor + 1) + 1);
-    if (next > static_cast<double>(max_samples)) break;
+    if (upsampledSamples(h, factor + 1) > static_cast<double>(max_samples)) break;
     ++factor;
   }
   return factor;

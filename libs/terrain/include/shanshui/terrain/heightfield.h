@@ -125,6 +125,10 @@ constexpr int kMostUpsample = 8;
 //! done; outside [1, kMostUpsample], or a result over kMaxGridSamples: Error naming `what`.
 void upsample(Heightfield& h, int factor, const std::string& what);
 
+//! How many samples upsample(h, factor) makes: ((columns − 1)·factor + 1)·((rows − 1)·factor + 1),
+//! as a double (no overflow).
+double upsampledSamples(const Heightfield& h, int factor);
+
 //! The least factor (at most kMostUpsample) that gives the grid's larger side at least
 //! `least_side` samples, within `max_samples` in all; 1 when it has them already.
 int upsampleFactor(const Heightfield& h, int least_side, std::size_t max_samples);
