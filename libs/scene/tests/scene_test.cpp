@@ -420,6 +420,39 @@ TEST(Scene, ALoneDemFlatterThanOneInTenIsRaisedAndItsSeaBecomesWater) {
   EXPECT_EQ(loadSceneInput(dir / "missing.asc").objects[0].z_scale, 1.0);
 }
 
+// Wooded land wider than 3 km has its trees massed: a ridge 12 km across (f = 3/12) gets
+// groves of four times the default's 18 trees, a quarter of the default open-slope share
+// and a quarter of the dots' density, and says so; one 2.4 km across keeps the defaults; an
+// override of one key wins over the rule and the rest still apply.
+TEST(Scene, WideLoneLandMassesItsTreesInFewerLargerGroves) {
+  test::TempDir dir;
+  const elements::TreeOptions trees;
+  const elements::DotOptions dots;
+  auto ridge = [](int c) { return 100.0 + 4000.0 * std::sin(3.14159265 * c / 99.0); };
+  writeGrid(dir / "wide.asc", 100, 100, 120.0, ridge);  // 100 cells of 120 m
+  std::vector<std::string> notes;
+  const Scene wide = loadSceneInput(dir / "wide.asc", {}, &notes);
+  const Object& w = wide.objects[0];
+  ASSERT_TRUE(w.trees.enabled && w.dots.enabled);
+  EXPECT_NEAR(w.trees.grove, 4.0 * trees.grove, 1e-9);
+  EXPECT_NEAR(w.trees.open, 0.25 * trees.open, 1e-12);
+  EXPECT_NEAR(w.dots.density, 0.25 * dots.density, 1e-12);
+  EXPECT_EQ(w.trees.grove_radius, trees.grove_radius) << "the same radius: denser groves";
+  const auto massed = std::find_if(notes.begin(), notes.end(),
+                                   [](const std::string& n) { return n.find("massed in groves of 72") != n.npos; });
+  EXPECT_NE(massed, notes.end()) << (notes.empty() ? "" : notes.front());
+
+  writeGrid(dir / "narrow.asc", 100, 100, 24.0, ridge);
+  const Scene narrow = loadSceneInput(dir / "narrow.asc");
+  EXPECT_EQ(narrow.objects[0].trees.grove, trees.grove);
+  EXPECT_EQ(narrow.objects[0].trees.open, trees.open);
+  EXPECT_EQ(narrow.objects[0].dots.density, dots.density);
+
+  const Scene asked = loadSceneInput(dir / "wide.asc", {"objects.0.trees.grove=10"});
+  EXPECT_EQ(asked.objects[0].trees.grove, 10.0);
+  EXPECT_NEAR(asked.objects[0].trees.open, 0.25 * trees.open, 1e-12);
+}
+
 // Land below sea level is sea only where it is open to the grid's edge. A basin 86 m deep
 // ringed by mountains (Death Valley's Badwater) stays dry and says so; the same basin with a
 // channel at 0 m to the edge, or with its sea stored as no data along the edge, is sea. The
