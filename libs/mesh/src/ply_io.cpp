@@ -207,6 +207,9 @@ PolygonSoup readPly(const fs::path& path) {
   PolygonSoup soup;
   BodyReader body(in, format, path);
   for (const Element& e : elements) {
+    // An element without properties takes no bytes however many it says it has (a header
+    // counting three billion of them made this loop run for minutes): nothing to read.
+    if (e.properties.empty()) continue;
     const bool isVertex = e.name == "vertex";
     const bool isFace = e.name == "face";
     int ix = -1, iy = -1, iz = -1, inx = -1, iny = -1, inz = -1, iu = -1, iv = -1, iface = -1;

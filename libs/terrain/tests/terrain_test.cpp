@@ -329,6 +329,67 @@ TEST(Dequantize, OnlyHeightsStoredInStepsAreTouchedAndNoDataStaysSo) {
   }
 }
 
+// The work is done on the box around the heights and in bands of rows, so that its memory is
+// a band's: a hill in tenths inside a wide frame of no data, with a hole, is smoothed the same
+// to the bit in bands of one row (an apron of 39 rows each side) as in one band; the frame
+// stays no data; and the same hill with the frame cut off differs only within the kernel's
+// reach of the cut (where the frame's no data gave way to the grid's edge), not beyond it.
+TEST(Dequantize, BandsOfRowsAndTheBoxAroundTheHeightsGiveTheWholeGridsResult) {
+  const int side = 200, frame = 30;
+  Heightfield framed = test::steppedHill(40.0, 0.1);
+  ASSERT_EQ(framed.columns, side);
+  for (int r = 0; r < side; ++r) {
+    for (int c = 0; c < side; ++c) {
+      if (r < frame || c < frame || r >= side - frame || c >= side - 2 * frame || (r == 100 && c == 90))
+        framed.elevation[static_cast<std::size_t>(r) * side + c] = kNoData;
+    }
+  }
+  Heightfield whole = framed, banded = framed;
+  const Dequantized a = dequantize(whole);
+  const Dequantized b = dequantize(banded, kDequantizeSigma, kDequantizeSweeps, 1);
+  EXPECT_EQ(a.step, b.step);
+  EXPECT_EQ(a.largest_change, b.largest_change);
+  for (std::size_t i = 0; i < whole.elevation.size(); ++i) {
+    if (std::isnan(framed.elevation[i])) {
+      ASSERT_TRUE(std::isnan(whole.elevation[i]) && std::isnan(banded.elevation[i])) << i;
+      continue;
+    }
+    ASSERT_EQ(whole.elevation[i], banded.elevation[i]) << i;
+    ASSERT_LE(std::abs(whole.elevation[i] - framed.elevation[i]), 0.05 + 1e-9) << i;
+  }
+  // A height in each corner of the grid makes the box the whole grid: the hill, beyond the
+  // sweeps' reach of the corners, is smoothed the same to the bit as in its own box.
+  Heightfield cornered = framed;
+  for (int k : {0, side - 1}) {
+    for (int j : {0, side - 1}) cornered.elevation[static_cast<std::size_t>(k) * side + j] = 0.0;
+  }
+  dequantize(cornered);
+  for (std::size_t i = 0; i < whole.elevation.size(); ++i) {
+    if (std::isnan(framed.elevation[i])) continue;
+    ASSERT_EQ(cornered.elevation[i], whole.elevation[i]) << i;
+  }
+  // The frame cut off: the same wherever the edge (an extension) is beyond the sweeps' reach.
+  Heightfield cut;
+  cut.columns = side - 3 * frame;
+  cut.rows = side - 2 * frame;
+  for (int r = frame; r < side - frame; ++r) {
+    for (int c = frame; c < side - 2 * frame; ++c) cut.elevation.push_back(framed.at(c, r));
+  }
+  cut.elevation[static_cast<std::size_t>(100 - frame) * cut.columns + 90 - frame] = kNoData;
+  dequantize(cut);
+  const int reach = kDequantizeSweeps * dequantizeReach(kDequantizeSigma);
+  int compared = 0;
+  for (int r = reach; r < cut.rows - reach; ++r) {
+    for (int c = reach; c < cut.columns - reach; ++c) {
+      const double z = cut.at(c, r);
+      if (std::isnan(z)) continue;
+      ASSERT_NEAR(z, whole.at(c + frame, r + frame), 1e-9) << c << " " << r;
+      ++compared;
+    }
+  }
+  EXPECT_GT(compared, 1000);
+}
+
 }  // namespace shanshui::terrain
 
 namespace shanshui::terrain {

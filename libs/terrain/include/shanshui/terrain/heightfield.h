@@ -98,6 +98,8 @@ double heightStep(const Heightfield& h);
 //! stored height (dequantize).
 constexpr double kDequantizeSigma = 2.0;
 constexpr int kDequantizeSweeps = 2;
+//! Samples a band of dequantize's work holds (about 100 bytes each while it runs).
+constexpr std::size_t kDequantizeBandSamples = std::size_t{1} << 22;
 
 //! What dequantize found and did.
 struct Dequantized {
@@ -111,7 +113,13 @@ struct Dequantized {
 //! then every sample held to within half a step of its stored height, kDequantizeSweeps
 //! times. The surface then says what the file says, to its precision. No-data samples stay
 //! so and are not used; heights not stored in steps are not touched. Says so in `notes`.
-Dequantized dequantize(Heightfield& h, double sigma = kDequantizeSigma, int sweeps = kDequantizeSweeps);
+//! It works on the box around the samples that hold a height, in bands of rows of at most
+//! `band_samples` samples (and an apron of rows the sweeps' reach needs), so its memory is a
+//! band's whatever the grid's size; the result does not depend on `band_samples`.
+Dequantized dequantize(Heightfield& h, double sigma = kDequantizeSigma, int sweeps = kDequantizeSweeps,
+                       std::size_t band_samples = kDequantizeBandSamples);
+//! How many cells the smoothing of one sweep reaches (dequantize's kernel, and its padding).
+int dequantizeReach(double sigma);
 
 //! Most times finer upsample() makes a grid along each side.
 constexpr int kMostUpsample = 8;
