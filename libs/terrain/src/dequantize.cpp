@@ -54,11 +54,11 @@ double heightStep(const Heightfield& h) {
 
 namespace {
 
-// Smooths rows [top, bottom) x columns [left, right) of `h` (sweeps of the kernel, each held
-// within half a step) and writes the rows [keep_top, keep_bottom) of the result to `out`, a
-// grid of the columns [left, right) from row `out_top`. The window's own edges are extended as the grid's are, so only
-// a window edge that is the grid's edge, or one whose row or column holds no data, gives the samples near it their
-// final values; rows within `sweeps` kernel reaches of any other edge are not kept.
+// Smooths rows [top, bottom) x columns [left, right) of `h` (sweeps of the kernel, each
+// held within half a step) and writes rows [keep_top, keep_bottom) of the result to `out`,
+// a grid of the columns [left, right) from row `out_top`. The window's edges are extended as
+// the grid's are: right at the grid's edge and at a row or column of no data, wrong within
+// `sweeps` reaches of the kernel of any other edge, so rows that near one are not kept.
 void smoothWindow(const Heightfield& h, double sigma, int sweeps, double half, int top, int bottom, int left, int right,
                   int keep_top, int keep_bottom, int out_top, std::vector<double>& out) {
   const int w = right - left, n = bottom - top, columns = h.columns;
@@ -161,9 +161,8 @@ Dequantized dequantize(Heightfield& h, double sigma, int sweeps, std::size_t ban
   // cannot see past, so memory is a band's (about a dozen doubles a sample) whatever the
   // grid's size, and the result is the whole grid's.
   const int apron = (sweeps + 1) * dequantizeReach(sigma);
-  const int rows_per_band =
-      static_cast<int>(std::clamp<std::size_t>(band_samples / static_cast<std::size_t>(right - left), 1, n));
   const std::size_t box = static_cast<std::size_t>(right - left);
+  const int rows_per_band = static_cast<int>(std::clamp<std::size_t>(band_samples / box, 1, n));
   std::vector<double> smoothed(box * static_cast<std::size_t>(bottom - top));
   for (int band = top; band < bottom; band += rows_per_band) {
     const int band_end = std::min(band + rows_per_band, bottom);
