@@ -99,7 +99,9 @@ void leafy(Grower& g) {
         kPi * (-0.05f + 1.1f * (static_cast<float>(c % ring) + g.uniform(0.2f, 0.8f)) / static_cast<float>(ring));
     const float r = c < ring ? g.uniform(0.8f, 1.05f) : g.uniform(0.1f, 0.4f);
     const glm::vec2 centre = crown + r * glm::vec2(-0.24f * std::cos(a), 0.24f * std::sin(a));
-    g.add(split, centre, 0.02f, 0.9f, Shape::Branch, kNear);
+    // The limbs to the clumps inside the ring are drawn in the middle distance too: without
+    // them its dabs (from about half the height) hung over a trunk that ends at the fork.
+    g.add(split, centre, 0.02f, 0.9f, Shape::Branch, c < ring ? kNear : (kMiddle | kNear));
     // Dot leaves (点叶): small horizontal dabs, dense at the clump's heart, of one ink.
     const float ink = g.uniform(0.6f, 0.95f);
     const int leaves = g.count(12, 18);
@@ -131,9 +133,12 @@ void bare(Grower& g) {
   g.add({0.0f, 0.1f}, {0.0f, 0.78f}, 0.14f, 0.6f, Shape::Leaf, kFar);
 }
 
-// A distant tree: a clump of upright dots (the Mi family's dots) over a short stem.
+// A distant tree: a clump of upright dots (the Mi family's dots) over a short stem. The stem
+// is drawn at the middle level too, under its two dabs, which reach down to it: they began at
+// 0.38 of the height with nothing under them, and a tree 25 px high on a near bank read as two
+// ovals floating over the water.
 void distant(Grower& g) {
-  g.add({0.0f, 0.0f}, {g.uniform(-0.03f, 0.03f), 0.3f}, 0.03f, 0.85f, Shape::Branch, kNear);
+  g.add({0.0f, 0.0f}, {g.uniform(-0.03f, 0.03f), 0.3f}, 0.03f, 0.85f, Shape::Branch, kMiddle | kNear);
   // Drawn near, the crown is a dense clump of small upright dabs (a painter's vertical dots),
   // each under a tenth of the crown's width, overlapping into one mass.
   const int dots = g.count(24, 32);
@@ -144,8 +149,8 @@ void distant(Grower& g) {
     g.add(c - glm::vec2(0.0f, 0.5f * len), c + glm::vec2(g.uniform(-0.01f, 0.01f), 0.5f * len),
           g.uniform(0.04f, 0.055f), g.uniform(0.7f, 0.95f), Shape::Leaf, kNear);
   }
-  g.add({-0.06f, 0.38f}, {-0.05f, 0.72f}, 0.14f, 0.85f, Shape::Leaf, kMiddle);
-  g.add({0.06f, 0.42f}, {0.05f, 0.76f}, 0.14f, 0.85f, Shape::Leaf, kMiddle);
+  g.add({-0.06f, 0.26f}, {-0.05f, 0.7f}, 0.14f, 0.85f, Shape::Leaf, kMiddle);
+  g.add({0.06f, 0.3f}, {0.05f, 0.76f}, 0.14f, 0.85f, Shape::Leaf, kMiddle);
   g.add({0.0f, 0.3f}, {0.0f, 0.82f}, 0.28f, 0.82f, Shape::Leaf, kFar);
 }
 

@@ -276,6 +276,34 @@ TEST(Brushwork, EveryKindGrowsMoreMarksNearThanFarWithinItsHeight) {
   }
 }
 
+// In the middle distance (14 to 88 px high) no part of a tree hangs over empty ground: the
+// heights its middle-level marks cover, each mark's axis widened by half its width across
+// it, run without a gap from the foot to its top. A distant tree's two dabs began at 0.38 of
+// its height over nothing, and a leafy tree's clumps at about half over a trunk that ends at
+// the fork: on a pale bank they floated.
+TEST(Brushwork, NoTreeHangsOverEmptyGroundInTheMiddleDistance) {
+  for (Kind k : {Kind::Pine, Kind::Leafy, Kind::Bare, Kind::Distant}) {
+    for (std::uint32_t seed = 1; seed <= 40; ++seed) {
+      SCOPED_TRACE(std::to_string(static_cast<int>(k)) + " seed " + std::to_string(seed));
+      std::vector<std::pair<float, float>> spans;
+      for (const Mark& m : growBrushwork(k, seed)) {
+        if ((m.levels & kMiddle) == 0) continue;
+        const glm::vec2 d = m.b - m.a;
+        const float across = glm::length(d) > 0.0f ? 0.5f * m.width * std::abs(d.x) / glm::length(d) : 0.5f * m.width;
+        spans.emplace_back(std::min(m.a.y, m.b.y) - across, std::max(m.a.y, m.b.y) + across);
+      }
+      ASSERT_FALSE(spans.empty());
+      std::sort(spans.begin(), spans.end());
+      EXPECT_LE(spans.front().first, 0.01f) << "stands on its foot";
+      float reached = spans.front().second;
+      for (const auto& [lo, hi] : spans) {
+        EXPECT_LE(lo, reached + 0.01f) << "a gap from " << reached << " to " << lo;
+        reached = std::max(reached, hi);
+      }
+    }
+  }
+}
+
 // Drawn near, a distant-kind tree (standing large on a near bank) is a mass of small upright
 // dots that fills its crown, not a few large dabs each a fifth of the tree, which read as
 // separate grey ovals. Oracle: the crown's ellipse (centre 0.57 up, half-axes 0.13 and 0.21)
