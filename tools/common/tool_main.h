@@ -10,6 +10,7 @@
 #include <exception>
 #include <functional>
 #include <string>
+#include <system_error>
 
 #include <CLI/CLI.hpp>
 
@@ -89,6 +90,15 @@ inline int runTool(CLI::App& app, int argc, char** argv, const std::function<voi
     std::fprintf(stderr,
                  "%s: error: %s%sout of memory%s: the input or the requested size is too large (--max-memory)\n",
                  app.get_name().c_str(), last.c_str(), last.empty() ? "" : ": ", addressSpaceLimitNote().c_str());
+    endIfMemoryRanOut();
+    return 1;
+  } catch (const std::system_error& e) {
+    // A thread that cannot start (its stack is address space; OpenCV and the GL driver start
+    // them) is memory running out as much as a failed allocation is.
+    const bool memory =
+        e.code() == std::errc::resource_unavailable_try_again || e.code() == std::errc::not_enough_memory;
+    std::fprintf(stderr, "%s: error: %s%s%s\n", app.get_name().c_str(), memory ? "could not start a thread: " : "",
+                 e.what(), memory ? addressSpaceLimitNote().c_str() : "");
     endIfMemoryRanOut();
     return 1;
   } catch (const std::exception& e) {
