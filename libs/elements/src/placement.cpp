@@ -213,9 +213,32 @@ Site Terrain::site(double x, double y) const {
   return s;
 }
 
-std::vector<Instance> placeElements(const mesh::Mesh& m, const TreeOptions& trees, const DotOptions& dots,
+double massing(double massed_beyond, double side) {
+  return massed_beyond > 0.0 && side > massed_beyond ? massed_beyond / side : 1.0;
+}
+
+TreeOptions massedTrees(const TreeOptions& t, double side) {
+  TreeOptions out = t;
+  const double f = massing(t.massed_beyond, side);
+  out.grove = t.grove / f;
+  out.open = t.open * f;
+  return out;
+}
+
+DotOptions massedDots(const DotOptions& d, double side) {
+  DotOptions out = d;
+  out.density = d.density * massing(d.massed_beyond, side);
+  return out;
+}
+
+std::vector<Instance> placeElements(const mesh::Mesh& m, const TreeOptions& asked_trees, const DotOptions& asked_dots,
                                     std::uint64_t scene_seed, const std::string& where) {
   std::vector<Instance> out;
+  if (m.triangles.empty()) return out;
+  const glm::dvec3 extent = mesh::bounds(m).size();
+  const double land_side = std::max(extent.x, extent.y);
+  const TreeOptions trees = massedTrees(asked_trees, land_side);
+  const DotOptions dots = massedDots(asked_dots, land_side);
   double shares = 0.0;
   for (double k : trees.kinds) shares += k;
   const bool want_trees = trees.enabled && trees.density > 0.0 && shares > 0.0;  // no kind: no tree

@@ -210,6 +210,53 @@ TEST(Placement, MossDotsGatherOnRidgesAndRockEdgesAndAtTreeFeet) {
   EXPECT_LE(feet.size() - n, 3 * n);
 }
 
+// Land wider than 3 km masses its trees and dots: on ridged land 12 km across (f = 3/12)
+// the placement is, to the bit, the one asked with massing off and groves of 4 x 18 trees,
+// a quarter of the open share and a quarter of the dots' density; its trees stand in
+// tighter clumps than the same keys unmassed (Clark and Evans' ratio); on land 2.4 km
+// across the keys are used as they are.
+TEST(Placement, WideLandMassesItsTreesInFewerDenserGroves) {
+  auto ridges = [](double x, double y) { return 300.0 * std::sin(x / 900.0) * std::cos(y / 1300.0); };
+  const mesh::Mesh wide = mesh::heightGrid(121, 121, 100.0, ridges);
+  TreeOptions t = trees(0.3);
+  DotOptions d;
+  d.enabled = true;
+  EXPECT_DOUBLE_EQ(massing(t.massed_beyond, 12000.0), 0.25);
+  TreeOptions by_hand = t;
+  by_hand.massed_beyond = 0.0;
+  by_hand.grove = 4.0 * t.grove;
+  by_hand.open = 0.25 * t.open;
+  DotOptions dots_by_hand = d;
+  dots_by_hand.massed_beyond = 0.0;
+  dots_by_hand.density = 0.25 * d.density;
+  const std::vector<Instance> massed = placeElements(wide, t, d, 7);
+  const std::vector<Instance> asked = placeElements(wide, by_hand, dots_by_hand, 7);
+  ASSERT_EQ(massed.size(), asked.size());
+  ASSERT_GT(treesIn(massed), 300u);
+  for (std::size_t i = 0; i < massed.size(); ++i) {
+    ASSERT_EQ(massed[i].position, asked[i].position) << i;
+    ASSERT_EQ(massed[i].seed, asked[i].seed) << i;
+  }
+  TreeOptions plain = t;
+  plain.massed_beyond = 0.0;
+  const DotOptions no_dots;
+  const std::vector<Instance> massed_trees = placeElements(wide, t, no_dots, 7),
+                              plain_trees = placeElements(wide, plain, no_dots, 7);
+  const double area = 12000.0 * 12000.0;
+  EXPECT_LT(clarkEvans(massed_trees, area), 0.6 * clarkEvans(plain_trees, area));
+
+  const mesh::Mesh narrow = mesh::heightGrid(121, 121, 20.0, ridges);
+  TreeOptions dense = trees(20.0), dense_plain = dense;
+  dense_plain.massed_beyond = 0.0;
+  DotOptions dots_plain = d;
+  dots_plain.massed_beyond = 0.0;
+  const std::vector<Instance> a = placeElements(narrow, dense, d, 7),
+                              b = placeElements(narrow, dense_plain, dots_plain, 7);
+  ASSERT_EQ(a.size(), b.size());
+  ASSERT_GT(a.size(), 100u);
+  for (std::size_t i = 0; i < a.size(); ++i) ASSERT_EQ(a[i].position, b[i].position) << i;
+}
+
 TEST(Placement, TooManyElementsIsAnErrorNamingTheKey) {
   try {
     placeElements(flat(), trees(10000.0), {}, 1, "objects.0");

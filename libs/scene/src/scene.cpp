@@ -248,12 +248,6 @@ constexpr double kSeaLevelAbove = 0.002;
 // size: on St. Helens (14 km) they are groves of small marks along its ridges and gullies;
 // on a coast 300 km wide they would be specks, and millions of them.
 constexpr double kMostWoodedSide = 20000.0;
-// Land wider than this (metres) has its trees massed as a painter masses a far forest: at the
-// default density a volcano 14 km across drew about ten thousand trees and dots of one or two
-// pixels evenly over its slopes, a speckle rather than groves. Past it, by f = this / side,
-// groves hold 1/f times the trees in the same radius (denser masses, fewer of them), open
-// slopes keep f of their share and the dots f of their density.
-constexpr double kLeastMassedSide = 3000.0;
 // A lone DEM with fewer samples than this along its larger side is made finer
 // (terrain::upsample) until it has them: a grid of 120 cells across a 1024-pixel picture
 // draws each cell 6-8 pixels wide, and its coasts and islands as polygons.
@@ -274,7 +268,6 @@ struct LandLook {
   double z_scale = 1.0;
   std::optional<double> water_level;  //!< fraction of the relief from the lowest sample
   bool wooded = false;                //!< trees and moss dots
-  double massed = 1.0;                //!< f of kLeastMassedSide: 1, or below 1 on wide land
   int upsample = 1;                   //!< a DEM's objects.0.upsample
   int subdivide = 0;                  //!< a land mesh's objects.0.subdivide
   std::string land_note, relief_note, sea_note, dry_note, wooded_note, upsample_note, subdivide_note;
@@ -288,19 +281,10 @@ bool proportions(LandLook& look, double side, double relief, const char* key) {
   const double ratio = relief / side;
   if (side <= kMostWoodedSide) {
     look.wooded = true;
-    look.massed = std::min(1.0, kLeastMassedSide / side);
-    const elements::TreeOptions trees;
-    look.wooded_note =
-        look.massed < 1.0
-            ? formatted(
-                  "%.3g km across: trees and moss dots grown, the trees massed in groves of %.0f, few on open "
-                  "slopes (objects.0.trees.enabled, objects.0.trees.grove, objects.0.trees.open, "
-                  "objects.0.dots.density)",
-                  side / 1000.0, trees.grove / look.massed)
-            : formatted(
-                  "%.3g km across: trees and moss dots grown (objects.0.trees.enabled, "
-                  "objects.0.dots.enabled)",
-                  side / 1000.0);
+    look.wooded_note = formatted(
+        "%.3g km across: trees and moss dots grown (objects.0.trees.enabled, "
+        "objects.0.dots.enabled)",
+        side / 1000.0);
   }
   if (ratio < kLeastReliefRatio) {
     look.z_scale = std::min(kLeastReliefRatio / ratio, kMostLoneZScale);
@@ -530,13 +514,6 @@ Scene loadSceneInput(const std::filesystem::path& path, const std::vector<std::s
   if (look.wooded) {
     j["objects"][0]["trees"] = {{"enabled", true}};
     j["objects"][0]["dots"] = {{"enabled", true}};
-    if (look.massed < 1.0) {
-      const elements::TreeOptions trees;
-      const elements::DotOptions dots;
-      j["objects"][0]["trees"]["grove"] = std::min(trees.grove / look.massed, 1000.0);
-      j["objects"][0]["trees"]["open"] = trees.open * look.massed;
-      j["objects"][0]["dots"]["density"] = dots.density * look.massed;
-    }
   }
   for (const std::string& o : overrides) applyOverride(j, o);
   Scene s = parseScene(j, path.filename().string(), ".");

@@ -255,8 +255,8 @@ LoadedObject AssetCache::get(const Scene& scene, std::size_t index) {
     k << key << "|" << scene.seed << "|" << t.enabled << " " << t.density << " " << t.size << " " << t.size_spread
       << " " << t.max_slope_deg << " " << t.band[0] << " " << t.band[1] << " " << t.open << " " << t.grove << " "
       << t.grove_radius << " " << t.kinds[0] << " " << t.kinds[1] << " " << t.kinds[2] << " " << t.kinds[3] << " "
-      << t.seed << "|" << d.enabled << " " << d.density << " " << d.cluster << " " << d.spread << " " << d.at_trees
-      << " " << d.seed;
+      << t.seed << " " << t.massed_beyond << "|" << d.enabled << " " << d.density << " " << d.cluster << " " << d.spread
+      << " " << d.at_trees << " " << d.seed << " " << d.massed_beyond;
     std::shared_ptr<const ElementSet>& placed = elements_[k.str()];
     if (!placed) {
       const auto start = std::chrono::steady_clock::now();

@@ -408,6 +408,11 @@ void describe(V& v, elements::TreeOptions& t) {
             t.kinds, {0, 1000});
   v.integer({"seed", "placement and growth; 0: the scene's seed", kRebuild}, t.seed, {0, 1LL << 53});
   v.number({"ink", "scales the ink of every mark of the trees (1: as grown, the darkest near 0.95)"}, t.ink, kUnit);
+  v.number({"massed_beyond",
+            "land wider than this (its larger side) masses its trees as a painter masses a far forest: with f = this "
+            "over the side, groves of `grove`/f trees in the same radius and f of `open`; 0: never",
+            kRebuild, "model units"},
+           t.massed_beyond, {0, 1e9});
 }
 
 template <typename V>
@@ -426,6 +431,11 @@ void describe(V& v, elements::DotOptions& d) {
   v.integer({"seed", "placement; 0: the scene's seed", kRebuild}, d.seed, {0, 1LL << 53});
   v.number({"size", "a dot's size", Effect::Uniform, "pixels at 1024 high"}, d.size_px, {0.5, 64});
   v.number({"ink", "a dot's ink: the darkest accents of the picture"}, d.ink, kUnit);
+  v.number({"massed_beyond",
+            "land wider than this (its larger side) keeps f = this over the side of `density`, as its trees are "
+            "massed; 0: never",
+            kRebuild, "model units"},
+           d.massed_beyond, {0, 1e9});
 }
 
 template <typename V>

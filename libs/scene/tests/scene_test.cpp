@@ -268,9 +268,10 @@ TEST(Scene, RebuildKeysAreTheOnesThatChangeVariantsOrFiles) {
       // the elements pass).
       "objects.*.trees.enabled", "objects.*.trees.density", "objects.*.trees.size", "objects.*.trees.size_spread",
       "objects.*.trees.max_slope", "objects.*.trees.band", "objects.*.trees.open", "objects.*.trees.grove",
-      "objects.*.trees.grove_radius", "objects.*.trees.kinds", "objects.*.trees.seed", "objects.*.dots.enabled",
-      "objects.*.dots.density", "objects.*.dots.cluster", "objects.*.dots.spread", "objects.*.dots.at_trees",
-      "objects.*.dots.seed", "objects.*.ground.on", "objects.*.marks.style",
+      "objects.*.trees.grove_radius", "objects.*.trees.kinds", "objects.*.trees.seed", "objects.*.trees.massed_beyond",
+      "objects.*.dots.enabled", "objects.*.dots.density", "objects.*.dots.cluster", "objects.*.dots.spread",
+      "objects.*.dots.at_trees", "objects.*.dots.seed", "objects.*.dots.massed_beyond", "objects.*.ground.on",
+      "objects.*.marks.style",
       "objects.*.marks.wash",  // 0 or not: the wet strokes' code (WASH)
       "shadow.pigment.name",   // builds the shadow pass
       "substrate.enabled",     // builds the substrate pass
@@ -418,39 +419,6 @@ TEST(Scene, ALoneDemFlatterThanOneInTenIsRaisedAndItsSeaBecomesWater) {
   writeGrid(dir / "plain.asc", 100, 100, 1000.0, [](int c) { return 10.0 + 0.01 * c; });
   EXPECT_EQ(loadSceneInput(dir / "plain.asc").objects[0].z_scale, 20.0);
   EXPECT_EQ(loadSceneInput(dir / "missing.asc").objects[0].z_scale, 1.0);
-}
-
-// Wooded land wider than 3 km has its trees massed: a ridge 12 km across (f = 3/12) gets
-// groves of four times the default's 18 trees, a quarter of the default open-slope share
-// and a quarter of the dots' density, and says so; one 2.4 km across keeps the defaults; an
-// override of one key wins over the rule and the rest still apply.
-TEST(Scene, WideLoneLandMassesItsTreesInFewerLargerGroves) {
-  test::TempDir dir;
-  const elements::TreeOptions trees;
-  const elements::DotOptions dots;
-  auto ridge = [](int c) { return 100.0 + 4000.0 * std::sin(3.14159265 * c / 99.0); };
-  writeGrid(dir / "wide.asc", 100, 100, 120.0, ridge);  // 100 cells of 120 m
-  std::vector<std::string> notes;
-  const Scene wide = loadSceneInput(dir / "wide.asc", {}, &notes);
-  const Object& w = wide.objects[0];
-  ASSERT_TRUE(w.trees.enabled && w.dots.enabled);
-  EXPECT_NEAR(w.trees.grove, 4.0 * trees.grove, 1e-9);
-  EXPECT_NEAR(w.trees.open, 0.25 * trees.open, 1e-12);
-  EXPECT_NEAR(w.dots.density, 0.25 * dots.density, 1e-12);
-  EXPECT_EQ(w.trees.grove_radius, trees.grove_radius) << "the same radius: denser groves";
-  const auto massed = std::find_if(notes.begin(), notes.end(),
-                                   [](const std::string& n) { return n.find("massed in groves of 72") != n.npos; });
-  EXPECT_NE(massed, notes.end()) << (notes.empty() ? "" : notes.front());
-
-  writeGrid(dir / "narrow.asc", 100, 100, 24.0, ridge);
-  const Scene narrow = loadSceneInput(dir / "narrow.asc");
-  EXPECT_EQ(narrow.objects[0].trees.grove, trees.grove);
-  EXPECT_EQ(narrow.objects[0].trees.open, trees.open);
-  EXPECT_EQ(narrow.objects[0].dots.density, dots.density);
-
-  const Scene asked = loadSceneInput(dir / "wide.asc", {"objects.0.trees.grove=10"});
-  EXPECT_EQ(asked.objects[0].trees.grove, 10.0);
-  EXPECT_NEAR(asked.objects[0].trees.open, 0.25 * trees.open, 1e-12);
 }
 
 // Land below sea level is sea only where it is open to the grid's edge. A basin 86 m deep

@@ -31,6 +31,10 @@ struct Instance {
   std::uint32_t seed = 0;  //!< picks and varies its brushwork
 };
 
+//! The side (model units, metres on a DEM) past which trees and dots are massed: a hill of a
+//! few kilometres keeps its keys as they are.
+inline constexpr double kMassedBeyond = 3000.0;
+
 //! Trees (objects.N.trees). Density is per hectare of horizontal area where the site suits
 //! trees fully; the site's suitability (siteSuitability) scales it.
 struct TreeOptions {
@@ -46,6 +50,9 @@ struct TreeOptions {
   std::array<double, kTreeKinds> kinds{1.0, 1.0, 0.35, 1.0};  //!< shares of pine, leafy, bare, distant
   std::uint64_t seed = 0;                                     //!< 0: the scene's seed
   double ink = 1.0;  //!< drawing: scales the ink of every mark as grown, [0, 1]
+  //! Land wider than this (model units, its larger horizontal side) has its trees massed as
+  //! a painter masses a far forest (massing()); 0: never, [0, 1e9].
+  double massed_beyond = kMassedBeyond;
 };
 
 //! Moss dots (objects.N.dots, 苔点): clusters of small dark dabs along ridges, rock edges
@@ -59,7 +66,19 @@ struct DotOptions {
   std::uint64_t seed = 0;  //!< 0: the scene's seed
   double size_px = 3.5;    //!< drawing: a dot's size, pixels at 1024 high, [0.5, 64]
   double ink = 1.0;        //!< drawing: a dot's ink, [0, 1]
+  //! Land wider than this (model units) keeps massing() of the density; 0: never, [0, 1e9].
+  double massed_beyond = kMassedBeyond;
 };
+
+//! What a wide landform's trees and dots keep of their keys: f = massed_beyond / side (at
+//! most 1; 1 when massed_beyond is 0). At the defaults a volcano 14 km across drew about ten
+//! thousand trees and dots of a pixel or two evenly over its slopes, a speckle; massed, its
+//! groves hold 1/f times `grove` trees in the same radius (dense clumps, f times as many),
+//! open slopes keep f of `open` and the dots f of their density. placeElements applies it.
+double massing(double massed_beyond, double side);
+//! The options placeElements uses on land `side` wide: the massing applied.
+TreeOptions massedTrees(const TreeOptions& t, double side);
+DotOptions massedDots(const DotOptions& d, double side);
 
 //! What a site is, from the terrain around it: each in [0, 1].
 struct Site {
