@@ -432,8 +432,8 @@ void describe(V& v, elements::DotOptions& d) {
   v.number({"size", "a dot's size", Effect::Uniform, "pixels at 1024 high"}, d.size_px, {0.5, 64});
   v.number({"ink", "a dot's ink: the darkest accents of the picture"}, d.ink, kUnit);
   v.number({"massed_beyond",
-            "land wider than this (its larger side) keeps f = this over the side of `density`, as its trees are "
-            "massed; 0: never",
+            "land wider than this (its larger side) keeps f of `density`, f = this over the side, as its trees "
+            "are massed; 0: never",
             kRebuild, "model units"},
            d.massed_beyond, {0, 1e9});
 }
