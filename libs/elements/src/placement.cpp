@@ -217,6 +217,9 @@ double massing(double massed_beyond, double side) {
   return massed_beyond > 0.0 && side > massed_beyond ? massed_beyond / side : 1.0;
 }
 
+namespace {
+
+// The options placeElements uses on land `side` wide: the massing applied.
 TreeOptions massedTrees(const TreeOptions& t, double side) {
   TreeOptions out = t;
   const double f = massing(t.massed_beyond, side);
@@ -231,21 +234,23 @@ DotOptions massedDots(const DotOptions& d, double side) {
   return out;
 }
 
+}  // namespace
+
 std::vector<Instance> placeElements(const mesh::Mesh& m, const TreeOptions& asked_trees, const DotOptions& asked_dots,
                                     std::uint64_t scene_seed, const std::string& where) {
   std::vector<Instance> out;
-  if (m.triangles.empty()) return out;
-  const glm::dvec3 extent = mesh::bounds(m).size();
-  const double land_side = std::max(extent.x, extent.y);
-  const TreeOptions trees = massedTrees(asked_trees, land_side);
-  const DotOptions dots = massedDots(asked_dots, land_side);
   double shares = 0.0;
-  for (double k : trees.kinds) shares += k;
-  const bool want_trees = trees.enabled && trees.density > 0.0 && shares > 0.0;  // no kind: no tree
-  const bool want_dots = dots.enabled && (dots.density > 0.0 || (want_trees && dots.at_trees > 0.0));
+  for (double k : asked_trees.kinds) shares += k;
+  // Massing (f > 0) leaves every density that is above 0 above 0: whether anything is
+  // placed is decided on the keys as asked.
+  const bool want_trees = asked_trees.enabled && asked_trees.density > 0.0 && shares > 0.0;  // no kind: no tree
+  const bool want_dots = asked_dots.enabled && (asked_dots.density > 0.0 || (want_trees && asked_dots.at_trees > 0.0));
   if (!(want_trees || want_dots) || m.triangles.empty()) return out;
   const Terrain terrain(m);
   const mesh::Bounds& b = terrain.bounds();
+  const double land_side = std::max(b.size().x, b.size().y);
+  const TreeOptions trees = massedTrees(asked_trees, land_side);
+  const DotOptions dots = massedDots(asked_dots, land_side);
   const double hectares = terrain.area() / 1e4;
   auto tooMany = [&](const char* key, double expected) {
     if (expected > static_cast<double>(kMaxElements))

@@ -76,9 +76,6 @@ struct DotOptions {
 //! groves hold 1/f times `grove` trees in the same radius (dense clumps, f times as many),
 //! open slopes keep f of `open` and the dots f of their density. placeElements applies it.
 double massing(double massed_beyond, double side);
-//! The options placeElements uses on land `side` wide: the massing applied.
-TreeOptions massedTrees(const TreeOptions& t, double side);
-DotOptions massedDots(const DotOptions& d, double side);
 
 //! What a site is, from the terrain around it: each in [0, 1].
 struct Site {
