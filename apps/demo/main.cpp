@@ -175,7 +175,7 @@ void writePainting(const fs::path& sample_scene, const fs::path& out, bool quick
   far.erase("max_vertices");
   far["mesh"] = "st_helens_uv.obj";
   far["up"] = "z";
-  far["border"] = {{"mode", "dissolve"}};
+  far["border"]["mode"] = "dissolve";  // the sample's width kept
   far["wrinkle"] = {{"texture", "wrinkle.png"}, {"uv", "mesh"}, {"repeat", 10}, {"inner_tex_factor", 0.9}};
   // The terrain stage made it 1.5 times as high as the DEM the sample scales.
   far["transform"]["scale"][2] = far["transform"]["scale"][2].get<double>() / 1.5;

@@ -124,12 +124,18 @@ float textureMarks(vec2 uv, float scale, vec2 down, float density, uint style, u
 
 // A group at d from its centre (its cell's hash h): its second hash's numbers b, the
 // point along and across it (turned together up to ±15 degrees, cos and sin to the cubic
-// and quadratic terms, and bent to one side, heads uphill), the brush's hairs there, and
-// its strokes' spacing: 2m + 1 of them, gap apart, for strokes `breadth` times their thin
-// width.
+// and quadratic terms, and bent to one side, heads uphill), the brush's hairs there, its
+// strokes' spacing: 2m + 1 of them, gap apart, for strokes `breadth` times their thin
+// width, and how far their heads slant across the group.
 void washFrame(vec2 d, vec2 dir, uint h, float breadth, uint seed, out vec4 b, out float along, out float across,
-               out float hair, out int m, out float gap) {
+               out float hair, out int m, out float gap, out float slant) {
   b = unpack4(cellHash(uvec2(h, seed + 7u)));
+  // Each group its own size, from 0.55 of the cell's to all of it (more of them large), and
+  // its heads on a slant of up to ±0.45 along per unit across, as a brush laid on its side
+  // lands heel first: strokes of one size with their heads in a row read as a comb.
+  vec4 e = unpack4(cellHash(uvec2(h, seed + 11u)));
+  d /= 0.55 + 0.45 * sqrt(e.x);
+  slant = (e.y - 0.5) * 0.9;
   float turn = (b.x - 0.5) * 0.52, turn2 = turn * turn;
   float cs = 1.0 - 0.5 * turn2, sn = turn * (1.0 - turn2 / 6.0);
   vec2 along_dir = cs * dir + sn * vec2(-dir.y, dir.x);
@@ -155,11 +161,15 @@ void washFrame(vec2 d, vec2 dir, uint h, float breadth, uint seed, out vec4 b, o
 }
 
 // Stroke j (0 .. 2m) of a group framed by washFrame: its ink at (along, across).
-float washStroke(int j, float along, float across, float hair, int m, float gap, float breadth, vec4 a, vec4 b) {
+float washStroke(int j, float along, float across, float hair, int m, float gap, float breadth, float slant, vec4 a,
+                 vec4 b) {
   float r1 = fract(b.y + 0.618 * float(j)), r2 = fract(b.z + 0.382 * float(j)), r3 = fract(a.w + 0.618 * float(j));
   float offset = gap * float(j - m);
-  float len = (0.24 + 0.1 * r1) * (1.0 - 2.5 * max(abs(offset) - 0.13, 0.0));
-  float t = (along - 0.08 * min(breadth, 1.5) * (r2 - 0.5)) / len;  // -1 the head .. 1 the tail
+  // The slant moves the stroke along by `shift` and takes as much off its length, so it
+  // ends no farther from the centre than a stroke without one (at least 0.05 is left).
+  float shift = slant * offset;
+  float len = max((0.24 + 0.1 * r1) * (1.0 - 2.5 * max(abs(offset) - 0.13, 0.0)) - abs(shift), 0.05);
+  float t = (along - 0.08 * min(breadth, 1.5) * (r2 - 0.5) - shift) / len;  // -1 the head .. 1 the tail
   // Round at the head, full through the body, narrowing to the tail.
   float width =
       min(breadth, 1.0) * (0.04 + 0.025 * r1) * sqrt(clamp((1.0 + t) * 3.0, 0.0, 1.0)) * (1.0 - 0.5 * max(t, 0.0));
@@ -177,15 +187,15 @@ float washStroke(int j, float along, float across, float hair, int m, float gap,
 float washGroup(vec2 d, vec2 dir, uint h, vec4 a, float density, float breadth, uint seed) {
   float keep = smoothstep(a.z - 0.06, a.z + 0.06, density);
   vec4 b;
-  float along, across, hair, gap;
+  float along, across, hair, gap, slant;
   int m;
-  washFrame(d, dir, h, breadth, seed, b, along, across, hair, m, gap);
+  washFrame(d, dir, h, breadth, seed, b, along, across, hair, m, gap, slant);
   float pos = across / gap + float(m);
   int j0 = clamp(int(floor(pos + 0.5)), 0, 2 * m);
   int j1 = clamp(pos > float(j0) ? j0 + 1 : j0 - 1, 0, 2 * m);
   float ink = 0.0;
   for (int n = 0, strokes = breadth > 1.0 && j1 != j0 ? 2 : 1; n < strokes; ++n)
-    ink += (1.0 - ink) * washStroke(n == 0 ? j0 : j1, along, across, hair, m, gap, breadth, a, b);
+    ink += (1.0 - ink) * washStroke(n == 0 ? j0 : j1, along, across, hair, m, gap, breadth, slant, a, b);
   return keep * ink;
 }
 

@@ -21,12 +21,12 @@ void main() {
   a.z = 0.0;  // every group kept: density 1 beats its threshold
   vec2 dir = vec2(0.0, -1.0);
   vec4 b;
-  float along, across, hair, gap;
+  float along, across, hair, gap, slant;
   int m;
-  washFrame(q.xy, dir, h, q.z, seed, b, along, across, hair, m, gap);
+  washFrame(q.xy, dir, h, q.z, seed, b, along, across, hair, m, gap, slant);
   float all_layered = 0.0, darkest = 0.0;
   for (int j = 0; j <= 2 * m; ++j) {
-    float one = washStroke(j, along, across, hair, m, gap, q.z, a, b);
+    float one = washStroke(j, along, across, hair, m, gap, q.z, slant, a, b);
     all_layered += (1.0 - all_layered) * one;
     darkest = max(darkest, one);
   }

@@ -62,5 +62,25 @@ TEST_F(MarksGlsl, TwoNearestStrokesLayeredAreTheWholeGroupLayeredAtEveryBreadth)
   }
 }
 
+// washOctave looks at a point's own cell alone, and only within 0.42 of its group's centre:
+// a stroke reaching farther would be cut off there along a circle. Every stroke of every
+// group, at every breadth, is probed on rings just beyond that reach.
+TEST_F(MarksGlsl, NoGroupReachesBeyondItsCellsReach) {
+  for (const float breadth : {0.5f, 1.0f, 1.5f, 2.0f, 2.5f}) {
+    SCOPED_TRACE("wash_width " + std::to_string(breadth));
+    std::vector<glm::vec4> points;
+    for (int g = 0; g < 400; ++g)
+      for (const float r : {0.421f, 0.45f, 0.5f, 0.6f})
+        for (int k = 0; k < 360; ++k) {
+          const float angle = static_cast<float>(k) * 0.0174533f;
+          points.push_back({r * std::cos(angle), r * std::sin(angle), breadth, static_cast<float>(g)});
+        }
+    const std::vector<GroupInk> v = test::runProbe<GroupInk>(Program({"wash_probe.comp"}), points);
+    float darkest = 0.0f;
+    for (const GroupInk& g : v) darkest = std::max(darkest, g.all_layered);
+    EXPECT_EQ(darkest, 0.0f);
+  }
+}
+
 }  // namespace
 }  // namespace shanshui::render
