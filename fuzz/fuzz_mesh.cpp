@@ -1,5 +1,6 @@
-// Fuzz target for the mesh readers: OBJ, PLY or OFF, chosen by SHANSHUI_FUZZ_FORMAT at
-// compile time (one binary per format). Every mesh read must be finite-indexed.
+// Fuzz target for the mesh readers: OBJ, PLY, OFF, or glTF (.gltf, .glb; through Assimp),
+// chosen by SHANSHUI_FUZZ_FORMAT at compile time (one binary per format). Every face of a
+// mesh read has three corners or more, each an index of one of its vertices.
 #include "fuzz_input.h"
 #include "shanshui/core/error.h"
 #include "shanshui/mesh/mesh_io.h"

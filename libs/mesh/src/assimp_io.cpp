@@ -5,7 +5,11 @@
 // itself; glTF is Y-up metres by definition. STL declares neither: its axes are kept and
 // the scene's `up` decides.
 #include <cmath>
+#include <cstdint>
+#include <fstream>
+#include <set>
 
+#include <assimp/BaseImporter.h>
 #include <assimp/DefaultIOSystem.h>
 #include <assimp/Importer.hpp>
 #include <assimp/postprocess.h>
@@ -87,6 +91,67 @@ class GatedIoSystem : public Assimp::DefaultIOSystem {
   std::string refused;
 };
 
+// A binary glTF's header and chunk lengths against the file's size, before Assimp reads it:
+// Assimp allocates (and clears) what the JSON chunk's length says, so 638 bytes claiming a
+// chunk of 4 GB took 4 GB. Files that do not start with the binary glTF magic pass.
+void checkGlbLengths(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  unsigned char b[20] = {};
+  in.read(reinterpret_cast<char*>(b), sizeof b);
+  const auto got = static_cast<std::size_t>(in.gcount());
+  auto u32 = [&](std::size_t at) {
+    return static_cast<std::uint32_t>(b[at]) | static_cast<std::uint32_t>(b[at + 1]) << 8 |
+           static_cast<std::uint32_t>(b[at + 2]) << 16 | static_cast<std::uint32_t>(b[at + 3]) << 24;
+  };
+  if (got < 4 || u32(0) != 0x46546C67u) return;  // "glTF"
+  const std::uintmax_t size = fs::file_size(path);
+  if (got < sizeof b) throw makeError(path.string(), ": binary glTF of ", size, " bytes, shorter than its header");
+  if (u32(8) > size)
+    throw makeError(path.string(), ": binary glTF whose header says ", u32(8), " bytes, but the file holds ", size);
+  // Chunks: a length, a type, then that many bytes; each must end inside the stated length.
+  std::uintmax_t at = 12;
+  for (int chunk = 0; chunk < 2 && at + 8 <= u32(8); ++chunk) {
+    unsigned char h[8] = {};
+    in.seekg(static_cast<std::streamoff>(at));
+    in.read(reinterpret_cast<char*>(h), sizeof h);
+    const std::uint32_t length = static_cast<std::uint32_t>(h[0]) | static_cast<std::uint32_t>(h[1]) << 8 |
+                                 static_cast<std::uint32_t>(h[2]) << 16 | static_cast<std::uint32_t>(h[3]) << 24;
+    if (at + 8 + length > u32(8))
+      throw makeError(path.string(), ": binary glTF chunk ", chunk + 1, " at byte ", at, " says ", length,
+                      " bytes, past the ", u32(8), " the file's header gives");
+    at += 8 + length;
+  }
+}
+
+// The importers that claim the file's extension, the others removed from `importer`:
+// when none of those reads the file, Assimp hands it to any importer whose signature test
+// it passes, and a broken .gltf that began with "pmx" went to the PMX importer, which read
+// past its buffer. An extension no importer claims is refused with the ones they do.
+void keepImportersOf(Assimp::Importer& importer, const fs::path& path) {
+  std::string name = path.filename().string();
+  for (char& c : name) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  std::size_t kept = 0;
+  for (std::size_t i = importer.GetImporterCount(); i-- > 0;) {
+    Assimp::BaseImporter* reader = importer.GetImporter(i);
+    std::set<std::string> extensions;
+    reader->GetExtensionList(extensions);
+    bool claims = false;
+    for (const std::string& e : extensions)
+      claims = claims || (name.size() > e.size() && name.ends_with(e) && name[name.size() - e.size() - 1] == '.');
+    if (claims) {
+      ++kept;
+    } else if (importer.UnregisterLoader(reader) == AI_SUCCESS) {
+      delete reader;  // no longer the importer's to delete
+    }
+  }
+  if (kept == 0) {
+    std::string known;
+    importer.GetExtensionList(known);
+    throw makeError(path.string(), ": not a mesh format shanshui reads by its extension '", path.extension().string(),
+                    "' (.obj, .ply, .off, or through Assimp: ", known, ")");
+  }
+}
+
 }  // namespace
 
 PolygonSoup readAssimp(const fs::path& path) {
@@ -94,6 +159,8 @@ PolygonSoup readAssimp(const fs::path& path) {
   Assimp::Importer importer;
   auto* io = new GatedIoSystem;  // the importer owns it
   importer.SetIOHandler(io);
+  checkGlbLengths(path);
+  keepImportersOf(importer, path);
   importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
   const aiScene* scene = importer.ReadFile(path.string(), aiProcess_SortByPType);
   if (scene == nullptr || scene->mRootNode == nullptr) {

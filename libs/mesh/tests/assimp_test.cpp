@@ -162,6 +162,53 @@ TEST(AssimpIo, RefusesWhatIsNotAMeshByName) {
   test::expectErrorNaming([&] { readPolygonSoup(dir / "missing.glb"); }, "missing.glb", "no such file");
 }
 
+// A file is read by an importer its extension names or refused: Assimp would otherwise hand
+// a file none of them reads to any importer whose signature test it passes (a broken .gltf
+// beginning "pmx" went to the PMX importer, which read past its buffer:
+// fuzz/regressions/gltf). Here an STL that Assimp writes, named .gltf, is refused, where by
+// its signature Assimp would read it as STL; named .stl it is read.
+TEST(AssimpIo, AFileIsReadByTheImporterItsExtensionNamesOrRefused) {
+  test::TempDir dir;
+  Assimp::Exporter exporter;
+  ASSERT_EQ(exporter.Export(boxScene().get(), "stl", (dir / "box.stl").string()), AI_SUCCESS);
+  expectBox(dir / "box.stl", 1.0);
+  fs::copy_file(dir / "box.stl", dir / "box.gltf");
+  test::expectErrorNaming([&] { readPolygonSoup(dir / "box.gltf"); }, "box.gltf", "not a mesh Assimp can read");
+  fs::copy_file(dir / "box.stl", dir / "box.mesh3");
+  test::expectErrorNaming([&] { readPolygonSoup(dir / "box.mesh3"); }, "box.mesh3",
+                          "not a mesh format shanshui reads by its extension '.mesh3'");
+}
+
+// A binary glTF's header and chunks must fit the file before Assimp reads it: it allocates
+// and clears what the JSON chunk's length says (638 bytes claiming 4 GB took 4 GB:
+// fuzz/regressions/glb).
+TEST(AssimpIo, ABinaryGltfWhoseLengthsPassTheFileIsRefusedNamingThem) {
+  test::TempDir dir;
+  Assimp::Exporter exporter;
+  ASSERT_EQ(exporter.Export(boxScene().get(), "glb2", (dir / "box.glb").string()), AI_SUCCESS);
+  expectBox(dir / "box.glb", 1.0);
+  std::string glb;
+  {
+    std::ifstream in(dir / "box.glb", std::ios::binary);
+    glb.assign(std::istreambuf_iterator<char>(in), {});
+  }
+  ASSERT_GT(glb.size(), 28u);
+  auto with = [&](std::size_t at, std::uint32_t v, const char* name) {
+    std::string bytes = glb;
+    for (int k = 0; k < 4; ++k) bytes[at + k] = static_cast<char>((v >> (8 * k)) & 0xffu);
+    std::ofstream(dir / name, std::ios::binary) << bytes;
+    return dir / name;
+  };
+  const auto size = static_cast<std::uint32_t>(glb.size());
+  test::expectErrorNaming(
+      [&] { readPolygonSoup(with(8, size + 1, "long.glb")); }, "long.glb",
+      "header says " + std::to_string(size + 1) + " bytes, but the file holds " + std::to_string(size));
+  test::expectErrorNaming([&] { readPolygonSoup(with(12, 0xFFFD02CCu, "json.glb")); }, "json.glb",
+                          "chunk 1 at byte 12 says 4294771404 bytes");
+  std::ofstream(dir / "short.glb", std::ios::binary) << glb.substr(0, 16);
+  test::expectErrorNaming([&] { readPolygonSoup(dir / "short.glb"); }, "short.glb", "shorter than its header");
+}
+
 TEST(Creases, ACubeGetsSixFlatFacesAndASphereStaysSmooth) {
   Mesh cube = unitCube();
   const auto origin = splitAtCreases(cube, 40.0);
