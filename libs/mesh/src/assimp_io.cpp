@@ -7,6 +7,8 @@
 #include <cmath>
 #include <cstdint>
 #include <fstream>
+#include <iterator>
+#include <optional>
 #include <set>
 
 #include <assimp/BaseImporter.h>
@@ -14,6 +16,7 @@
 #include <assimp/Importer.hpp>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
+#include <nlohmann/json.hpp>
 
 #include "shanshui/core/error.h"
 #include "shanshui/core/input.h"
@@ -93,8 +96,9 @@ class GatedIoSystem : public Assimp::DefaultIOSystem {
 
 // A binary glTF's header and chunk lengths against the file's size, before Assimp reads it:
 // Assimp allocates (and clears) what the JSON chunk's length says, so 638 bytes claiming a
-// chunk of 4 GB took 4 GB. Files that do not start with the binary glTF magic pass.
-void checkGlbLengths(const fs::path& path) {
+// chunk of 4 GB took 4 GB. Files that do not start with the binary glTF magic pass. Returns
+// the first chunk (the JSON) of a binary glTF, nothing for other files.
+std::optional<std::string> checkGlbLengths(const fs::path& path) {
   std::ifstream in(path, std::ios::binary);
   unsigned char b[20] = {};
   in.read(reinterpret_cast<char*>(b), sizeof b);
@@ -103,13 +107,14 @@ void checkGlbLengths(const fs::path& path) {
     return static_cast<std::uint32_t>(b[at]) | static_cast<std::uint32_t>(b[at + 1]) << 8 |
            static_cast<std::uint32_t>(b[at + 2]) << 16 | static_cast<std::uint32_t>(b[at + 3]) << 24;
   };
-  if (got < 4 || u32(0) != 0x46546C67u) return;  // "glTF"
+  if (got < 4 || u32(0) != 0x46546C67u) return std::nullopt;  // "glTF"
   const std::uintmax_t size = fs::file_size(path);
   if (got < sizeof b) throw makeError(path.string(), ": binary glTF of ", size, " bytes, shorter than its header");
   if (u32(8) > size)
     throw makeError(path.string(), ": binary glTF whose header says ", u32(8), " bytes, but the file holds ", size);
   // Chunks: a length, a type, then that many bytes; each must end inside the stated length.
   std::uintmax_t at = 12;
+  std::string json;
   for (int chunk = 0; chunk < 2 && at + 8 <= u32(8); ++chunk) {
     unsigned char h[8] = {};
     in.seekg(static_cast<std::streamoff>(at));
@@ -119,7 +124,58 @@ void checkGlbLengths(const fs::path& path) {
     if (at + 8 + length > u32(8))
       throw makeError(path.string(), ": binary glTF chunk ", chunk + 1, " at byte ", at, " says ", length,
                       " bytes, past the ", u32(8), " the file's header gives");
+    if (chunk == 0) {
+      json.resize(length);
+      in.read(json.data(), static_cast<std::streamsize>(length));
+    }
     at += 8 + length;
+  }
+  return json;
+}
+
+// What Assimp 5.2's glTF 2.0 reader misreads, refused before it reads the file: a primitive
+// without positions (a line strip of none made it ask for 64 GB) and an indexed line loop
+// (one whose indices passed its vertices crashed it). shanshui draws triangles only. JSON
+// that does not parse as the standard asks (UTF-8) is refused too: Assimp's parser takes
+// invalid bytes in a key, and such a file went on to crash it.
+void checkGltfPrimitives(const fs::path& path, const std::optional<std::string>& glb_json) {
+  std::string text;
+  if (glb_json) {
+    text = *glb_json;
+  } else {
+    std::ifstream in(path, std::ios::binary);
+    text.assign(std::istreambuf_iterator<char>(in), {});
+  }
+  nlohmann::json j;
+  try {
+    j = nlohmann::json::parse(text);
+  } catch (const nlohmann::json::exception& e) {
+    std::string why = e.what();
+    if (const auto colon = why.find(": "); colon != std::string::npos) why = why.substr(colon + 2);
+    for (char& c : why)  // the bytes it quotes may be anything
+      if (static_cast<unsigned char>(c) < 0x20 || static_cast<unsigned char>(c) >= 0x7f) c = '?';
+    throw makeError(path.string(), ": its glTF JSON does not parse (", why, ")");
+  }
+  if (!j.is_object() || !j.contains("meshes") || !j["meshes"].is_array()) return;
+  const nlohmann::json& meshes = j["meshes"];
+  for (std::size_t m = 0; m < meshes.size(); ++m) {
+    if (!meshes[m].is_object() || !meshes[m].contains("primitives") || !meshes[m]["primitives"].is_array()) continue;
+    const nlohmann::json& primitives = meshes[m]["primitives"];
+    for (std::size_t p = 0; p < primitives.size(); ++p) {
+      const nlohmann::json& prim = primitives[p];
+      if (!prim.is_object()) continue;
+      const std::string which = "glTF mesh " + std::to_string(m) + " primitive " + std::to_string(p);
+      const bool positions =
+          prim.contains("attributes") && prim["attributes"].is_object() && prim["attributes"].contains("POSITION");
+      if (!positions)
+        throw makeError(path.string(), ": ", which,
+                        " has no POSITION attribute (nothing to draw, and Assimp 5.2 misreads it); remove it");
+      const nlohmann::json* mode = prim.contains("mode") ? &prim["mode"] : nullptr;
+      if (mode != nullptr && mode->is_number_integer() && mode->get<long long>() == 2 && prim.contains("indices"))
+        throw makeError(path.string(), ": ", which,
+                        " is an indexed line loop, which Assimp 5.2 misreads; shanshui draws triangles only: export "
+                        "the model without its lines");
+    }
   }
 }
 
@@ -159,8 +215,11 @@ PolygonSoup readAssimp(const fs::path& path) {
   Assimp::Importer importer;
   auto* io = new GatedIoSystem;  // the importer owns it
   importer.SetIOHandler(io);
-  checkGlbLengths(path);
+  const std::optional<std::string> glb_json = checkGlbLengths(path);
   keepImportersOf(importer, path);
+  std::string ext = path.extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (glb_json || ext == ".gltf") checkGltfPrimitives(path, glb_json);
   importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
   const aiScene* scene = importer.ReadFile(path.string(), aiProcess_SortByPType);
   if (scene == nullptr || scene->mRootNode == nullptr) {
@@ -168,8 +227,6 @@ PolygonSoup readAssimp(const fs::path& path) {
     throw makeError(path.string(), ": not a mesh Assimp can read (", importer.GetErrorString(), ")");
   }
   PolygonSoup soup;
-  std::string ext = path.extension().string();
-  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   if (ext == ".fbx") applyFbxAxesAndUnits(scene, soup);
   if (ext == ".3ds") {  // 3ds Max's files are Z up, and Assimp keeps them so
     scene->mRootNode->mTransformation =

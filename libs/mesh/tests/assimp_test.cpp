@@ -157,7 +157,7 @@ TEST(AssimpIo, RefusesWhatIsNotAMeshByName) {
   test::TempDir dir;
   std::ofstream(dir / "notes.gltf") << "{ not json";
   std::ofstream(dir / "points.stl") << "solid s\nendsolid s\n";
-  test::expectErrorNaming([&] { readPolygonSoup(dir / "notes.gltf"); }, "notes.gltf", "not a mesh Assimp can read");
+  test::expectErrorNaming([&] { readPolygonSoup(dir / "notes.gltf"); }, "notes.gltf", "its glTF JSON does not parse");
   test::expectErrorNaming([&] { readPolygonSoup(dir / "points.stl"); }, "points.stl", "");
   test::expectErrorNaming([&] { readPolygonSoup(dir / "missing.glb"); }, "missing.glb", "no such file");
 }
@@ -165,15 +165,15 @@ TEST(AssimpIo, RefusesWhatIsNotAMeshByName) {
 // A file is read by an importer its extension names or refused: Assimp would otherwise hand
 // a file none of them reads to any importer whose signature test it passes (a broken .gltf
 // beginning "pmx" went to the PMX importer, which read past its buffer:
-// fuzz/regressions/gltf). Here an STL that Assimp writes, named .gltf, is refused, where by
+// fuzz/regressions/gltf). Here an STL that Assimp writes, named .dae, is refused, where by
 // its signature Assimp would read it as STL; named .stl it is read.
 TEST(AssimpIo, AFileIsReadByTheImporterItsExtensionNamesOrRefused) {
   test::TempDir dir;
   Assimp::Exporter exporter;
   ASSERT_EQ(exporter.Export(boxScene().get(), "stl", (dir / "box.stl").string()), AI_SUCCESS);
   expectBox(dir / "box.stl", 1.0);
-  fs::copy_file(dir / "box.stl", dir / "box.gltf");
-  test::expectErrorNaming([&] { readPolygonSoup(dir / "box.gltf"); }, "box.gltf", "not a mesh Assimp can read");
+  fs::copy_file(dir / "box.stl", dir / "box.dae");
+  test::expectErrorNaming([&] { readPolygonSoup(dir / "box.dae"); }, "box.dae", "not a mesh Assimp can read");
   fs::copy_file(dir / "box.stl", dir / "box.mesh3");
   test::expectErrorNaming([&] { readPolygonSoup(dir / "box.mesh3"); }, "box.mesh3",
                           "not a mesh format shanshui reads by its extension '.mesh3'");
@@ -207,6 +207,36 @@ TEST(AssimpIo, ABinaryGltfWhoseLengthsPassTheFileIsRefusedNamingThem) {
                           "chunk 1 at byte 12 says 4294771404 bytes");
   std::ofstream(dir / "short.glb", std::ios::binary) << glb.substr(0, 16);
   test::expectErrorNaming([&] { readPolygonSoup(dir / "short.glb"); }, "short.glb", "shorter than its header");
+}
+
+// What Assimp 5.2's glTF reader misreads is refused before it reads the file, naming the
+// primitive: one without positions (a line strip of none asked for 64 GB), an indexed line
+// loop (with indices past its vertices it crashed), and JSON that is not UTF-8 (Assimp
+// takes it, and such a file went on to crash it): fuzz/regressions/gltf and glb.
+TEST(AssimpIo, AGltfAssimpWouldMisreadIsRefusedNamingWhy) {
+  test::TempDir dir;
+  Assimp::Exporter exporter;
+  ASSERT_EQ(exporter.Export(boxScene().get(), "gltf2", (dir / "box.gltf").string()), AI_SUCCESS);
+  expectBox(dir / "box.gltf", 1.0);
+  std::string json;
+  {
+    std::ifstream in(dir / "box.gltf", std::ios::binary);
+    json.assign(std::istreambuf_iterator<char>(in), {});
+  }
+  auto edited = [&](const std::string& from, const std::string& to, const char* name) {
+    std::string text = json;
+    const auto at = text.find(from);
+    EXPECT_NE(at, std::string::npos) << from;
+    if (at != std::string::npos) text.replace(at, from.size(), to);
+    std::ofstream(dir / name, std::ios::binary) << text;
+    return dir / name;
+  };
+  test::expectErrorNaming([&] { readPolygonSoup(edited("\"POSITION\"", "\"POSITIOM\"", "none.gltf")); }, "none.gltf",
+                          "glTF mesh 0 primitive 0 has no POSITION attribute");
+  test::expectErrorNaming([&] { readPolygonSoup(edited("\"mode\"", "\"mode\": 2, \"was\"", "loop.gltf")); },
+                          "loop.gltf", "glTF mesh 0 primitive 0 is an indexed line loop");
+  test::expectErrorNaming([&] { readPolygonSoup(edited("\"asset\"", "\"as\xffset\"", "bytes.gltf")); }, "bytes.gltf",
+                          "its glTF JSON does not parse");
 }
 
 TEST(Creases, ACubeGetsSixFlatFacesAndASphereStaysSmooth) {
