@@ -9,7 +9,7 @@ cd "$(dirname "$0")/.."
 seconds=${FUZZ_SECONDS:-30}
 jobs=${JOBS:-$(nproc)}
 # FUZZ_TARGETS="ply off" runs only those.
-read -r -a targets <<< "${FUZZ_TARGETS:-obj ply off gltf glb dem asc geotiff scene manifest png jpg tif pgm}"
+read -r -a targets <<< "${FUZZ_TARGETS:-obj ply off gltf glb fbx dae stl dem asc geotiff scene manifest png jpg tif pgm}"
 
 CC=clang CXX=clang++ cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DSHANSHUI_FUZZ=ON -DSHANSHUI_BUILD_TESTS=OFF -DSHANSHUI_BUILD_BENCH=OFF -DSHANSHUI_WERROR=OFF >/dev/null

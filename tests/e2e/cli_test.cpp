@@ -449,7 +449,7 @@ TEST(Cli, ParamRefusesWhatItCannotFlattenAndWritesNothing) {
       {param + quote(cow) + keep + " --method charts --padding 100", "--padding"},
       {param + quote(cow) + keep + " --budget -1", "--budget"},
       {param + quote(cow) + keep + " --texel-size 1e-300", "--texel-size: 1e-300 makes UVs beyond a float's range"},
-      {param + quote(kDem) + keep, "not a mesh Assimp can read"},
+      {param + quote(kDem) + keep, "not a mesh format shanshui reads by its extension '.dem'"},
       {param + quote(dir / "nan.off") + keep, "nan.off"},
       {param + quote(bear) + keep + " --method magic", "unknown method 'magic'"},
       {param + quote(bear) + keep + " --border hexagon", "unknown border 'hexagon'"},

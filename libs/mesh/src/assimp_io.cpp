@@ -4,12 +4,18 @@
 // applied here, 3DS (always Z up) turned here, COLLADA's <up_axis> and <unit> by Assimp
 // itself; glTF is Y-up metres by definition. STL declares neither: its axes are kept and
 // the scene's `up` decides.
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <fstream>
 #include <iterator>
 #include <optional>
 #include <set>
+#include <vector>
 
 #include <assimp/BaseImporter.h>
 #include <assimp/DefaultIOSystem.h>
@@ -182,7 +188,7 @@ void checkGltfPrimitives(const fs::path& path, const std::optional<std::string>&
 // The importers that claim the file's extension, the others removed from `importer`:
 // when none of those reads the file, Assimp hands it to any importer whose signature test
 // it passes, and a broken .gltf that began with "pmx" went to the PMX importer, which read
-// past its buffer. An extension no importer claims is refused with the ones they do.
+// past its buffer. An extension no importer claims is refused.
 void keepImportersOf(Assimp::Importer& importer, const fs::path& path) {
   std::string name = path.filename().string();
   for (char& c : name) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
@@ -208,10 +214,8 @@ void keepImportersOf(Assimp::Importer& importer, const fs::path& path) {
   }
 }
 
-}  // namespace
-
-PolygonSoup readAssimp(const fs::path& path) {
-  checkInputFile(path, "a mesh", kMaxMeshBytes);
+// The reading itself, in the child readAssimp starts.
+PolygonSoup readAssimpHere(const fs::path& path) {
   Assimp::Importer importer;
   auto* io = new GatedIoSystem;  // the importer owns it
   importer.SetIOHandler(io);
@@ -268,6 +272,153 @@ PolygonSoup readAssimp(const fs::path& path) {
     }
   }
   return soup;
+}
+
+// A soup and an error message as bytes through a pipe: sizes as 64-bit counts, then the
+// values as they lie in memory (both ends are this program).
+class Packer {
+ public:
+  explicit Packer(int fd) : fd_(fd) {}
+  ~Packer() { flush(); }
+  template <typename T>
+  void values(const T* v, std::size_t n) {
+    count(n);
+    bytes(v, n * sizeof(T));
+  }
+  void count(std::uint64_t n) { bytes(&n, sizeof n); }
+  void text(const std::string& t) { values(t.data(), t.size()); }
+  void flush() {
+    for (std::size_t at = 0; at < buffer_.size();) {
+      const ssize_t n = ::write(fd_, buffer_.data() + at, buffer_.size() - at);
+      if (n < 0 && errno == EINTR) continue;
+      if (n <= 0) break;  // the parent has gone: nothing to tell
+      at += static_cast<std::size_t>(n);
+    }
+    buffer_.clear();
+  }
+
+ private:
+  void bytes(const void* p, std::size_t n) {
+    const char* c = static_cast<const char*>(p);
+    buffer_.insert(buffer_.end(), c, c + n);
+    if (buffer_.size() >= (std::size_t{1} << 16)) flush();
+  }
+  int fd_;
+  std::vector<char> buffer_;
+};
+
+class Unpacker {
+ public:
+  explicit Unpacker(const std::string& b) : b_(b) {}
+  std::uint64_t count() {
+    std::uint64_t n = 0;
+    take(&n, sizeof n);
+    return n;
+  }
+  template <typename T>
+  std::vector<T> values() {
+    const std::uint64_t n = count();
+    if (n > (b_.size() - at_) / sizeof(T)) throw std::length_error("short");
+    std::vector<T> v(n);
+    take(v.data(), n * sizeof(T));
+    return v;
+  }
+  std::string text() {
+    const std::vector<char> c = values<char>();
+    return {c.begin(), c.end()};
+  }
+  bool done() const { return at_ == b_.size(); }
+
+ private:
+  void take(void* p, std::size_t n) {
+    if (n > b_.size() - at_) throw std::length_error("short");
+    std::memcpy(p, b_.data() + at_, n);
+    at_ += n;
+  }
+  const std::string& b_;
+  std::size_t at_ = 0;
+};
+
+}  // namespace
+
+// In a child process: Assimp 5.2's FBX and COLLADA readers (and others) dereference null on
+// malformed files the fuzzers found within seconds, which no check before it can foresee.
+// The child reads the file and sends the soup (or the error) back through a pipe; a child
+// that dies is reported as Assimp failing on the file, and the program goes on.
+PolygonSoup readAssimp(const fs::path& path) {
+  checkInputFile(path, "a mesh", kMaxMeshBytes);
+  // Where no process can be started (a strict overcommit limit, a process table full), it is
+  // read here, as before.
+  int fds[2];
+  if (::pipe(fds) != 0) return readAssimpHere(path);
+  const pid_t child = ::fork();
+  if (child < 0) {
+    ::close(fds[0]);
+    ::close(fds[1]);
+    return readAssimpHere(path);
+  }
+  if (child == 0) {
+    ::close(fds[0]);
+    int status = 0;
+    {
+      Packer out(fds[1]);
+      try {
+        const PolygonSoup soup = readAssimpHere(path);
+        out.count(1);
+        out.values(soup.positions.data(), soup.positions.size());
+        out.values(soup.normals.data(), soup.normals.size());
+        out.values(soup.uvs.data(), soup.uvs.size());
+        out.count(soup.faces.size());
+        for (const std::vector<std::uint32_t>& f : soup.faces) out.values(f.data(), f.size());
+        out.count(soup.notes.size());
+        for (const std::string& n : soup.notes) out.text(n);
+      } catch (const std::exception& e) {
+        out.count(0);
+        out.text(e.what());
+      } catch (...) {
+        status = 3;
+      }
+    }
+    ::_exit(status);  // no atexit handlers or stdio flushes of the parent's
+  }
+  ::close(fds[1]);
+  std::string bytes;
+  char chunk[1 << 16];
+  for (;;) {
+    const ssize_t n = ::read(fds[0], chunk, sizeof chunk);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) break;
+    bytes.append(chunk, static_cast<std::size_t>(n));
+  }
+  ::close(fds[0]);
+  int status = 0;
+  while (::waitpid(child, &status, 0) < 0 && errno == EINTR) {
+  }
+  // Killed by a signal, or (under a sanitizer, which reports the fault and exits) by an exit
+  // before the whole answer came.
+  auto died = [&] {
+    const std::string how = WIFSIGNALED(status) ? std::string(strsignal(WTERMSIG(status)))
+                                                : "exit status " + std::to_string(WEXITSTATUS(status));
+    return makeError(path.string(), ": Assimp died reading it (", how,
+                     "): a malformed file, or one Assimp 5.2 cannot read; export it again, or as .obj or .ply");
+  };
+  if (WIFSIGNALED(status)) throw died();
+  try {
+    Unpacker in(bytes);
+    if (in.count() == 0) throw Error(in.text());
+    PolygonSoup soup;
+    soup.positions = in.values<glm::dvec3>();
+    soup.normals = in.values<glm::vec3>();
+    soup.uvs = in.values<glm::vec2>();
+    soup.faces.resize(in.count());
+    for (std::vector<std::uint32_t>& f : soup.faces) f = in.values<std::uint32_t>();
+    soup.notes.resize(in.count());
+    for (std::string& n : soup.notes) n = in.text();
+    if (!in.done()) throw std::length_error("long");
+    return soup;
+  } catch (const std::length_error&) {
+    throw died();
+  }
 }
 
 }  // namespace shanshui::mesh

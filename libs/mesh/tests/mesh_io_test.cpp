@@ -108,19 +108,20 @@ TEST(MeshIo, BadInputNamesTheFileAndTheProblem) {
       "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n";
   std::ofstream(dir / "hugeindex.ply") << ply_header << "3 0 1 2444444444444444444444444444\n";
   std::ofstream(dir / "halfindex.ply") << ply_header << "3 0 1 1.5\n";
-  const std::pair<const char*, const char*> cases[] = {{"nan.obj", "line 3: vertex coordinate 'nan'"},
-                                                       {"inf.obj", "line 3: vertex coordinate 'inf'"},
-                                                       {"word.obj", "'zero'"},
-                                                       {"missing.obj", "no such file"},
-                                                       {"cut.ply", "truncated"},
-                                                       {"cut.off", "truncated"},
-                                                       {"nofaces.obj", "no faces"},
-                                                       {"badindex.off", "vertex 7"},
-                                                       {"hugeindex.ply", "face 0: vertex index 2444444"},
-                                                       {"halfindex.ply", "vertex index 1.5"},
-                                                       {"garbage.off", "'zero'"},
-                                                       {"empty.obj", "empty file"},
-                                                       {"notes.xyz", "not a mesh Assimp can read"}};
+  const std::pair<const char*, const char*> cases[] = {
+      {"nan.obj", "line 3: vertex coordinate 'nan'"},
+      {"inf.obj", "line 3: vertex coordinate 'inf'"},
+      {"word.obj", "'zero'"},
+      {"missing.obj", "no such file"},
+      {"cut.ply", "truncated"},
+      {"cut.off", "truncated"},
+      {"nofaces.obj", "no faces"},
+      {"badindex.off", "vertex 7"},
+      {"hugeindex.ply", "face 0: vertex index 2444444"},
+      {"halfindex.ply", "vertex index 1.5"},
+      {"garbage.off", "'zero'"},
+      {"empty.obj", "empty file"},
+      {"notes.xyz", "not a mesh format shanshui reads by its extension '.xyz'"}};
   for (const auto& [file, what] : cases) {
     test::expectErrorNaming([&] { readPolygonSoup(dir / file); }, file, what);
   }
