@@ -206,12 +206,9 @@ void keepImportersOf(Assimp::Importer& importer, const fs::path& path) {
       delete reader;  // no longer the importer's to delete
     }
   }
-  if (kept == 0) {
-    std::string known;
-    importer.GetExtensionList(known);
+  if (kept == 0)
     throw makeError(path.string(), ": not a mesh format shanshui reads by its extension '", path.extension().string(),
-                    "' (.obj, .ply, .off, or through Assimp: ", known, ")");
-  }
+                    "' (.obj, .ply, .off; .gltf, .glb, .fbx, .dae, .3ds, .stl and the other formats Assimp reads)");
 }
 
 // The reading itself, in the child readAssimp starts.
