@@ -296,6 +296,7 @@ class Packer {
 
  private:
   void bytes(const void* p, std::size_t n) {
+    if (n == 0) return;
     const char* c = static_cast<const char*>(p);
     buffer_.insert(buffer_.end(), c, c + n);
     if (buffer_.size() >= (std::size_t{1} << 16)) flush();
@@ -329,6 +330,7 @@ class Unpacker {
  private:
   void take(void* p, std::size_t n) {
     if (n > b_.size() - at_) throw std::length_error("short");
+    if (n == 0) return;  // an empty vector's data() may be null, which memcpy may not take
     std::memcpy(p, b_.data() + at_, n);
     at_ += n;
   }
