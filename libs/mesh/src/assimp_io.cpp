@@ -208,7 +208,8 @@ void keepImportersOf(Assimp::Importer& importer, const fs::path& path) {
   }
   if (kept == 0)
     throw makeError(path.string(), ": not a mesh format shanshui reads by its extension '", path.extension().string(),
-                    "' (.obj, .ply, .off; .gltf, .glb, .fbx, .dae, .3ds, .stl and the other formats Assimp reads)");
+                    "' (.obj, .ply, .off; .gltf, .glb, .fbx, .dae, .3ds, .stl and the other formats Assimp reads; a ",
+                    "DEM becomes a mesh with shanshui-terrain)");
 }
 
 // The reading itself, in the child readAssimp starts.
