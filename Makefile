@@ -37,7 +37,7 @@ test-asan:
 # that judge its time budget (a sanitizer's slowdown changes what the budget allows).
 SANITIZER_TESTS = test_core test_image test_mesh test_terrain test_render test_texsynth test_pigment \
   test_strokes test_param test_elements test_scene test_ink test_noise test_view test_stability \
-  $(foreach f,obj ply off dem asc geotiff scene manifest png jpg tif pgm,fuzz_replay_$(f))
+  $(foreach f,obj ply off gltf glb fbx dae stl dem asc geotiff scene manifest png jpg tif pgm,fuzz_replay_$(f))
 SANITIZER_SKIP = _NOT_BUILT|EveryCgalTestMesh|Charts.CowMeetsTheAtlasTargets|Parameterize.Auto|Parameterize.ClosedSphere
 test-sanitizers:
 	$(MAKE) configure BUILD=build-sanitizers BUILD_TYPE=RelWithDebInfo CMAKE_FLAGS="-DSHANSHUI_SANITIZE=ON \
