@@ -12,7 +12,6 @@
 #include <cstdint>
 #include <cstring>
 #include <fstream>
-#include <iterator>
 #include <optional>
 #include <set>
 #include <vector>
@@ -109,10 +108,11 @@ std::optional<std::string> checkGlbLengths(const fs::path& path) {
   unsigned char b[20] = {};
   in.read(reinterpret_cast<char*>(b), sizeof b);
   const auto got = static_cast<std::size_t>(in.gcount());
-  auto u32 = [&](std::size_t at) {
-    return static_cast<std::uint32_t>(b[at]) | static_cast<std::uint32_t>(b[at + 1]) << 8 |
-           static_cast<std::uint32_t>(b[at + 2]) << 16 | static_cast<std::uint32_t>(b[at + 3]) << 24;
+  auto le32 = [](const unsigned char* p) {
+    return static_cast<std::uint32_t>(p[0]) | static_cast<std::uint32_t>(p[1]) << 8 |
+           static_cast<std::uint32_t>(p[2]) << 16 | static_cast<std::uint32_t>(p[3]) << 24;
   };
+  auto u32 = [&](std::size_t at) { return le32(b + at); };
   if (got < 4 || u32(0) != 0x46546C67u) return std::nullopt;  // "glTF"
   const std::uintmax_t size = fs::file_size(path);
   if (got < sizeof b) throw makeError(path.string(), ": binary glTF of ", size, " bytes, shorter than its header");
@@ -125,8 +125,7 @@ std::optional<std::string> checkGlbLengths(const fs::path& path) {
     unsigned char h[8] = {};
     in.seekg(static_cast<std::streamoff>(at));
     in.read(reinterpret_cast<char*>(h), sizeof h);
-    const std::uint32_t length = static_cast<std::uint32_t>(h[0]) | static_cast<std::uint32_t>(h[1]) << 8 |
-                                 static_cast<std::uint32_t>(h[2]) << 16 | static_cast<std::uint32_t>(h[3]) << 24;
+    const std::uint32_t length = le32(h);
     if (at + 8 + length > u32(8))
       throw makeError(path.string(), ": binary glTF chunk ", chunk + 1, " at byte ", at, " says ", length,
                       " bytes, past the ", u32(8), " the file's header gives");
@@ -145,16 +144,9 @@ std::optional<std::string> checkGlbLengths(const fs::path& path) {
 // that does not parse as the standard asks (UTF-8) is refused too: Assimp's parser takes
 // invalid bytes in a key, and such a file went on to crash it.
 void checkGltfPrimitives(const fs::path& path, const std::optional<std::string>& glb_json) {
-  std::string text;
-  if (glb_json) {
-    text = *glb_json;
-  } else {
-    std::ifstream in(path, std::ios::binary);
-    text.assign(std::istreambuf_iterator<char>(in), {});
-  }
   nlohmann::json j;
   try {
-    j = nlohmann::json::parse(text);
+    j = nlohmann::json::parse(glb_json ? *glb_json : readInputFile(path, "a mesh", kMaxMeshBytes));
   } catch (const nlohmann::json::exception& e) {
     std::string why = e.what();
     if (const auto colon = why.find(": "); colon != std::string::npos) why = why.substr(colon + 2);

@@ -72,6 +72,16 @@ void expectBox(const fs::path& f, double metres, const std::string& axes = "xyz"
   }
 }
 
+// The box written by Assimp's exporter `format` to dir / name, read back as a box, and the
+// file's bytes (for the tests that break it).
+std::string exportedBox(const fs::path& dir, const char* format, const char* name) {
+  Assimp::Exporter exporter;
+  EXPECT_EQ(exporter.Export(boxScene().get(), format, (dir / name).string()), AI_SUCCESS);
+  expectBox(dir / name, 1.0);
+  std::ifstream in(dir / name, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), {}};
+}
+
 TEST(AssimpIo, EveryFormatAssimpWritesRoundTripsAKnownBox) {
   test::TempDir dir;
   const auto scene = boxScene();
@@ -169,9 +179,7 @@ TEST(AssimpIo, RefusesWhatIsNotAMeshByName) {
 // its signature Assimp would read it as STL; named .stl it is read.
 TEST(AssimpIo, AFileIsReadByTheImporterItsExtensionNamesOrRefused) {
   test::TempDir dir;
-  Assimp::Exporter exporter;
-  ASSERT_EQ(exporter.Export(boxScene().get(), "stl", (dir / "box.stl").string()), AI_SUCCESS);
-  expectBox(dir / "box.stl", 1.0);
+  exportedBox(dir.path(), "stl", "box.stl");
   fs::copy_file(dir / "box.stl", dir / "box.dae");
   test::expectErrorNaming([&] { readPolygonSoup(dir / "box.dae"); }, "box.dae", "not a mesh Assimp can read");
   fs::copy_file(dir / "box.stl", dir / "box.mesh3");
@@ -184,14 +192,7 @@ TEST(AssimpIo, AFileIsReadByTheImporterItsExtensionNamesOrRefused) {
 // fuzz/regressions/glb).
 TEST(AssimpIo, ABinaryGltfWhoseLengthsPassTheFileIsRefusedNamingThem) {
   test::TempDir dir;
-  Assimp::Exporter exporter;
-  ASSERT_EQ(exporter.Export(boxScene().get(), "glb2", (dir / "box.glb").string()), AI_SUCCESS);
-  expectBox(dir / "box.glb", 1.0);
-  std::string glb;
-  {
-    std::ifstream in(dir / "box.glb", std::ios::binary);
-    glb.assign(std::istreambuf_iterator<char>(in), {});
-  }
+  const std::string glb = exportedBox(dir.path(), "glb2", "box.glb");
   ASSERT_GT(glb.size(), 28u);
   auto with = [&](std::size_t at, std::uint32_t v, const char* name) {
     std::string bytes = glb;
@@ -215,14 +216,7 @@ TEST(AssimpIo, ABinaryGltfWhoseLengthsPassTheFileIsRefusedNamingThem) {
 // takes it, and such a file went on to crash it): fuzz/regressions/gltf and glb.
 TEST(AssimpIo, AGltfAssimpWouldMisreadIsRefusedNamingWhy) {
   test::TempDir dir;
-  Assimp::Exporter exporter;
-  ASSERT_EQ(exporter.Export(boxScene().get(), "gltf2", (dir / "box.gltf").string()), AI_SUCCESS);
-  expectBox(dir / "box.gltf", 1.0);
-  std::string json;
-  {
-    std::ifstream in(dir / "box.gltf", std::ios::binary);
-    json.assign(std::istreambuf_iterator<char>(in), {});
-  }
+  const std::string json = exportedBox(dir.path(), "gltf2", "box.gltf");
   auto edited = [&](const std::string& from, const std::string& to, const char* name) {
     std::string text = json;
     const auto at = text.find(from);
@@ -244,13 +238,7 @@ TEST(AssimpIo, AGltfAssimpWouldMisreadIsRefusedNamingWhy) {
 // the program goes on to read the next.
 TEST(AssimpIo, AFileAssimpDiesOnIsAnErrorAndTheProgramGoesOn) {
   test::TempDir dir;
-  Assimp::Exporter exporter;
-  ASSERT_EQ(exporter.Export(boxScene().get(), "collada", (dir / "box.dae").string()), AI_SUCCESS);
-  std::string dae;
-  {
-    std::ifstream in(dir / "box.dae", std::ios::binary);
-    dae.assign(std::istreambuf_iterator<char>(in), {});
-  }
+  const std::string dae = exportedBox(dir.path(), "collada", "box.dae");
   const std::string::size_type at = dae.find("float_array");
   ASSERT_NE(at, std::string::npos);
   const std::string::size_type count = dae.find("count=", at);
